@@ -1,0 +1,59 @@
+// SimplexMesh: the plain, VTK-free mesh type every kernel of AnisoVoronoi works on.
+#ifndef av_SimplexMesh_h
+#define av_SimplexMesh_h
+
+#include <cstddef>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace av
+{
+
+/// Every kernel reports bad input by throwing this; VTK filters turn it into vtkErrorMacro.
+class InputError : public std::runtime_error
+{
+public:
+  explicit InputError(const std::string& what)
+    : std::runtime_error(what)
+  {
+  }
+};
+
+/**
+ * A simplicial mesh: triangles (SimplexDim 2) or tetrahedra (SimplexDim 3) whose
+ * vertices live in R^AmbientDim (2 for a flat 2D domain, 3 for a surface or a volume).
+ * Points are stored row-major (NumPoints x AmbientDim), cells row-major
+ * (NumCells x (SimplexDim + 1)) with 0-based point ids.
+ */
+struct SimplexMesh
+{
+  int AmbientDim = 3;
+  int SimplexDim = 3;
+  std::vector<double> Points;
+  std::vector<std::int32_t> Cells;
+
+  std::size_t NumPoints() const { return Points.size() / static_cast<std::size_t>(AmbientDim); }
+  std::size_t NumCells() const { return Cells.size() / static_cast<std::size_t>(SimplexDim + 1); }
+  int VerticesPerCell() const { return SimplexDim + 1; }
+  const double* Point(std::size_t i) const { return Points.data() + i * AmbientDim; }
+  const std::int32_t* Cell(std::size_t c) const { return Cells.data() + c * (SimplexDim + 1); }
+};
+
+/**
+ * A symmetric metric per mesh vertex, always stored as a full 3x3 symmetric tensor in
+ * VTK's 6-component order (XX, YY, ZZ, XY, YZ, XZ). For a flat 2D domain only the XX, YY,
+ * XY entries are used. On a surface the metric may be rank 2 (zero along the normal).
+ */
+struct MetricField
+{
+  std::vector<double> Values; // NumPoints x 6
+
+  std::size_t NumPoints() const { return Values.size() / 6; }
+  const double* At(std::size_t i) const { return Values.data() + 6 * i; }
+};
+
+} // namespace av
+
+#endif
