@@ -54,6 +54,36 @@ struct MetricField
   const double* At(std::size_t i) const { return Values.data() + 6 * i; }
 };
 
+/**
+ * The vertices of a SimplexMesh mapped into R^Dim (the high-dimensional embedding).
+ * Coords is row-major NumPoints x Dim; its first AmbientDim columns equal the input
+ * coordinates, so mapping back to input space is "keep the first AmbientDim values".
+ */
+struct Embedding
+{
+  int Dim = 8;
+  std::vector<double> Coords;
+
+  std::size_t NumPoints() const { return Coords.size() / static_cast<std::size_t>(Dim); }
+  const double* At(std::size_t i) const { return Coords.data() + i * Dim; }
+};
+
+/**
+ * Points that live on (or in) a SimplexMesh, e.g. particles / Voronoi sites. Each has its
+ * embedded position (Dim values), the mesh cell that contains it and its barycentric
+ * coordinates in that cell (always 4 values; the 4th is 0 for triangles).
+ */
+struct SiteSet
+{
+  int Dim = 8;
+  std::vector<double> Coords;       // NumSites x Dim
+  std::vector<std::int32_t> CellIds; // NumSites
+  std::vector<double> Bary;         // NumSites x 4
+
+  std::size_t NumSites() const { return CellIds.size(); }
+  const double* At(std::size_t i) const { return Coords.data() + i * Dim; }
+};
+
 } // namespace av
 
 #endif
