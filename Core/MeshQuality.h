@@ -1,0 +1,74 @@
+// MeshQuality: the anisotropic mesh quality measures of paper §5.2 (plus the UGAWG
+// unit-edge-length ratio), VTK-free.
+#ifndef av_MeshQuality_h
+#define av_MeshQuality_h
+
+#include "SimplexMesh.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace av
+{
+
+/// Summary numbers of paper §5.2 (the columns of Tab. 3 / Tab. 5) and the UGAWG edge ratio.
+struct MeshQualitySummary
+{
+  std::size_t NumCells = 0;
+  double GMin = 0.0;     ///< smallest cell quality G (0 = degenerate, 1 = regular)
+  double GAvg = 0.0;     ///< mean of G over all cells
+  double ThetaMin = 0.0; ///< smallest min-angle (triangles) / min-dihedral (tets), degrees
+  double ThetaAvg = 0.0; ///< mean of the per-cell min angles, degrees
+  double BadAngleThreshold = 0.0; ///< 30 deg for triangles, 15 deg for tets
+  std::size_t NumBad = 0;         ///< cells whose min angle < BadAngleThreshold
+  double PercentBad = 0.0;        ///< 100 * NumBad / NumCells
+  std::size_t NumInverted = 0;    ///< cells with signed measure <= 0 in input space
+  std::size_t NumEdges = 0;       ///< unique edges
+  /// Median of the metric edge lengths before normalisation (the global scale removed).
+  double MedianEdgeLength = 0.0;
+  /// % of unique edges with normalised metric length in [1/sqrt2, sqrt2] (UGAWG range).
+  double PercentEdgesInUnitRange = 0.0;
+  double HistogramBinWidth = 5.0;           ///< degrees
+  std::vector<std::size_t> AngleHistogram;  ///< counts of per-cell min angles, bins [0,90)
+};
+
+/// Per-cell measures (arrays of NumCells) and the summary.
+struct MeshQualityResult
+{
+  MeshQualitySummary Summary;
+  std::vector<double> G;                ///< quality G per cell after the metric mapping
+  std::vector<double> MinAngle;         ///< min angle / min dihedral angle per cell, degrees
+  std::vector<std::uint8_t> Inverted;   ///< 1 where the signed measure in input space <= 0
+  std::vector<double> EdgeLengths;      ///< normalised metric length per unique edge
+  std::vector<std::int32_t> Edges;      ///< unique edges, 2 point ids each (sorted pairs)
+};
+
+/**
+ * Evaluates an output mesh (triangles or tets, in input space) against the metric given at
+ * its vertices (paper §5.2). Each cell is mapped by A = (sum_i M_i^{1/2}) / (k+1): the
+ * average of the per-vertex symmetric square roots of the metric (not the square root of the
+ * averaged metric), then
+ *   triangles: G = 2 sqrt3 S / (p h), theta = smallest angle, bad if theta < 30 deg;
+ *   tets:      G = 12 (9 V^2)^{1/3} / sum l^2, theta = smallest dihedral, bad if < 15 deg.
+ * Inverted: signed area (2D input) / signed volume (tets) <= 0 with the stored vertex order;
+ * for triangles on a 3D surface there is no reference orientation and only zero-area
+ * triangles are counted. Edge lengths use Q_ab = (A_a + A_b)/2 as in §5.1 and are divided by
+ * their median (the metric's absolute scale is arbitrary after the global scaling c) before
+ * the [1/sqrt2, sqrt2] test. Metric entries follow the MetricField 6-component order; for a
+ * 2D mesh only XX, YY, XY are used. Negative eigenvalues are clamped to 0.
+ * Throws InputError on wrong sizes, bad ids, NaN or an empty mesh.
+ */
+MeshQualityResult EvaluateMeshQuality(const SimplexMesh& mesh, const MetricField& metric);
+
+/**
+ * The metric at each site: barycentric interpolation of the per-vertex metric of `mesh`
+ * (the mesh the sites live on, e.g. the input mesh of the sampler) in the site's cell.
+ * Throws InputError on wrong sizes or cell ids.
+ */
+MetricField InterpolateMetricAtSites(
+  const SimplexMesh& mesh, const MetricField& metric, const SiteSet& sites);
+
+} // namespace av
+
+#endif
