@@ -1,0 +1,252 @@
+#include "vtkAnisoDataConversion.h"
+
+#include <vtkCell.h>
+#include <vtkCellTypes.h>
+#include <vtkDataArray.h>
+#include <vtkDataSet.h>
+#include <vtkDoubleArray.h>
+#include <vtkGenericCell.h>
+#include <vtkIdList.h>
+#include <vtkNew.h>
+
+#include <cmath>
+#include <sstream>
+
+namespace vtkAnisoDataConversion
+{
+
+bool ToSimplexMesh(vtkDataSet* input, av::SimplexMesh& mesh, std::string& error, std::string* note)
+{
+  mesh = av::SimplexMesh();
+  if (!input || input->GetNumberOfPoints() == 0 || input->GetNumberOfCells() == 0)
+  {
+    error = "the input has no points or no cells";
+    return false;
+  }
+  const vtkIdType numPoints = input->GetNumberOfPoints();
+  const vtkIdType numCells = input->GetNumberOfCells();
+  vtkIdType tris = 0, tets = 0, ignored = 0, other = 0;
+  int otherType = -1;
+  for (vtkIdType c = 0; c < numCells; ++c)
+  {
+    switch (input->GetCellType(c))
+    {
+      case VTK_TRIANGLE:
+        ++tris;
+        break;
+      case VTK_TETRA:
+        ++tets;
+        break;
+      case VTK_VERTEX:
+      case VTK_POLY_VERTEX:
+      case VTK_LINE:
+      case VTK_POLY_LINE:
+        ++ignored;
+        break;
+      default:
+        ++other;
+        otherType = input->GetCellType(c);
+    }
+  }
+  if (other > 0)
+  {
+    std::ostringstream os;
+    os << other << " cell(s) are not triangles or tetrahedra (first type: "
+       << vtkCellTypes::GetClassNameFromTypeId(otherType)
+       << "); apply 'Aniso Simplex Mesh' (vtkAnisoSimplexMesh) first to split them";
+    error = os.str();
+    return false;
+  }
+  if (tris > 0 && tets > 0)
+  {
+    error = "the input mixes triangles and tetrahedra; extract the volume (tetrahedra) or the "
+            "surface (triangles) first";
+    return false;
+  }
+  if (tris == 0 && tets == 0)
+  {
+    error = "the input has no triangle or tetrahedron";
+    return false;
+  }
+  if (ignored > 0 && note)
+  {
+    std::ostringstream os;
+    os << ignored << " vertex/line cell(s) were ignored";
+    *note = os.str();
+  }
+  mesh.SimplexDim = tets > 0 ? 3 : 2;
+  double bounds[6];
+  input->GetBounds(bounds);
+  const bool flat = mesh.SimplexDim == 2 && bounds[4] == bounds[5];
+  mesh.AmbientDim = flat ? 2 : 3;
+  mesh.Points.resize(static_cast<std::size_t>(numPoints) * mesh.AmbientDim);
+  for (vtkIdType i = 0; i < numPoints; ++i)
+  {
+    double p[3];
+    input->GetPoint(i, p);
+    for (int d = 0; d < mesh.AmbientDim; ++d)
+    {
+      if (!std::isfinite(p[d]))
+      {
+        std::ostringstream os;
+        os << "point " << i << " has a non-finite coordinate";
+        error = os.str();
+        return false;
+      }
+      mesh.Points[static_cast<std::size_t>(i) * mesh.AmbientDim + d] = p[d];
+    }
+  }
+  const int nv = mesh.SimplexDim + 1;
+  mesh.Cells.reserve(static_cast<std::size_t>(mesh.SimplexDim == 3 ? tets : tris) * nv);
+  vtkNew<vtkIdList> ids;
+  for (vtkIdType c = 0; c < numCells; ++c)
+  {
+    const int type = input->GetCellType(c);
+    if (type != VTK_TRIANGLE && type != VTK_TETRA)
+    {
+      continue;
+    }
+    input->GetCellPoints(c, ids);
+    for (int k = 0; k < nv; ++k)
+    {
+      mesh.Cells.push_back(static_cast<std::int32_t>(ids->GetId(k)));
+    }
+  }
+  return true;
+}
+
+bool ToMetricField(
+  vtkDataArray* array, std::size_t numPoints, av::MetricField& metric, std::string& error)
+{
+  if (!array)
+  {
+    error = "no metric/tensor array was found (choose one with SetInputArrayToProcess)";
+    return false;
+  }
+  const int nc = array->GetNumberOfComponents();
+  if (nc != 6 && nc != 9)
+  {
+    std::ostringstream os;
+    os << "array '" << (array->GetName() ? array->GetName() : "") << "' has " << nc
+       << " components; a symmetric tensor needs 6 (XX,YY,ZZ,XY,YZ,XZ) or 9";
+    error = os.str();
+    return false;
+  }
+  if (static_cast<std::size_t>(array->GetNumberOfTuples()) != numPoints)
+  {
+    std::ostringstream os;
+    os << "array '" << (array->GetName() ? array->GetName() : "") << "' has "
+       << array->GetNumberOfTuples() << " tuples but the mesh has " << numPoints << " points";
+    error = os.str();
+    return false;
+  }
+  metric.Values.resize(numPoints * 6);
+  double t[9];
+  for (std::size_t i = 0; i < numPoints; ++i)
+  {
+    array->GetTuple(static_cast<vtkIdType>(i), t);
+    double* m = metric.Values.data() + 6 * i;
+    if (nc == 6)
+    {
+      for (int k = 0; k < 6; ++k)
+        m[k] = t[k];
+    }
+    else
+    {
+      // 9 components, row-major; VTK 6-component order XX,YY,ZZ,XY,YZ,XZ.
+      m[0] = t[0];
+      m[1] = t[4];
+      m[2] = t[8];
+      m[3] = 0.5 * (t[1] + t[3]);
+      m[4] = 0.5 * (t[5] + t[7]);
+      m[5] = 0.5 * (t[2] + t[6]);
+    }
+    for (int k = 0; k < 6; ++k)
+    {
+      if (!std::isfinite(m[k]))
+      {
+        std::ostringstream os;
+        os << "array '" << (array->GetName() ? array->GetName() : "")
+           << "' has a NaN/Inf value at point " << i;
+        error = os.str();
+        return false;
+      }
+    }
+  }
+  return true;
+}
+
+bool ToEmbedding(
+  vtkDataArray* array, const av::SimplexMesh& mesh, av::Embedding& embedding, std::string& error)
+{
+  if (!array)
+  {
+    error = "no embedding array was found (run the embedding filter first, or choose the "
+            "array with SetInputArrayToProcess)";
+    return false;
+  }
+  const int dim = array->GetNumberOfComponents();
+  if (dim <= mesh.AmbientDim || dim > 64)
+  {
+    std::ostringstream os;
+    os << "embedding array '" << (array->GetName() ? array->GetName() : "") << "' has " << dim
+       << " components; expected more than the input dimension " << mesh.AmbientDim;
+    error = os.str();
+    return false;
+  }
+  const std::size_t n = mesh.NumPoints();
+  if (static_cast<std::size_t>(array->GetNumberOfTuples()) != n)
+  {
+    std::ostringstream os;
+    os << "embedding array has " << array->GetNumberOfTuples() << " tuples but the mesh has "
+       << n << " points";
+    error = os.str();
+    return false;
+  }
+  embedding.Dim = dim;
+  embedding.Coords.resize(n * dim);
+  double scale = 0;
+  for (double v : mesh.Points)
+    scale = std::max(scale, std::abs(v));
+  const double tol = 1e-6 * std::max(1.0, scale);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    double* x = embedding.Coords.data() + i * dim;
+    array->GetTuple(static_cast<vtkIdType>(i), x);
+    for (int d = 0; d < dim; ++d)
+    {
+      if (!std::isfinite(x[d]))
+      {
+        std::ostringstream os;
+        os << "embedding has a NaN/Inf value at point " << i;
+        error = os.str();
+        return false;
+      }
+    }
+    for (int d = 0; d < mesh.AmbientDim; ++d)
+    {
+      if (std::abs(x[d] - mesh.Points[i * mesh.AmbientDim + d]) > tol)
+      {
+        std::ostringstream os;
+        os << "embedding array does not belong to this mesh: its first " << mesh.AmbientDim
+           << " coordinates differ from the point coordinates at point " << i;
+        error = os.str();
+        return false;
+      }
+    }
+  }
+  return true;
+}
+
+vtkSmartPointer<vtkDataArray> MakeArray(
+  const char* name, const double* values, std::size_t tuples, int components)
+{
+  auto array = vtkSmartPointer<vtkDoubleArray>::New();
+  array->SetName(name);
+  array->SetNumberOfComponents(components);
+  array->SetNumberOfTuples(static_cast<vtkIdType>(tuples));
+  std::copy(values, values + tuples * components, array->GetPointer(0));
+  return array;
+}
+
+}

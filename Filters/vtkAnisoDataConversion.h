@@ -1,0 +1,48 @@
+/**
+ * @file vtkAnisoDataConversion.h
+ * @brief Internal (not wrapped): conversions between VTK datasets and the VTK-free kernel
+ * types of Core/ (av::SimplexMesh, av::MetricField, av::Embedding).
+ *
+ * Every filter goes through these so that input checks (cell types, NaN, array sizes) are
+ * written once. Functions return false and fill `error` with a message a user can act on.
+ */
+#ifndef vtkAnisoDataConversion_h
+#define vtkAnisoDataConversion_h
+
+#include "SimplexMesh.h" // av:: kernel types
+
+#include <vtkSmartPointer.h> // return values
+#include <string>
+
+class vtkDataArray;
+class vtkDataSet;
+class vtkPointSet;
+class vtkUnstructuredGrid;
+class vtkPolyData;
+
+namespace vtkAnisoDataConversion
+{
+/**
+ * Extracts the simplicial mesh of `input`: all cells must be triangles or all tetrahedra
+ * (lines/vertices are ignored with a warning text in `note`). A triangle mesh whose points
+ * all have the same z is a flat 2D domain (AmbientDim 2); otherwise a surface (AmbientDim 3).
+ */
+bool ToSimplexMesh(vtkDataSet* input, av::SimplexMesh& mesh, std::string& error,
+  std::string* note = nullptr);
+
+/// Reads a 6-component (XX,YY,ZZ,XY,YZ,XZ) or 9-component symmetric tensor array into a
+/// MetricField (values copied; NaN/Inf rejected). Only checks finiteness and size.
+bool ToMetricField(vtkDataArray* array, std::size_t numPoints, av::MetricField& metric,
+  std::string& error);
+
+/// Reads an embedding array (NumPoints x Dim, Dim >= AmbientDim) and checks that its first
+/// AmbientDim columns match the mesh coordinates (the embedding keeps them fixed).
+bool ToEmbedding(vtkDataArray* array, const av::SimplexMesh& mesh, av::Embedding& embedding,
+  std::string& error);
+
+/// A vtkDoubleArray holding `values` (row-major, `components` per tuple).
+vtkSmartPointer<vtkDataArray> MakeArray(
+  const char* name, const double* values, std::size_t tuples, int components);
+}
+
+#endif

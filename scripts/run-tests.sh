@@ -1,0 +1,8 @@
+#!/usr/bin/env bash
+# Command 2 of the README: install what is missing, build, run the whole CTest suite.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/setup.sh
+BUILD_DIR=${AV_BUILD_DIR:-build}
+cd "$BUILD_DIR"
+ctest --output-on-failure --timeout 900 "$@"
