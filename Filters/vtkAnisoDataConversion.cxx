@@ -8,6 +8,8 @@
 #include <vtkGenericCell.h>
 #include <vtkIdList.h>
 #include <vtkNew.h>
+#include <vtkPoints.h>
+#include <vtkUnstructuredGrid.h>
 
 #include <cmath>
 #include <sstream>
@@ -236,6 +238,34 @@ bool ToEmbedding(
     }
   }
   return true;
+}
+
+vtkSmartPointer<vtkUnstructuredGrid> FromSimplexMesh(const av::SimplexMesh& mesh)
+{
+  auto grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
+  const std::size_t n = mesh.NumPoints();
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(static_cast<vtkIdType>(n));
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const double* p = mesh.Point(i);
+    points->SetPoint(
+      static_cast<vtkIdType>(i), p[0], p[1], mesh.AmbientDim == 3 ? p[2] : 0.0);
+  }
+  grid->SetPoints(points);
+  const int nv = mesh.VerticesPerCell();
+  const int type = mesh.SimplexDim == 3 ? VTK_TETRA : VTK_TRIANGLE;
+  grid->AllocateExact(static_cast<vtkIdType>(mesh.NumCells()), nv);
+  vtkIdType ids[4];
+  for (std::size_t c = 0; c < mesh.NumCells(); ++c)
+  {
+    const std::int32_t* cell = mesh.Cell(c);
+    for (int k = 0; k < nv; ++k)
+      ids[k] = cell[k];
+    grid->InsertNextCell(type, nv, ids);
+  }
+  return grid;
 }
 
 vtkSmartPointer<vtkDataArray> MakeArray(

@@ -40,6 +40,9 @@ bool ToMetricField(vtkDataArray* array, std::size_t numPoints, av::MetricField& 
 bool ToEmbedding(vtkDataArray* array, const av::SimplexMesh& mesh, av::Embedding& embedding,
   std::string& error);
 
+/// A vtkUnstructuredGrid of the mesh's triangles/tetrahedra (z = 0 for a flat 2D domain).
+vtkSmartPointer<vtkUnstructuredGrid> FromSimplexMesh(const av::SimplexMesh& mesh);
+
 /// A vtkDoubleArray holding `values` (row-major, `components` per tuple).
 vtkSmartPointer<vtkDataArray> MakeArray(
   const char* name, const double* values, std::size_t tuples, int components);
