@@ -1,0 +1,144 @@
+#include "vtkAnisoMeditReader.h"
+
+#include "MeditIO.h"
+
+#include <vtkCellArray.h>
+#include <vtkCellData.h>
+#include <vtkDoubleArray.h>
+#include <vtkInformation.h>
+#include <vtkInformationVector.h>
+#include <vtkIntArray.h>
+#include <vtkObjectFactory.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkUnstructuredGrid.h>
+
+vtkStandardNewMacro(vtkAnisoMeditReader);
+
+vtkAnisoMeditReader::vtkAnisoMeditReader()
+{
+  this->SetNumberOfInputPorts(0);
+}
+
+namespace
+{
+vtkSmartPointer<vtkDoubleArray> MakeArray(const char* name, int nc, const std::vector<double>& values)
+{
+  auto a = vtkSmartPointer<vtkDoubleArray>::New();
+  a->SetName(name);
+  a->SetNumberOfComponents(nc);
+  a->SetNumberOfTuples(static_cast<vtkIdType>(values.size() / nc));
+  std::copy(values.begin(), values.end(), a->GetPointer(0));
+  return a;
+}
+
+vtkSmartPointer<vtkIntArray> MakeIntArray(const char* name, const std::vector<std::int32_t>& values)
+{
+  auto a = vtkSmartPointer<vtkIntArray>::New();
+  a->SetName(name);
+  a->SetNumberOfTuples(static_cast<vtkIdType>(values.size()));
+  std::copy(values.begin(), values.end(), a->GetPointer(0));
+  return a;
+}
+} // namespace
+
+int vtkAnisoMeditReader::RequestData(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  vtkUnstructuredGrid* output = vtkUnstructuredGrid::GetData(outputVector);
+  if (this->FileName.empty())
+  {
+    vtkErrorMacro("FileName is not set.");
+    return 0;
+  }
+  try
+  {
+    const av::MeditMesh m = av::ReadMeditMesh(this->FileName);
+    const av::SimplexMesh& mesh = m.Mesh;
+    const vtkIdType np = static_cast<vtkIdType>(mesh.NumPoints());
+    auto points = vtkSmartPointer<vtkPoints>::New();
+    points->SetDataTypeToDouble();
+    points->SetNumberOfPoints(np);
+    for (vtkIdType i = 0; i < np; ++i)
+    {
+      const double* p = mesh.Point(static_cast<std::size_t>(i));
+      points->SetPoint(i, p[0], p[1], mesh.AmbientDim == 3 ? p[2] : 0.0);
+    }
+    const int k = mesh.VerticesPerCell();
+    const vtkIdType nc = static_cast<vtkIdType>(mesh.NumCells());
+    auto cells = vtkSmartPointer<vtkCellArray>::New();
+    cells->AllocateExact(nc, nc * k);
+    vtkIdType ids[4];
+    for (vtkIdType c = 0; c < nc; ++c)
+    {
+      const std::int32_t* cell = mesh.Cell(static_cast<std::size_t>(c));
+      std::copy(cell, cell + k, ids);
+      cells->InsertNextCell(k, ids);
+    }
+    output->SetPoints(points);
+    output->SetCells(mesh.SimplexDim == 3 ? VTK_TETRA : VTK_TRIANGLE, cells);
+    output->GetPointData()->AddArray(MakeIntArray("Ref", m.PointRefs));
+    output->GetCellData()->AddArray(MakeIntArray("Ref", m.CellRefs));
+
+    if (!this->SolFileName.empty())
+    {
+      const av::MeditSol sol = av::ReadMeditSol(this->SolFileName);
+      if (sol.NumVertices != mesh.NumPoints())
+      {
+        vtkErrorMacro("The .sol file " << this->SolFileName << " has " << sol.NumVertices
+                                       << " vertices but the mesh has " << np << ".");
+        return 0;
+      }
+      int metricField = -1, sizeField = -1;
+      for (std::size_t f = 0; f < sol.FieldTypes.size(); ++f)
+      {
+        if (sol.FieldTypes[f] == 3 && metricField < 0)
+        {
+          metricField = static_cast<int>(f);
+        }
+        if (sol.FieldTypes[f] == 1 && sizeField < 0)
+        {
+          sizeField = static_cast<int>(f);
+        }
+      }
+      const int fromField = metricField >= 0 ? metricField : sizeField;
+      if (fromField >= 0)
+      {
+        const av::MetricField metric = av::MetricFromMeditSol(sol, static_cast<std::size_t>(fromField));
+        output->GetPointData()->AddArray(MakeArray("Metric", 6, metric.Values));
+        output->GetPointData()->SetActiveTensors("Metric");
+      }
+      for (std::size_t f = 0; f < sol.FieldTypes.size(); ++f)
+      {
+        const int fi = static_cast<int>(f);
+        if (fi == metricField)
+        {
+          continue;
+        }
+        const std::string name = fi == sizeField ? std::string("Size") : "SolField" + std::to_string(f);
+        output->GetPointData()->AddArray(
+          MakeArray(name.c_str(), sol.FieldComponents(sol.FieldTypes[f]), sol.Fields[f]));
+      }
+    }
+  }
+  catch (const av::InputError& e)
+  {
+    vtkErrorMacro(<< e.what());
+    output->Initialize();
+    return 0;
+  }
+  catch (const std::bad_alloc&)
+  {
+    vtkErrorMacro("Out of memory while reading " << this->FileName);
+    output->Initialize();
+    return 0;
+  }
+  return 1;
+}
+
+void vtkAnisoMeditReader::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "FileName: " << this->FileName << "\n";
+  os << indent << "SolFileName: " << this->SolFileName << "\n";
+}
