@@ -1,0 +1,57 @@
+// SurfaceCurvatureMetric: the curvature-adapted surface metric of the paper (Eq. 19) from a
+// triangle surface alone. VTK-free.
+#ifndef av_SurfaceCurvatureMetric_h
+#define av_SurfaceCurvatureMetric_h
+
+#include "SimplexMesh.h"
+
+#include <vector>
+
+namespace av
+{
+
+/// Parameters of SurfaceCurvatureMetric (defaults in brackets).
+struct SurfaceCurvatureMetricOptions
+{
+  /// Floor on |K| so that flat directions keep a finite stretch: |K| >= CurvatureThreshold / L,
+  /// L the bounding-box diagonal (scale-free) [0.1].
+  double CurvatureThreshold = 0.1;
+  /// Laplacian smoothing of the stretch factors and of the principal direction field
+  /// (one-ring averages, Alliez et al. 2003) [5].
+  int SmoothingIterations = 5;
+  /// Cap on the stretch ratio s2 / s1; 0 = no cap [10].
+  double MaxStretch = 10.0;
+};
+
+/// Per-vertex output of SurfaceCurvatureMetric. Vectors hold 3 values per vertex.
+struct SurfaceCurvatureMetricResult
+{
+  /// Eq. 19: M = v_min v_min^T + (s2/s1)^2 v_max v_max^T (rank 2, zero along the normal).
+  MetricField Metric;
+  std::vector<double> MinCurvature;  ///< principal curvature of smaller magnitude (signed)
+  std::vector<double> MaxCurvature;  ///< principal curvature of larger magnitude (signed)
+  std::vector<double> MinDirection;  ///< v_min (after smoothing), unit, tangent
+  std::vector<double> MaxDirection;  ///< v_max (after smoothing), unit, tangent
+  std::vector<double> Normals;       ///< area-weighted vertex normals, unit
+  std::vector<double> StretchRatio;  ///< s2 / s1 after smoothing and cap
+  double CurvatureFloor = 0.0;       ///< the absolute |K| floor used
+};
+
+/**
+ * @brief Curvature metric of a triangle surface (AmbientDim 3, SimplexDim 2, open or closed).
+ *
+ * Principal curvatures and directions per vertex by per-face second fundamental form fits
+ * (normal differences along the three edges, Rusinkiewicz 2004) averaged over the one-ring
+ * (weights: area / 3) and projected onto the vertex tangent plane. Then s1 = sqrt(|K_min|),
+ * s2 = sqrt(|K_max|) with the floor, smoothing, cap, and Eq. 19. The metric's smallest
+ * tangent eigenvalue is 1, so no global scale is needed. Faces should be consistently
+ * oriented (normals are averaged).
+ * Throws InputError on: wrong dimensions, empty mesh, ids out of range, NaN/Inf,
+ * zero-area triangles, vertices used by no triangle, invalid options.
+ */
+SurfaceCurvatureMetricResult SurfaceCurvatureMetric(
+  const SimplexMesh& surface, const SurfaceCurvatureMetricOptions& options);
+
+} // namespace av
+
+#endif
