@@ -1,0 +1,1276 @@
+// Restricted Voronoi diagram in R^Dim, clipped element by element in barycentric coordinates.
+//
+// Per element, pieces are found by a flood fill over sites: start with the site nearest to the
+// element centroid (its piece is not empty), clip the element by the bisectors of that site's
+// neighbours in distance order until the security radius test passes, then visit the sites
+// across the bisector faces of the piece. Pieces of one convex element are face-connected, so
+// this finds them all.
+//
+// Robustness: every vertex is (re)computed from its sorted symbolic labels (facets and the
+// sites it is equidistant from) and classified against a new site m by comparing its distance
+// to m with its distance to the smallest site of its label set. Every piece of an element
+// therefore takes bit-identical decisions about a shared vertex; ties go to the lower site id.
+#include "RestrictedVoronoi.h"
+
+#include <nanoflann.hpp>
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <sstream>
+
+namespace av
+{
+namespace
+{
+
+// ---------------------------------------------------------------------------------------------
+// kd-tree over the sites (nanoflann, runtime dimension).
+struct SiteCloud
+{
+  const double* Pts;
+  std::size_t N;
+  int D;
+  std::size_t kdtree_get_point_count() const { return N; }
+  double kdtree_get_pt(std::size_t i, std::size_t d) const { return Pts[i * D + d]; }
+  template <class B>
+  bool kdtree_get_bbox(B&) const
+  {
+    return false;
+  }
+};
+using SiteTree = nanoflann::KDTreeSingleIndexAdaptor<
+  nanoflann::L2_Simple_Adaptor<double, SiteCloud>, SiteCloud, -1, std::uint32_t>;
+
+template <int DIM>
+inline double Dist2(const double* a, const double* b, int dim)
+{
+  double s = 0.0;
+  if constexpr (DIM > 0)
+  {
+    for (int d = 0; d < DIM; ++d)
+    {
+      const double t = a[d] - b[d];
+      s += t * t;
+    }
+  }
+  else
+  {
+    for (int d = 0; d < dim; ++d)
+    {
+      const double t = a[d] - b[d];
+      s += t * t;
+    }
+  }
+  return s;
+}
+
+// Insertion sort for the tiny label arrays (std::sort trips GCC 12's -Warray-bounds here).
+template <class It>
+inline void SortSmall(It b, It e)
+{
+  for (It i = b; i != e; ++i)
+    for (It j = i; j != b && *j < *(j - 1); --j)
+      std::iter_swap(j, j - 1);
+}
+
+inline bool IsFacet(std::int32_t label) { return label < 0; }
+inline int FacetOf(std::int32_t label) { return -label - 1; }
+
+// Measure of a k-simplex with vertices given by rows (Gram determinant).
+double SimplexMeasure(const double* const* v, int k, int dim)
+{
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 8, 3> B(dim, k);
+  // dim may exceed 8: fall back to a heap matrix then.
+  Eigen::MatrixXd Bd;
+  if (dim > 8)
+  {
+    Bd.resize(dim, k);
+    for (int c = 0; c < k; ++c)
+      for (int d = 0; d < dim; ++d)
+        Bd(d, c) = v[c + 1][d] - v[0][d];
+    const double g = (Bd.transpose() * Bd).determinant();
+    return std::sqrt(std::max(0.0, g)) / (k == 2 ? 2.0 : 6.0);
+  }
+  for (int c = 0; c < k; ++c)
+    for (int d = 0; d < dim; ++d)
+      B(d, c) = v[c + 1][d] - v[0][d];
+  const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 3, 3> G = B.transpose() * B;
+  return std::sqrt(std::max(0.0, G.determinant())) / (k == 2 ? 2.0 : 6.0);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Per-thread working state: per-site cache for the current element and the clipping buffers.
+template <int K>
+struct Vert
+{
+  std::array<std::int32_t, K> Pl;
+  std::array<double, K + 1> Lam;
+  double G;
+  bool Out;
+  bool Dead;
+};
+
+template <int K>
+struct Context
+{
+  // Site cache for the current element (indexed by site id, reset after each element).
+  std::vector<std::int32_t> Slot;
+  std::vector<std::int32_t> Touched;
+  std::vector<double> Dc;          // per slot: distance centroid -> site
+  std::vector<double> D;           // per slot: K+1 squared distances vertex -> site
+  std::vector<char> HasD, Visited; // per slot
+  std::vector<std::int32_t> Queue;
+  std::vector<std::uint32_t> NbrIdx;
+  std::vector<double> NbrDist;
+
+  // Polytope (shared layout for K = 2 and 3): vertices, faces as loops.
+  // K = 2: one face (the polygon), EdgePlane[t] = plane of edge Loop[t] -> Loop[t+1].
+  // K = 3: faces with a plane each; loops of vertex ids.
+  std::vector<Vert<K>> V;
+  std::vector<std::int32_t> FacePlane, FaceStart, FaceCount, Loops, EdgePlane;
+  std::vector<std::int32_t> NFacePlane, NFaceStart, NFaceCount, NLoops, NEdgePlane;
+  std::vector<std::array<std::int32_t, 3>> EdgeCache; // u, v, new vertex
+  std::vector<std::array<std::int32_t, 2>> CapNext;   // from, to
+  std::vector<std::int32_t> Remap;
+  std::vector<std::int32_t> Applied; // sites clipped against in the current piece
+
+  void Init(std::size_t nsites)
+  {
+    if (Slot.size() != nsites)
+    {
+      Slot.assign(nsites, -1);
+    }
+  }
+  int SlotOf(std::int32_t s)
+  {
+    int sl = Slot[s];
+    if (sl < 0)
+    {
+      sl = static_cast<int>(Touched.size());
+      Slot[s] = sl;
+      Touched.push_back(s);
+      Dc.push_back(-1.0);
+      for (int a = 0; a <= K; ++a)
+        D.push_back(0.0);
+      HasD.push_back(0);
+      Visited.push_back(0);
+    }
+    return sl;
+  }
+  void ResetSites()
+  {
+    for (std::int32_t s : Touched)
+      Slot[s] = -1;
+    Touched.clear();
+    Dc.clear();
+    D.clear();
+    HasD.clear();
+    Visited.clear();
+  }
+};
+
+// Output of a block of elements, concatenated at the end.
+struct Chunk
+{
+  std::vector<std::int32_t> PieceSite, PieceElement;
+  std::vector<double> PieceMeasure, PieceEmbeddedMeasure;
+  std::vector<std::int64_t> PieceVertexCount, PieceFaceCount;
+  std::vector<double> Points, EmbeddedPoints;
+  std::vector<std::int32_t> VertexPlanes;
+  std::vector<std::int64_t> FaceSize;
+  std::vector<std::int32_t> FaceVertices; // local to the chunk
+  std::vector<RVDFaceKind> FaceKind;
+  std::vector<std::int32_t> FaceNeighbor;
+  std::vector<std::int32_t> VoronoiVertexSites, VoronoiVertexElement, BoundaryDualFaces;
+};
+
+// ---------------------------------------------------------------------------------------------
+template <int K, int DIM>
+class Worker
+{
+public:
+  static constexpr int NV = K + 1;
+
+  const SimplexMesh& Mesh;
+  const Embedding& Emb;
+  const SiteSet& Sites;
+  const RestrictedVoronoiOptions& Opt;
+  const SiteTree& Tree;
+  const std::vector<std::int32_t>& Adj;
+  const std::vector<std::uint32_t>& Nbr; // NumSites x NbrK
+  const std::vector<double>& NbrD2;
+  int NbrK;
+  int Dim;
+  std::size_t NumSites;
+
+  // Current element.
+  std::int32_t Elem = -1;
+  const double* EV[4];
+  const double* XV[4];
+  double L[4][4];
+  std::vector<double> Centroid;
+  double Rho = 0.0;
+
+  Worker(const SimplexMesh& m, const Embedding& e, const SiteSet& s,
+    const RestrictedVoronoiOptions& o, const SiteTree& t, const std::vector<std::int32_t>& adj,
+    const std::vector<std::uint32_t>& nbr, const std::vector<double>& nbrd2, int nbrk)
+    : Mesh(m)
+    , Emb(e)
+    , Sites(s)
+    , Opt(o)
+    , Tree(t)
+    , Adj(adj)
+    , Nbr(nbr)
+    , NbrD2(nbrd2)
+    , NbrK(nbrk)
+    , Dim(e.Dim)
+    , NumSites(s.NumSites())
+  {
+  }
+
+  const double* SiteP(std::int32_t s) const { return Sites.Coords.data() + std::size_t(s) * Dim; }
+
+  // Squared distances element vertices -> site s (cached per element).
+  const double* DRow(Context<K>& C, std::int32_t s) const
+  {
+    const int sl = C.SlotOf(s);
+    if (!C.HasD[sl])
+    {
+      const double* p = SiteP(s);
+      for (int a = 0; a < NV; ++a)
+        C.D[sl * NV + a] = Dist2<DIM>(EV[a], p, Dim);
+      C.HasD[sl] = 1;
+    }
+    return C.D.data() + sl * NV;
+  }
+
+  double DCentroid(Context<K>& C, std::int32_t s) const
+  {
+    const int sl = C.SlotOf(s);
+    if (C.Dc[sl] < 0.0)
+      C.Dc[sl] = std::sqrt(Dist2<DIM>(Centroid.data(), SiteP(s), Dim));
+    return C.Dc[sl];
+  }
+
+  // Barycentric coordinates of the vertex with these labels, computed from the sorted labels
+  // only, so every piece of the element gets the same bits. Returns false if singular.
+  bool SolveVertex(Context<K>& C, std::int32_t site, const std::array<std::int32_t, K>& pl,
+    std::array<double, K + 1>& lam, std::int32_t& s0out) const
+  {
+    std::array<std::int32_t, K + 1> S;
+    int ns = 0;
+    S[ns++] = site;
+    bool facet[4] = { false, false, false, false };
+    for (int a = 0; a < K; ++a)
+    {
+      if (IsFacet(pl[a]))
+        facet[FacetOf(pl[a])] = true;
+      else
+        S[ns++] = pl[a];
+    }
+    SortSmall(S.begin(), S.begin() + ns);
+    s0out = S[0];
+    int fr[4];
+    int n = 0;
+    for (int a = 0; a < NV; ++a)
+      if (!facet[a])
+        fr[n++] = a;
+    lam.fill(0.0);
+    if (n == 1)
+    {
+      lam[fr[0]] = 1.0;
+      return true;
+    }
+    // Rows: sum of free lambdas = 1, then (D[s0] - D[s]) . lambda = 0 for s in S[1..].
+    double M[4][5];
+    for (int c = 0; c < n; ++c)
+      M[0][c] = 1.0;
+    M[0][n] = 1.0;
+    const double* d0 = DRow(C, S[0]);
+    for (int r = 1; r < ns; ++r)
+    {
+      const double* dr = DRow(C, S[r]);
+      for (int c = 0; c < n; ++c)
+        M[r][c] = d0[fr[c]] - dr[fr[c]];
+      M[r][n] = 0.0;
+    }
+    // Gaussian elimination with partial pivoting (deterministic for given input).
+    for (int c = 0; c < n; ++c)
+    {
+      int piv = c;
+      for (int r = c + 1; r < n; ++r)
+        if (std::abs(M[r][c]) > std::abs(M[piv][c]))
+          piv = r;
+      if (!(std::abs(M[piv][c]) > 0.0))
+        return false;
+      if (piv != c)
+        for (int cc = 0; cc <= n; ++cc)
+          std::swap(M[c][cc], M[piv][cc]);
+      for (int r = c + 1; r < n; ++r)
+      {
+        const double f = M[r][c] / M[c][c];
+        for (int cc = c; cc <= n; ++cc)
+          M[r][cc] -= f * M[c][cc];
+      }
+    }
+    double x[4];
+    for (int c = n - 1; c >= 0; --c)
+    {
+      double s = M[c][n];
+      for (int cc = c + 1; cc < n; ++cc)
+        s -= M[c][cc] * x[cc];
+      x[c] = s / M[c][c];
+    }
+    for (int c = 0; c < n; ++c)
+    {
+      if (!std::isfinite(x[c]))
+        return false;
+      lam[fr[c]] = x[c];
+    }
+    return true;
+  }
+
+  // Classification of vertex v of piece `site` against the bisector with site m.
+  void Classify(Context<K>& C, std::int32_t site, Vert<K>& v, std::int32_t m) const
+  {
+    std::int32_t s0 = site;
+    for (int a = 0; a < K; ++a)
+      if (!IsFacet(v.Pl[a]))
+        s0 = std::min(s0, v.Pl[a]);
+    const double* dm = DRow(C, m);
+    const double* d0 = DRow(C, s0);
+    double g = 0.0;
+    for (int a = 0; a < NV; ++a)
+      g += v.Lam[a] * (dm[a] - d0[a]);
+    v.G = g;
+    v.Out = g < 0.0 || (g == 0.0 && m < s0);
+  }
+
+  // New vertex on the edge u-v (labels: the two common planes + the new one).
+  std::int32_t NewVertex(Context<K>& C, std::int32_t site, std::int32_t u, std::int32_t w,
+    const std::array<std::int32_t, K - 1>& common, std::int32_t m) const
+  {
+    Vert<K> nv;
+    for (int a = 0; a < K - 1; ++a)
+      nv.Pl[a] = common[a];
+    nv.Pl[K - 1] = m;
+    std::int32_t s0;
+    if (!SolveVertex(C, site, nv.Pl, nv.Lam, s0))
+    {
+      // Parallel planes (degenerate): interpolate along the edge instead.
+      const Vert<K>& a = C.V[u];
+      const Vert<K>& b = C.V[w];
+      const double t = a.G / (a.G - b.G);
+      for (int c = 0; c < NV; ++c)
+        nv.Lam[c] = a.Lam[c] + t * (b.Lam[c] - a.Lam[c]);
+    }
+    nv.G = 0.0;
+    nv.Out = false;
+    nv.Dead = false;
+    C.V.push_back(nv);
+    return static_cast<std::int32_t>(C.V.size() - 1);
+  }
+
+  void InitPolytope(Context<K>& C) const
+  {
+    C.V.clear();
+    C.FacePlane.clear();
+    C.FaceStart.clear();
+    C.FaceCount.clear();
+    C.Loops.clear();
+    C.EdgePlane.clear();
+    for (int b = 0; b < NV; ++b)
+    {
+      Vert<K> v;
+      int n = 0;
+      for (int a = 0; a < NV; ++a)
+        if (a != b)
+          v.Pl[n++] = -(a + 1);
+      v.Lam.fill(0.0);
+      v.Lam[b] = 1.0;
+      v.G = 0.0;
+      v.Out = false;
+      v.Dead = false;
+      C.V.push_back(v);
+    }
+    if constexpr (K == 2)
+    {
+      // Counter-clockwise in (lambda1, lambda2): 0 -> 1 on facet 2, 1 -> 2 on facet 0, 2 -> 0 on 1.
+      C.Loops = { 0, 1, 2 };
+      C.EdgePlane = { -3, -1, -2 };
+    }
+    else
+    {
+      static const int faces[4][3] = { { 1, 2, 3 }, { 0, 3, 2 }, { 0, 1, 3 }, { 0, 2, 1 } };
+      for (int f = 0; f < 4; ++f)
+      {
+        C.FacePlane.push_back(-(f + 1));
+        C.FaceStart.push_back(static_cast<std::int32_t>(C.Loops.size()));
+        C.FaceCount.push_back(3);
+        for (int t = 0; t < 3; ++t)
+          C.Loops.push_back(faces[f][t]);
+      }
+    }
+  }
+
+  // Clips the current polytope of piece `site` by the bisector with m.
+  // Returns 0: unchanged, 1: cut, -1: empty.
+  int Clip(Context<K>& C, std::int32_t site, std::int32_t m) const
+  {
+    int nout = 0, nalive = 0;
+    for (auto& v : C.V)
+    {
+      if (v.Dead)
+        continue;
+      ++nalive;
+      Classify(C, site, v, m);
+      nout += v.Out;
+    }
+    if (nout == 0)
+      return 0;
+    if (nout == nalive)
+      return -1;
+    if constexpr (K == 2)
+    {
+      C.NLoops.clear();
+      C.NEdgePlane.clear();
+      const int n = static_cast<int>(C.Loops.size());
+      for (int t = 0; t < n; ++t)
+      {
+        const std::int32_t u = C.Loops[t], w = C.Loops[(t + 1) % n];
+        const bool uo = C.V[u].Out, wo = C.V[w].Out;
+        if (!uo)
+        {
+          C.NLoops.push_back(u);
+          C.NEdgePlane.push_back(C.EdgePlane[t]);
+          if (wo)
+          {
+            C.NEdgePlane.back() = C.EdgePlane[t];
+            const std::int32_t x = NewVertex(C, site, u, w, { C.EdgePlane[t] }, m);
+            C.NLoops.push_back(x);
+            C.NEdgePlane.push_back(m);
+          }
+        }
+        else if (!wo)
+        {
+          const std::int32_t x = NewVertex(C, site, u, w, { C.EdgePlane[t] }, m);
+          C.NLoops.push_back(x);
+          C.NEdgePlane.push_back(C.EdgePlane[t]);
+        }
+      }
+      std::swap(C.Loops, C.NLoops);
+      std::swap(C.EdgePlane, C.NEdgePlane);
+    }
+    else
+    {
+      C.NFacePlane.clear();
+      C.NFaceStart.clear();
+      C.NFaceCount.clear();
+      C.NLoops.clear();
+      C.EdgeCache.clear();
+      C.CapNext.clear();
+      const int nf = static_cast<int>(C.FacePlane.size());
+      for (int f = 0; f < nf; ++f)
+      {
+        const int st = C.FaceStart[f], n = C.FaceCount[f];
+        const std::int32_t start = static_cast<std::int32_t>(C.NLoops.size());
+        std::int32_t exitW = -1, enterW = -1;
+        for (int t = 0; t < n; ++t)
+        {
+          const std::int32_t u = C.Loops[st + t], w = C.Loops[st + (t + 1) % n];
+          const bool uo = C.V[u].Out, wo = C.V[w].Out;
+          if (!uo)
+            C.NLoops.push_back(u);
+          if (uo != wo)
+          {
+            const std::int32_t x = EdgeVertex(C, site, u, w, m);
+            C.NLoops.push_back(x);
+            if (!uo)
+              exitW = x;
+            else
+              enterW = x;
+          }
+        }
+        const std::int32_t cnt = static_cast<std::int32_t>(C.NLoops.size()) - start;
+        if (cnt >= 3)
+        {
+          C.NFacePlane.push_back(C.FacePlane[f]);
+          C.NFaceStart.push_back(start);
+          C.NFaceCount.push_back(cnt);
+        }
+        else
+          C.NLoops.resize(start);
+        if (exitW >= 0 && enterW >= 0)
+          C.CapNext.push_back({ enterW, exitW });
+      }
+      // Cap face on the new plane: walk enter -> exit links (reverse of the faces' direction).
+      if (C.CapNext.size() >= 3)
+      {
+        const std::int32_t start = static_cast<std::int32_t>(C.NLoops.size());
+        std::int32_t cur = C.CapNext[0][0];
+        for (std::size_t it = 0; it < C.CapNext.size(); ++it)
+        {
+          C.NLoops.push_back(cur);
+          std::int32_t next = -1;
+          for (const auto& e : C.CapNext)
+            if (e[0] == cur)
+            {
+              next = e[1];
+              break;
+            }
+          if (next < 0 || next == C.CapNext[0][0])
+            break;
+          cur = next;
+        }
+        C.NFacePlane.push_back(m);
+        C.NFaceStart.push_back(start);
+        C.NFaceCount.push_back(static_cast<std::int32_t>(C.NLoops.size()) - start);
+      }
+      std::swap(C.FacePlane, C.NFacePlane);
+      std::swap(C.FaceStart, C.NFaceStart);
+      std::swap(C.FaceCount, C.NFaceCount);
+      std::swap(C.Loops, C.NLoops);
+    }
+    for (auto& v : C.V)
+      if (v.Out)
+        v.Dead = true;
+    return 1;
+  }
+
+  // 3D: the new vertex on edge u-w, shared by the two faces of that edge.
+  std::int32_t EdgeVertex(Context<K>& C, std::int32_t site, std::int32_t u, std::int32_t w,
+    std::int32_t m) const
+  {
+    const std::int32_t a = std::min(u, w), b = std::max(u, w);
+    for (const auto& e : C.EdgeCache)
+      if (e[0] == a && e[1] == b)
+        return e[2];
+    std::array<std::int32_t, K - 1> common{};
+    int nc = 0;
+    for (int i = 0; i < K; ++i)
+      for (int j = 0; j < K; ++j)
+        if (C.V[u].Pl[i] == C.V[w].Pl[j] && nc < K - 1)
+          common[nc++] = C.V[u].Pl[i];
+    const std::int32_t x = NewVertex(C, site, u, w, common, m);
+    C.EdgeCache.push_back({ a, b, x });
+    return x;
+  }
+
+  double Radius2(Context<K>& C, std::int32_t site) const
+  {
+    const double* di = DRow(C, site);
+    double r2 = 0.0;
+    for (const auto& v : C.V)
+    {
+      if (v.Dead)
+        continue;
+      double s = 0.0;
+      for (int a = 0; a < NV; ++a)
+        s += v.Lam[a] * di[a];
+      for (int a = 0; a < NV; ++a)
+        for (int b = a + 1; b < NV; ++b)
+          s -= v.Lam[a] * v.Lam[b] * L[a][b];
+      r2 = std::max(r2, s);
+    }
+    return r2;
+  }
+
+  // Computes the piece of `site` in the current element; false if empty.
+  bool ComputePiece(Context<K>& C, std::int32_t site) const
+  {
+    InitPolytope(C);
+    double r2 = Radius2(C, site);
+    const double dci = DCentroid(C, site);
+    std::size_t have = static_cast<std::size_t>(NbrK);
+    const std::uint32_t* idx = Nbr.data() + std::size_t(site) * NbrK;
+    const double* d2 = NbrD2.data() + std::size_t(site) * NbrK;
+    std::size_t t = 0;
+    bool refetched = false;
+    C.Applied.clear();
+    for (;;)
+    {
+      if (t == have)
+      {
+        if (have >= NumSites - 1)
+          break; // every other site has been used
+        // Exhausted the prefetched list: fetch more (rare).
+        const std::size_t want = std::min<std::size_t>(NumSites, 4 * (have + 1));
+        C.NbrIdx.resize(want);
+        C.NbrDist.resize(want);
+        const std::size_t got = Tree.knnSearch(SiteP(site), want, C.NbrIdx.data(), C.NbrDist.data());
+        // Drop the site itself (distance 0, possibly not first when duplicated).
+        std::size_t w = 0;
+        for (std::size_t q = 0; q < got; ++q)
+          if (C.NbrIdx[q] != static_cast<std::uint32_t>(site))
+          {
+            C.NbrIdx[w] = C.NbrIdx[q];
+            C.NbrDist[w] = C.NbrDist[q];
+            ++w;
+          }
+        idx = C.NbrIdx.data();
+        d2 = C.NbrDist.data();
+        have = w;
+        t = 0; // ties may be ordered differently: restart, skipping sites already used
+        refetched = true;
+        if (t >= have)
+          break;
+      }
+      if (d2[t] > 4.0 * r2)
+        break; // security radius: no farther site can cut
+      const std::int32_t m = static_cast<std::int32_t>(idx[t]);
+      ++t;
+      if (refetched)
+      {
+        if (std::find(C.Applied.begin(), C.Applied.end(), m) != C.Applied.end())
+          continue;
+      }
+      C.Applied.push_back(m);
+      // Cheap reject: the element's bounding ball is entirely on site's side.
+      if (DCentroid(C, m) - Rho > dci + Rho)
+        continue;
+      const int r = Clip(C, site, m);
+      if (r < 0)
+        return false;
+      if (r > 0)
+        r2 = Radius2(C, site);
+    }
+    return true;
+  }
+
+  // Appends the current piece to the chunk.
+  void Emit(Context<K>& C, Chunk& out, std::int32_t site) const
+  {
+    const int adim = Mesh.AmbientDim;
+    // Relative measure in barycentric coordinates (fraction of the element).
+    double rel = 0.0;
+    if constexpr (K == 2)
+    {
+      const int n = static_cast<int>(C.Loops.size());
+      for (int t = 0; t < n; ++t)
+      {
+        const auto& a = C.V[C.Loops[t]].Lam;
+        const auto& b = C.V[C.Loops[(t + 1) % n]].Lam;
+        rel += a[1] * b[2] - a[2] * b[1];
+      }
+    }
+    else
+    {
+      const auto& o = C.V[C.Loops[C.FaceStart[0]]].Lam;
+      for (std::size_t f = 0; f < C.FacePlane.size(); ++f)
+      {
+        const int st = C.FaceStart[f], n = C.FaceCount[f];
+        const auto& a = C.V[C.Loops[st]].Lam;
+        for (int t = 1; t + 1 < n; ++t)
+        {
+          const auto& b = C.V[C.Loops[st + t]].Lam;
+          const auto& c = C.V[C.Loops[st + t + 1]].Lam;
+          const double ax = a[1] - o[1], ay = a[2] - o[2], az = a[3] - o[3];
+          const double bx = b[1] - o[1], by = b[2] - o[2], bz = b[3] - o[3];
+          const double cx = c[1] - o[1], cy = c[2] - o[2], cz = c[3] - o[3];
+          rel += ax * (by * cz - bz * cy) - ay * (bx * cz - bz * cx) + az * (bx * cy - by * cx);
+        }
+      }
+    }
+    rel = std::max(0.0, rel);
+    out.PieceSite.push_back(site);
+    out.PieceElement.push_back(Elem);
+    out.PieceMeasure.push_back(rel * ElemMeasure);
+    out.PieceEmbeddedMeasure.push_back(rel * ElemEmbMeasure);
+
+    // Voronoi vertices and boundary dual faces (symbolic).
+    auto visitVertex = [&](const Vert<K>& v) {
+      int nfac = 0, fac = -1;
+      std::array<std::int32_t, K + 1> s;
+      int ns = 0;
+      s[ns++] = site;
+      for (int a = 0; a < K; ++a)
+      {
+        if (IsFacet(v.Pl[a]))
+        {
+          ++nfac;
+          fac = FacetOf(v.Pl[a]);
+        }
+        else
+          s[ns++] = v.Pl[a];
+      }
+      SortSmall(s.begin(), s.begin() + ns);
+      if (nfac == 0)
+      {
+        out.VoronoiVertexSites.insert(out.VoronoiVertexSites.end(), s.begin(), s.begin() + ns);
+        out.VoronoiVertexElement.push_back(Elem);
+      }
+      else if (nfac == 1 && Adj[std::size_t(Elem) * NV + fac] < 0)
+        out.BoundaryDualFaces.insert(out.BoundaryDualFaces.end(), s.begin(), s.begin() + ns);
+    };
+
+    auto planeKind = [&](std::int32_t pl, RVDFaceKind& kind, std::int32_t& nbr) {
+      if (!IsFacet(pl))
+      {
+        kind = RVDFaceKind::Bisector;
+        nbr = pl;
+      }
+      else
+      {
+        nbr = Adj[std::size_t(Elem) * NV + FacetOf(pl)];
+        kind = nbr < 0 ? RVDFaceKind::DomainBoundary : RVDFaceKind::ElementFace;
+      }
+    };
+
+    // Collect alive vertices referenced by the faces (local numbering).
+    C.Remap.assign(C.V.size(), -1);
+    std::vector<std::int32_t>& order = C.NLoops; // scratch
+    order.clear();
+    for (std::int32_t id : C.Loops)
+      if (C.Remap[id] < 0)
+      {
+        C.Remap[id] = static_cast<std::int32_t>(order.size());
+        order.push_back(id);
+      }
+    for (std::int32_t id : order)
+      visitVertex(C.V[id]);
+    if (!Opt.ComputeGeometry)
+      return;
+
+    const std::int32_t base = static_cast<std::int32_t>(out.Points.size() / adim);
+    for (std::int32_t id : order)
+    {
+      const auto& v = C.V[id];
+      for (int d = 0; d < adim; ++d)
+      {
+        double x = 0.0;
+        for (int a = 0; a < NV; ++a)
+          x += v.Lam[a] * XV[a][d];
+        out.Points.push_back(x);
+      }
+      if (Opt.KeepEmbeddedPoints)
+        for (int d = 0; d < Dim; ++d)
+        {
+          double x = 0.0;
+          for (int a = 0; a < NV; ++a)
+            x += v.Lam[a] * EV[a][d];
+          out.EmbeddedPoints.push_back(x);
+        }
+      for (int a = 0; a < K; ++a)
+        out.VertexPlanes.push_back(v.Pl[a]);
+    }
+    out.PieceVertexCount.push_back(static_cast<std::int64_t>(order.size()));
+    std::int64_t nfaces = 0;
+    if constexpr (K == 2)
+    {
+      const int n = static_cast<int>(C.Loops.size());
+      for (int t = 0; t < n; ++t)
+      {
+        RVDFaceKind kind;
+        std::int32_t nbr;
+        planeKind(C.EdgePlane[t], kind, nbr);
+        if (Opt.MergeBySite && kind == RVDFaceKind::ElementFace)
+          continue;
+        out.FaceVertices.push_back(base + C.Remap[C.Loops[t]]);
+        out.FaceVertices.push_back(base + C.Remap[C.Loops[(t + 1) % n]]);
+        out.FaceSize.push_back(2);
+        out.FaceKind.push_back(kind);
+        out.FaceNeighbor.push_back(nbr);
+        ++nfaces;
+      }
+    }
+    else
+    {
+      for (std::size_t f = 0; f < C.FacePlane.size(); ++f)
+      {
+        RVDFaceKind kind;
+        std::int32_t nbr;
+        planeKind(C.FacePlane[f], kind, nbr);
+        if (Opt.MergeBySite && kind == RVDFaceKind::ElementFace)
+          continue;
+        const int st = C.FaceStart[f], n = C.FaceCount[f];
+        for (int t = 0; t < n; ++t)
+          out.FaceVertices.push_back(base + C.Remap[C.Loops[st + t]]);
+        out.FaceSize.push_back(n);
+        out.FaceKind.push_back(kind);
+        out.FaceNeighbor.push_back(nbr);
+        ++nfaces;
+      }
+    }
+    out.PieceFaceCount.push_back(nfaces);
+  }
+
+  double ElemMeasure = 0.0, ElemEmbMeasure = 0.0;
+
+  void AddStartCandidates(Context<K>& C) const
+  {
+    const std::size_t want = std::min<std::size_t>(NumSites, C.Queue.size() + 8);
+    if (want <= C.Queue.size())
+      return;
+    C.NbrIdx.resize(want);
+    C.NbrDist.resize(want);
+    const std::size_t got = Tree.knnSearch(Centroid.data(), want, C.NbrIdx.data(), C.NbrDist.data());
+    for (std::size_t q = 0; q < got; ++q)
+    {
+      const int sl = C.SlotOf(static_cast<std::int32_t>(C.NbrIdx[q]));
+      if (!C.Visited[sl])
+      {
+        C.Visited[sl] = 1;
+        C.Queue.push_back(static_cast<std::int32_t>(C.NbrIdx[q]));
+      }
+    }
+  }
+
+  void ProcessElement(Context<K>& C, std::int32_t e, Chunk& out)
+  {
+    Elem = e;
+    const std::int32_t* cell = Mesh.Cell(e);
+    for (int a = 0; a < NV; ++a)
+    {
+      EV[a] = Emb.At(cell[a]);
+      XV[a] = Mesh.Point(cell[a]);
+    }
+    for (int a = 0; a < NV; ++a)
+      for (int b = 0; b < NV; ++b)
+        L[a][b] = Dist2<DIM>(EV[a], EV[b], Dim);
+    Centroid.assign(Dim, 0.0);
+    for (int a = 0; a < NV; ++a)
+      for (int d = 0; d < Dim; ++d)
+        Centroid[d] += EV[a][d] / NV;
+    Rho = 0.0;
+    for (int a = 0; a < NV; ++a)
+      Rho = std::max(Rho, std::sqrt(Dist2<DIM>(EV[a], Centroid.data(), Dim)));
+    Rho *= 1.0 + 1e-12;
+    ElemMeasure = SimplexMeasure(XV, K, Mesh.AmbientDim);
+    ElemEmbMeasure = SimplexMeasure(EV, K, Dim);
+
+    std::uint32_t first = 0;
+    double fd = 0.0;
+    Tree.knnSearch(Centroid.data(), 1, &first, &fd);
+    C.Queue.clear();
+    C.Queue.push_back(static_cast<std::int32_t>(first));
+    C.Visited[C.SlotOf(static_cast<std::int32_t>(first))] = 1;
+    bool any = false;
+    for (std::size_t q = 0; q < C.Queue.size(); ++q)
+    {
+      const std::int32_t site = C.Queue[q];
+      if (!ComputePiece(C, site))
+      {
+        if (!any && q + 1 == C.Queue.size())
+          AddStartCandidates(C); // tie at the centroid: try the next nearest sites
+        continue;
+      }
+      any = true;
+      // Neighbours across bisector faces / edges also have pieces here.
+      const std::vector<std::int32_t>& planes = (K == 2) ? C.EdgePlane : C.FacePlane;
+      for (std::int32_t pl : planes)
+        if (!IsFacet(pl))
+        {
+          const int sl = C.SlotOf(pl);
+          if (!C.Visited[sl])
+          {
+            C.Visited[sl] = 1;
+            C.Queue.push_back(pl);
+          }
+        }
+      Emit(C, out, site);
+    }
+    C.ResetSites();
+  }
+};
+
+template <int K, int DIM>
+void RunBlocks(const SimplexMesh& mesh, const Embedding& emb, const SiteSet& sites,
+  const RestrictedVoronoiOptions& opt, const SiteTree& tree, const std::vector<std::int32_t>& adj,
+  const std::vector<std::uint32_t>& nbr, const std::vector<double>& nbrd2, int nbrk,
+  std::vector<Chunk>& chunks, std::size_t blockSize)
+{
+  tbb::enumerable_thread_specific<Context<K>> contexts;
+  const std::size_t ncells = mesh.NumCells();
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, chunks.size()),
+    [&](const tbb::blocked_range<std::size_t>& r) {
+      Context<K>& C = contexts.local();
+      C.Init(sites.NumSites());
+      Worker<K, DIM> w(mesh, emb, sites, opt, tree, adj, nbr, nbrd2, nbrk);
+      for (std::size_t b = r.begin(); b != r.end(); ++b)
+      {
+        const std::size_t e0 = b * blockSize, e1 = std::min(ncells, e0 + blockSize);
+        for (std::size_t e = e0; e < e1; ++e)
+          w.ProcessElement(C, static_cast<std::int32_t>(e), chunks[b]);
+      }
+    });
+}
+
+template <int K>
+void RunDim(int dim, const SimplexMesh& mesh, const Embedding& emb, const SiteSet& sites,
+  const RestrictedVoronoiOptions& opt, const SiteTree& tree, const std::vector<std::int32_t>& adj,
+  const std::vector<std::uint32_t>& nbr, const std::vector<double>& nbrd2, int nbrk,
+  std::vector<Chunk>& chunks, std::size_t bs)
+{
+  switch (dim)
+  {
+    case 2: RunBlocks<K, 2>(mesh, emb, sites, opt, tree, adj, nbr, nbrd2, nbrk, chunks, bs); break;
+    case 3: RunBlocks<K, 3>(mesh, emb, sites, opt, tree, adj, nbr, nbrd2, nbrk, chunks, bs); break;
+    case 4: RunBlocks<K, 4>(mesh, emb, sites, opt, tree, adj, nbr, nbrd2, nbrk, chunks, bs); break;
+    case 5: RunBlocks<K, 5>(mesh, emb, sites, opt, tree, adj, nbr, nbrd2, nbrk, chunks, bs); break;
+    case 6: RunBlocks<K, 6>(mesh, emb, sites, opt, tree, adj, nbr, nbrd2, nbrk, chunks, bs); break;
+    case 8: RunBlocks<K, 8>(mesh, emb, sites, opt, tree, adj, nbr, nbrd2, nbrk, chunks, bs); break;
+    default: RunBlocks<K, -1>(mesh, emb, sites, opt, tree, adj, nbr, nbrd2, nbrk, chunks, bs);
+  }
+}
+
+} // namespace
+
+// ---------------------------------------------------------------------------------------------
+void ValidateRestrictedVoronoiInput(
+  const SimplexMesh& mesh, const Embedding& emb, const SiteSet& sites)
+{
+  auto fail = [](const std::string& s) { throw InputError("RestrictedVoronoi: " + s); };
+  if (mesh.SimplexDim != 2 && mesh.SimplexDim != 3)
+    fail("the mesh must be made of triangles (SimplexDim 2) or tetrahedra (SimplexDim 3)");
+  if (mesh.AmbientDim < mesh.SimplexDim || mesh.AmbientDim > 3)
+    fail("AmbientDim must be between SimplexDim and 3");
+  if (mesh.Points.empty() || mesh.Points.size() % mesh.AmbientDim != 0)
+    fail("mesh points are empty or not a multiple of AmbientDim");
+  if (mesh.Cells.empty() || mesh.Cells.size() % (mesh.SimplexDim + 1) != 0)
+    fail("mesh cells are empty or not a multiple of SimplexDim+1");
+  const std::size_t np = mesh.NumPoints();
+  for (std::int32_t id : mesh.Cells)
+    if (id < 0 || static_cast<std::size_t>(id) >= np)
+      fail("a cell refers to a point id out of range");
+  if (emb.Dim < mesh.AmbientDim)
+    fail("embedding dimension is smaller than the mesh's AmbientDim");
+  if (emb.Coords.size() != np * static_cast<std::size_t>(emb.Dim))
+    fail("embedding has " + std::to_string(emb.Coords.size()) + " values, expected NumPoints x Dim = " +
+      std::to_string(np * emb.Dim));
+  for (double x : emb.Coords)
+    if (!std::isfinite(x))
+      fail("embedding contains NaN or infinite coordinates");
+  const std::size_t ns = sites.NumSites();
+  if (ns == 0)
+    fail("no sites");
+  if (sites.Dim != emb.Dim)
+    fail("sites have dimension " + std::to_string(sites.Dim) + " but the embedding has " +
+      std::to_string(emb.Dim));
+  if (sites.Coords.size() != ns * static_cast<std::size_t>(sites.Dim) || sites.Bary.size() != 4 * ns)
+    fail("site arrays have inconsistent sizes (Coords NumSites x Dim, Bary NumSites x 4)");
+  if (ns > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max()))
+    fail("too many sites");
+  // Scale for the "site lies in its cell" test.
+  double scale = 0.0;
+  for (double x : emb.Coords)
+    scale = std::max(scale, std::abs(x));
+  scale = std::max(scale, 1e-300);
+  const int nv = mesh.SimplexDim + 1;
+  for (std::size_t s = 0; s < ns; ++s)
+  {
+    const std::int32_t c = sites.CellIds[s];
+    if (c < 0 || static_cast<std::size_t>(c) >= mesh.NumCells())
+      fail("site " + std::to_string(s) + " has a cell id out of range");
+    const double* b = sites.Bary.data() + 4 * s;
+    double sum = 0.0;
+    for (int a = 0; a < 4; ++a)
+    {
+      if (!std::isfinite(b[a]))
+        fail("site " + std::to_string(s) + " has NaN barycentric weights");
+      if (a < nv && b[a] < -1e-8)
+        fail("site " + std::to_string(s) + " has a negative barycentric weight (outside its cell)");
+      if (a >= nv && b[a] != 0.0)
+        fail("site " + std::to_string(s) + ": the 4th barycentric weight must be 0 on triangles");
+      sum += b[a];
+    }
+    if (std::abs(sum - 1.0) > 1e-8)
+      fail("site " + std::to_string(s) + " has barycentric weights that do not sum to 1");
+    const std::int32_t* cell = mesh.Cell(c);
+    for (int d = 0; d < emb.Dim; ++d)
+    {
+      double x = 0.0;
+      for (int a = 0; a < nv; ++a)
+        x += b[a] * emb.At(cell[a])[d];
+      const double y = sites.Coords[s * emb.Dim + d];
+      if (!std::isfinite(y))
+        fail("site " + std::to_string(s) + " has NaN coordinates");
+      if (std::abs(x - y) > 1e-6 * scale)
+        fail("site " + std::to_string(s) +
+          " is not at the barycentric position in its cell (site outside the mesh?)");
+    }
+  }
+}
+
+std::vector<std::int32_t> ComputeElementAdjacency(const SimplexMesh& mesh)
+{
+  const int nv = mesh.SimplexDim + 1;
+  const std::size_t nc = mesh.NumCells();
+  struct F
+  {
+    std::array<std::int32_t, 3> K;
+    std::int64_t Id; // cell * nv + facet
+    bool operator<(const F& o) const { return K < o.K || (K == o.K && Id < o.Id); }
+  };
+  std::vector<F> f(nc * nv);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nc), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t c = r.begin(); c != r.end(); ++c)
+    {
+      const std::int32_t* cell = mesh.Cell(c);
+      for (int a = 0; a < nv; ++a)
+      {
+        F& x = f[c * nv + a];
+        x.K = { -1, -1, -1 };
+        int n = 0;
+        for (int b = 0; b < nv; ++b)
+          if (b != a)
+            x.K[n++] = cell[b];
+        SortSmall(x.K.begin(), x.K.begin() + n);
+        x.Id = static_cast<std::int64_t>(c * nv + a);
+      }
+    }
+  });
+  tbb::parallel_sort(f.begin(), f.end());
+  std::vector<std::int32_t> adj(nc * nv, -1);
+  for (std::size_t i = 0; i < f.size();)
+  {
+    std::size_t j = i + 1;
+    while (j < f.size() && f[j].K == f[i].K)
+      ++j;
+    if (j - i > 2)
+      throw InputError("RestrictedVoronoi: the mesh is not manifold (a facet is shared by more "
+                       "than two cells)");
+    if (j - i == 2)
+    {
+      adj[f[i].Id] = static_cast<std::int32_t>(f[i + 1].Id / nv);
+      adj[f[i + 1].Id] = static_cast<std::int32_t>(f[i].Id / nv);
+    }
+    i = j;
+  }
+  return adj;
+}
+
+RestrictedVoronoiDiagram ComputeRestrictedVoronoi(const SimplexMesh& mesh,
+  const Embedding& embedding, const SiteSet& sites, const RestrictedVoronoiOptions& options)
+{
+  ValidateRestrictedVoronoiInput(mesh, embedding, sites);
+  const int K = mesh.SimplexDim;
+  const int nv = K + 1;
+  const std::size_t ns = sites.NumSites();
+  const std::size_t nc = mesh.NumCells();
+  // Degenerate embedded elements cannot be clipped in barycentric coordinates.
+  {
+    std::vector<char> bad(nc, 0);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nc), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t c = r.begin(); c != r.end(); ++c)
+      {
+        const double* v[4];
+        const std::int32_t* cell = mesh.Cell(c);
+        double h2 = 0.0;
+        for (int a = 0; a < nv; ++a)
+          v[a] = embedding.At(cell[a]);
+        for (int a = 0; a < nv; ++a)
+          for (int b = a + 1; b < nv; ++b)
+            h2 = std::max(h2, Dist2<-1>(v[a], v[b], embedding.Dim));
+        const double m = SimplexMeasure(v, K, embedding.Dim);
+        bad[c] = !(m > 1e-12 * std::pow(std::sqrt(h2), K));
+      }
+    });
+    for (std::size_t c = 0; c < nc; ++c)
+      if (bad[c])
+        throw InputError("RestrictedVoronoi: embedded element " + std::to_string(c) +
+          " is degenerate (zero area/volume)");
+  }
+  const std::vector<std::int32_t> adj = ComputeElementAdjacency(mesh);
+
+  SiteCloud cloud{ sites.Coords.data(), ns, sites.Dim };
+  SiteTree tree(sites.Dim, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(10));
+  int nbrk = options.NumNeighbors > 0 ? options.NumNeighbors : (K == 2 ? 24 : 48);
+  nbrk = static_cast<int>(std::min<std::size_t>(nbrk, ns - 1));
+  std::vector<std::uint32_t> nbr(ns * nbrk);
+  std::vector<double> nbrd2(ns * nbrk);
+  if (nbrk > 0)
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, ns), [&](const tbb::blocked_range<std::size_t>& r) {
+      std::vector<std::uint32_t> idx(nbrk + 1);
+      std::vector<double> d2(nbrk + 1);
+      for (std::size_t s = r.begin(); s != r.end(); ++s)
+      {
+        const std::size_t got = tree.knnSearch(sites.At(s), nbrk + 1, idx.data(), d2.data());
+        std::size_t w = 0;
+        for (std::size_t q = 0; q < got && w < static_cast<std::size_t>(nbrk); ++q)
+          if (idx[q] != s)
+          {
+            nbr[s * nbrk + w] = idx[q];
+            nbrd2[s * nbrk + w] = d2[q];
+            ++w;
+          }
+        for (; w < static_cast<std::size_t>(nbrk); ++w) // only with duplicates: repeat last
+        {
+          nbr[s * nbrk + w] = nbr[s * nbrk + w - 1];
+          nbrd2[s * nbrk + w] = nbrd2[s * nbrk + w - 1];
+        }
+      }
+    });
+
+  const std::size_t blockSize = 256;
+  std::vector<Chunk> chunks((nc + blockSize - 1) / blockSize);
+  if (K == 2)
+    RunDim<2>(embedding.Dim, mesh, embedding, sites, options, tree, adj, nbr, nbrd2, nbrk, chunks, blockSize);
+  else
+    RunDim<3>(embedding.Dim, mesh, embedding, sites, options, tree, adj, nbr, nbrd2, nbrk, chunks, blockSize);
+
+  // Concatenate the chunks in order (deterministic).
+  RestrictedVoronoiDiagram out;
+  out.SimplexDim = K;
+  out.AmbientDim = mesh.AmbientDim;
+  out.Dim = embedding.Dim;
+  out.NumSites = ns;
+  const std::size_t nchunk = chunks.size();
+  std::vector<std::size_t> pOff(nchunk + 1, 0), vOff(nchunk + 1, 0), fOff(nchunk + 1, 0),
+    fvOff(nchunk + 1, 0), vvOff(nchunk + 1, 0), bdOff(nchunk + 1, 0);
+  for (std::size_t c = 0; c < nchunk; ++c)
+  {
+    pOff[c + 1] = pOff[c] + chunks[c].PieceSite.size();
+    vOff[c + 1] = vOff[c] + chunks[c].VertexPlanes.size() / K;
+    fOff[c + 1] = fOff[c] + chunks[c].FaceKind.size();
+    fvOff[c + 1] = fvOff[c] + chunks[c].FaceVertices.size();
+    vvOff[c + 1] = vvOff[c] + chunks[c].VoronoiVertexElement.size();
+    bdOff[c + 1] = bdOff[c] + chunks[c].BoundaryDualFaces.size();
+  }
+  const std::size_t np = pOff[nchunk], nvx = vOff[nchunk], nf = fOff[nchunk];
+  const bool geom = options.ComputeGeometry;
+  const bool emb = geom && options.KeepEmbeddedPoints;
+  const int adim = mesh.AmbientDim, dim = embedding.Dim;
+  out.PieceSite.resize(np);
+  out.PieceElement.resize(np);
+  out.PieceMeasure.resize(np);
+  out.PieceEmbeddedMeasure.resize(np);
+  out.VoronoiVertexSites.resize(vvOff[nchunk] * nv);
+  out.VoronoiVertexElement.resize(vvOff[nchunk]);
+  out.BoundaryDualFaces.resize(bdOff[nchunk]);
+  std::vector<std::int64_t> pvCount, pfCount, fSize;
+  if (geom)
+  {
+    out.Points.resize(nvx * adim);
+    if (emb)
+      out.EmbeddedPoints.resize(nvx * dim);
+    out.VertexPlanes.resize(nvx * K);
+    out.FaceVertices.resize(fvOff[nchunk]);
+    out.FaceKind.resize(nf);
+    out.FaceNeighbor.resize(nf);
+    pvCount.resize(np);
+    pfCount.resize(np);
+    fSize.resize(nf);
+  }
+  tbb::parallel_for(std::size_t(0), nchunk, [&](std::size_t c) {
+    Chunk& ch = chunks[c];
+    std::copy(ch.PieceSite.begin(), ch.PieceSite.end(), out.PieceSite.begin() + pOff[c]);
+    std::copy(ch.PieceElement.begin(), ch.PieceElement.end(), out.PieceElement.begin() + pOff[c]);
+    std::copy(ch.PieceMeasure.begin(), ch.PieceMeasure.end(), out.PieceMeasure.begin() + pOff[c]);
+    std::copy(ch.PieceEmbeddedMeasure.begin(), ch.PieceEmbeddedMeasure.end(),
+      out.PieceEmbeddedMeasure.begin() + pOff[c]);
+    std::copy(ch.VoronoiVertexSites.begin(), ch.VoronoiVertexSites.end(),
+      out.VoronoiVertexSites.begin() + vvOff[c] * nv);
+    std::copy(ch.VoronoiVertexElement.begin(), ch.VoronoiVertexElement.end(),
+      out.VoronoiVertexElement.begin() + vvOff[c]);
+    std::copy(ch.BoundaryDualFaces.begin(), ch.BoundaryDualFaces.end(),
+      out.BoundaryDualFaces.begin() + bdOff[c]);
+    if (geom)
+    {
+      std::copy(ch.Points.begin(), ch.Points.end(), out.Points.begin() + vOff[c] * adim);
+      if (emb)
+        std::copy(ch.EmbeddedPoints.begin(), ch.EmbeddedPoints.end(),
+          out.EmbeddedPoints.begin() + vOff[c] * dim);
+      std::copy(ch.VertexPlanes.begin(), ch.VertexPlanes.end(), out.VertexPlanes.begin() + vOff[c] * K);
+      for (std::size_t i = 0; i < ch.FaceVertices.size(); ++i)
+        out.FaceVertices[fvOff[c] + i] = ch.FaceVertices[i] + static_cast<std::int32_t>(vOff[c]);
+      std::copy(ch.FaceKind.begin(), ch.FaceKind.end(), out.FaceKind.begin() + fOff[c]);
+      std::copy(ch.FaceNeighbor.begin(), ch.FaceNeighbor.end(), out.FaceNeighbor.begin() + fOff[c]);
+      std::copy(ch.PieceVertexCount.begin(), ch.PieceVertexCount.end(), pvCount.begin() + pOff[c]);
+      std::copy(ch.PieceFaceCount.begin(), ch.PieceFaceCount.end(), pfCount.begin() + pOff[c]);
+      std::copy(ch.FaceSize.begin(), ch.FaceSize.end(), fSize.begin() + fOff[c]);
+    }
+    ch = Chunk(); // release memory early
+  });
+  if (nvx > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max()))
+    throw InputError("RestrictedVoronoi: output too large (more than 2^31 vertices)");
+  if (geom)
+  {
+    out.PieceVertexOffsets.resize(np + 1, 0);
+    out.PieceFaceOffsets.resize(np + 1, 0);
+    out.FaceOffsets.resize(nf + 1, 0);
+    for (std::size_t p = 0; p < np; ++p)
+    {
+      out.PieceVertexOffsets[p + 1] = out.PieceVertexOffsets[p] + pvCount[p];
+      out.PieceFaceOffsets[p + 1] = out.PieceFaceOffsets[p] + pfCount[p];
+    }
+    for (std::size_t f = 0; f < nf; ++f)
+      out.FaceOffsets[f + 1] = out.FaceOffsets[f] + fSize[f];
+  }
+  out.SiteMeasure.assign(ns, 0.0);
+  out.SiteEmbeddedMeasure.assign(ns, 0.0);
+  for (std::size_t p = 0; p < np; ++p)
+  {
+    out.SiteMeasure[out.PieceSite[p]] += out.PieceMeasure[p];
+    out.SiteEmbeddedMeasure[out.PieceSite[p]] += out.PieceEmbeddedMeasure[p];
+  }
+
+  if (options.MergeBySite)
+  {
+    // Reorder pieces by site (stable: elements stay in order). Vertices are renumbered so that
+    // every piece's vertices stay contiguous.
+    std::vector<std::size_t> perm(np);
+    std::iota(perm.begin(), perm.end(), 0);
+    std::stable_sort(perm.begin(), perm.end(),
+      [&](std::size_t a, std::size_t b) { return out.PieceSite[a] < out.PieceSite[b]; });
+    RestrictedVoronoiDiagram m;
+    m.SimplexDim = out.SimplexDim;
+    m.AmbientDim = out.AmbientDim;
+    m.Dim = out.Dim;
+    m.NumSites = out.NumSites;
+    m.SiteMeasure = std::move(out.SiteMeasure);
+    m.SiteEmbeddedMeasure = std::move(out.SiteEmbeddedMeasure);
+    m.VoronoiVertexSites = std::move(out.VoronoiVertexSites);
+    m.VoronoiVertexElement = std::move(out.VoronoiVertexElement);
+    m.BoundaryDualFaces = std::move(out.BoundaryDualFaces);
+    m.PieceVertexOffsets.push_back(0);
+    m.PieceFaceOffsets.push_back(0);
+    m.FaceOffsets.push_back(0);
+    for (std::size_t q = 0; q < np; ++q)
+    {
+      const std::size_t p = perm[q];
+      m.PieceSite.push_back(out.PieceSite[p]);
+      m.PieceElement.push_back(out.PieceElement[p]);
+      m.PieceMeasure.push_back(out.PieceMeasure[p]);
+      m.PieceEmbeddedMeasure.push_back(out.PieceEmbeddedMeasure[p]);
+      if (!geom)
+        continue;
+      const std::int64_t v0 = out.PieceVertexOffsets[p], v1 = out.PieceVertexOffsets[p + 1];
+      const std::int64_t shift = static_cast<std::int64_t>(m.VertexPlanes.size() / K) - v0;
+      m.Points.insert(m.Points.end(), out.Points.begin() + v0 * adim, out.Points.begin() + v1 * adim);
+      if (emb)
+        m.EmbeddedPoints.insert(m.EmbeddedPoints.end(), out.EmbeddedPoints.begin() + v0 * dim,
+          out.EmbeddedPoints.begin() + v1 * dim);
+      m.VertexPlanes.insert(m.VertexPlanes.end(), out.VertexPlanes.begin() + v0 * K,
+        out.VertexPlanes.begin() + v1 * K);
+      for (std::int64_t f = out.PieceFaceOffsets[p]; f < out.PieceFaceOffsets[p + 1]; ++f)
+      {
+        for (std::int64_t i = out.FaceOffsets[f]; i < out.FaceOffsets[f + 1]; ++i)
+          m.FaceVertices.push_back(static_cast<std::int32_t>(out.FaceVertices[i] + shift));
+        m.FaceOffsets.push_back(static_cast<std::int64_t>(m.FaceVertices.size()));
+        m.FaceKind.push_back(out.FaceKind[f]);
+        m.FaceNeighbor.push_back(out.FaceNeighbor[f]);
+      }
+      m.PieceVertexOffsets.push_back(static_cast<std::int64_t>(m.VertexPlanes.size() / K));
+      m.PieceFaceOffsets.push_back(static_cast<std::int64_t>(m.FaceKind.size()));
+    }
+    if (!geom)
+    {
+      m.PieceVertexOffsets.clear();
+      m.PieceFaceOffsets.clear();
+      m.FaceOffsets.clear();
+    }
+    return m;
+  }
+  return out;
+}
+
+} // namespace av
