@@ -21,8 +21,11 @@ const int Identity[20] = { 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15,
 // frd he20: 8..11 bottom edges, 12..15 vertical edges, 16..19 top edges;
 // VTK: 8..11 bottom, 12..15 top, 16..19 vertical.
 const int He20ToVTK[20] = { 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 16, 17, 18, 19, 12, 13, 14, 15 };
-// frd pe15: 6..8 bottom, 9..11 vertical, 12..14 top; VTK: 6..8 bottom, 9..11 top, 12..14 vertical.
-const int Pe15ToVTK[15] = { 0, 1, 2, 3, 4, 5, 6, 7, 8, 12, 13, 14, 9, 10, 11 };
+// Wedges: the (0,1,2) normal points towards (3,4,5) in CalculiX/Abaqus but away from it in
+// VTK, so VTK's base is frd's top face. frd pe15 mid-edges: 6..8 bottom, 9..11 vertical,
+// 12..14 top; VTK: 6..8 base (= frd top), 9..11 top (= frd bottom), 12..14 vertical.
+const int Pe6ToVTK[6] = { 3, 4, 5, 0, 1, 2 };
+const int Pe15ToVTK[15] = { 3, 4, 5, 0, 1, 2, 12, 13, 14, 6, 7, 8, 9, 10, 11 };
 } // namespace
 
 int FrdNodesPerElement(int type)
@@ -44,6 +47,10 @@ const int* FrdToVTKNodeOrder(int type)
   if (type == FrdPe15)
   {
     return Pe15ToVTK;
+  }
+  if (type == FrdPe6)
+  {
+    return Pe6ToVTK;
   }
   return FrdNodesPerElement(type) > 0 ? Identity : nullptr;
 }

@@ -34,10 +34,11 @@ int FrdNodesPerElement(int type);
 int FrdCornersPerElement(int type);
 /**
  * Node permutation from frd to VTK order: VTK node i is frd node FrdToVTKNodeOrder(type)[i].
- * Linear types, te10, tr6, qu8 and be3 are identical. he20 and pe15 differ: frd (cgx) lists
- * the bottom mid-edge nodes, then the vertical ones, then the top ones, while VTK (and the
- * CalculiX input deck) lists bottom, top, vertical. Checked geometrically on the CalculiX
- * example result.frd (each mid-edge node is the midpoint of its two corners).
+ * Linear types except pe6, and te10, tr6, qu8, be3 are identical. he20: frd (cgx) lists the
+ * bottom mid-edge nodes, then the vertical ones, then the top ones, while VTK (and the
+ * CalculiX input deck) lists bottom, top, vertical; checked geometrically on the CalculiX
+ * example result.frd. Wedges (pe6, pe15): CalculiX orients the (0,1,2) face towards (3,4,5),
+ * VTK away from it, so VTK's base is frd's top face (and the pe15 mid-edge nodes follow).
  * Returns nullptr for an unknown type.
  */
 const int* FrdToVTKNodeOrder(int type);

@@ -5,6 +5,7 @@
 #include "FrdReader.h"
 #include "TestUtilities.h"
 
+#include <algorithm>
 #include <array>
 #include <cstdarg>
 #include <cmath>
@@ -198,6 +199,51 @@ int CountWrongMidEdges(const av::FrdData& d, double relTol)
     }
   }
   return wrong;
+}
+
+/// Wedges: a CalculiX-ordered pe15 (base counterclockwise seen from the top, mid-edges
+/// bottom / vertical / top) must become a VTK wedge whose (0,1,2) normal points away from
+/// (3,4,5) and whose mid-edge nodes lie on VTK's edges.
+void TestWedgeOrder()
+{
+  const double c[6][3] = { { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 }, { 1, 0, 1 }, { 0, 1, 1 } };
+  const int frdEdges[9][2] = { { 0, 1 }, { 1, 2 }, { 2, 0 }, { 0, 3 }, { 1, 4 }, { 2, 5 }, { 3, 4 },
+    { 4, 5 }, { 5, 3 } };
+  const int vtkEdges[9][2] = { { 0, 1 }, { 1, 2 }, { 2, 0 }, { 3, 4 }, { 4, 5 }, { 5, 3 }, { 0, 3 },
+    { 1, 4 }, { 2, 5 } };
+  double frd[15][3];
+  for (int i = 0; i < 6; ++i)
+  {
+    std::copy(c[i], c[i] + 3, frd[i]);
+  }
+  for (int e = 0; e < 9; ++e)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      frd[6 + e][k] = 0.5 * (c[frdEdges[e][0]][k] + c[frdEdges[e][1]][k]);
+    }
+  }
+  for (int type : { av::FrdPe6, av::FrdPe15 })
+  {
+    const int* order = av::FrdToVTKNodeOrder(type);
+    auto P = [&](int i) { return frd[order[i]]; };
+    double u[3], v[3], w[3];
+    for (int k = 0; k < 3; ++k)
+    {
+      u[k] = P(1)[k] - P(0)[k];
+      v[k] = P(2)[k] - P(0)[k];
+      w[k] = (P(3)[k] + P(4)[k] + P(5)[k] - P(0)[k] - P(1)[k] - P(2)[k]) / 3.0;
+    }
+    const double n[3] = { u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0] };
+    AV_CHECK_MSG(n[0] * w[0] + n[1] * w[1] + n[2] * w[2] < 0, "wedge type " << type << " base normal");
+    if (type == av::FrdPe15)
+    {
+      for (int e = 0; e < 9; ++e)
+      {
+        AV_CHECK_MSG(IsMidpoint(P(6 + e), P(vtkEdges[e][0]), P(vtkEdges[e][1]), 1e-12), "pe15 edge " << e);
+      }
+    }
+  }
 }
 
 void TestHandMade(bool shortFormat)
@@ -401,6 +447,7 @@ void TestCalculixExample()
 
 int main()
 {
+  TestWedgeOrder();
   TestHandMade(false);
   TestHandMade(true);
   TestErrors();
