@@ -137,7 +137,10 @@ public:
     return true;
   }
 
-  std::size_t BytesLeft() const { return this->Pos < this->Text.size() ? this->Text.size() - this->Pos : 0; }
+  std::size_t BytesLeft() const
+  {
+    return this->Pos < this->Text.size() ? this->Text.size() - this->Pos : 0;
+  }
 
   [[noreturn]] void Fail(const std::string& what) const
   {
@@ -167,7 +170,8 @@ public:
     if (f.empty() || r.ec != std::errc() || r.ptr != f.data() + f.size())
     {
       this->Fail(std::string("expected ") + what + " (an integer in columns " +
-        std::to_string(col + 1) + "-" + std::to_string(col + width) + "), got '" + Printable(f) + "'");
+                 std::to_string(col + 1) + "-" + std::to_string(col + width) + "), got '" +
+                 Printable(f) + "'");
     }
     return v;
   }
@@ -184,17 +188,22 @@ public:
     if (f.empty() || r.ec != std::errc() || r.ptr != f.data() + f.size())
     {
       this->Fail(std::string("expected ") + what + " (an E12.5 number in columns " +
-        std::to_string(col + 1) + "-" + std::to_string(col + 12) + "), got '" + Printable(f) + "'");
+                 std::to_string(col + 1) + "-" + std::to_string(col + 12) + "), got '" +
+                 Printable(f) + "'");
     }
     if (!std::isfinite(v))
     {
-      this->Fail(std::string("expected ") + what + " (a finite number), got '" + Printable(f) + "'");
+      this->Fail(std::string("expected ") + what + " (a finite number), got '" + Printable(f) +
+                 "'");
     }
     return v;
   }
 
   /// Block header count, bounded by what the rest of the file can hold.
-  std::size_t Count(std::size_t col, std::size_t width, const char* what, std::size_t minBytesEach) const
+  std::size_t Count(std::size_t col,
+                    std::size_t width,
+                    const char* what,
+                    std::size_t minBytesEach) const
   {
     const std::int64_t n = this->Int(col, width, what);
     if (n < 0 || n > std::numeric_limits<std::int32_t>::max())
@@ -204,7 +213,7 @@ public:
     if (static_cast<std::size_t>(n) > this->BytesLeft() / minBytesEach + 1)
     {
       this->Fail(std::string(what) + " is " + std::to_string(n) +
-        " but the file is too short to hold them (truncated?)");
+                 " but the file is too short to hold them (truncated?)");
     }
     return static_cast<std::size_t>(n);
   }
@@ -276,7 +285,8 @@ public:
     {
       return id >= 0 && id < static_cast<std::int64_t>(this->Table.size()) ? this->Table[id] : -1;
     }
-    const auto it = id >= std::numeric_limits<std::int32_t>::min() && id <= std::numeric_limits<std::int32_t>::max()
+    const auto it = id >= std::numeric_limits<std::int32_t>::min() &&
+        id <= std::numeric_limits<std::int32_t>::max()
       ? this->Map.find(static_cast<std::int32_t>(id))
       : this->Map.end();
     return it == this->Map.end() ? -1 : it->second;
@@ -332,7 +342,8 @@ void ReadNodes(Lines& in, FrdData& d, NodeIndex& index)
   {
     if (!in.Next())
     {
-      in.Fail("node block of line " + std::to_string(headerLine) + " is not terminated by ' -3' (truncated?)");
+      in.Fail("node block of line " + std::to_string(headerLine) +
+              " is not terminated by ' -3' (truncated?)");
     }
     const int key = in.Key();
     if (key == -3)
@@ -360,7 +371,7 @@ void ReadNodes(Lines& in, FrdData& d, NodeIndex& index)
     if (!index.Insert(ids[i], static_cast<std::int32_t>(i)))
     {
       throw InputError("node block of line " + std::to_string(headerLine) + ": node id " +
-        std::to_string(ids[i]) + " appears twice");
+                       std::to_string(ids[i]) + " appears twice");
     }
   }
   d.NodeIds = std::move(ids);
@@ -382,7 +393,8 @@ void ReadElements(Lines& in, FrdData& d, const NodeIndex& index)
   {
     if (!more)
     {
-      in.Fail("element block of line " + std::to_string(headerLine) + " is not terminated by ' -3' (truncated?)");
+      in.Fail("element block of line " + std::to_string(headerLine) +
+              " is not terminated by ' -3' (truncated?)");
     }
     const int key = in.Key();
     if (key == -3)
@@ -391,7 +403,8 @@ void ReadElements(Lines& in, FrdData& d, const NodeIndex& index)
     }
     if (key != -1)
     {
-      in.Fail("expected an element line ' -1' or the block end ' -3', got '" + Printable(in.Cur) + "'");
+      in.Fail("expected an element line ' -1' or the block end ' -3', got '" + Printable(in.Cur) +
+              "'");
     }
     const std::int64_t id = in.Int(3, idW, "an element id");
     const std::int64_t type = in.Int(3 + idW, 5, "an element type");
@@ -402,7 +415,8 @@ void ReadElements(Lines& in, FrdData& d, const NodeIndex& index)
     {
       in.Fail("unknown element type " + std::to_string(type) + " (expected 1..12)");
     }
-    auto clamp32 = [](std::int64_t v) {
+    auto clamp32 = [](std::int64_t v)
+    {
       return static_cast<std::int32_t>(std::clamp<std::int64_t>(
         v, std::numeric_limits<std::int32_t>::min(), std::numeric_limits<std::int32_t>::max()));
     };
@@ -417,7 +431,7 @@ void ReadElements(Lines& in, FrdData& d, const NodeIndex& index)
       if (!in.Next() || in.Key() != -2)
       {
         in.Fail("element " + std::to_string(id) + " (type " + std::to_string(type) + ") needs " +
-          std::to_string(nn) + " node ids on ' -2' lines, got " + std::to_string(got));
+                std::to_string(nn) + " node ids on ' -2' lines, got " + std::to_string(got));
       }
       for (std::size_t k = 0; k < perLine && got < nn; ++k)
       {
@@ -431,7 +445,7 @@ void ReadElements(Lines& in, FrdData& d, const NodeIndex& index)
         if (idx < 0)
         {
           in.Fail("element " + std::to_string(id) + " uses node " + std::to_string(nid) +
-            " which is not in the node block");
+                  " which is not in the node block");
         }
         d.Connectivity.push_back(idx);
         if (got < corners)
@@ -453,7 +467,8 @@ void ReadResult(Lines& in, FrdData& d, const NodeIndex& index)
   r.Value = in.Real(12, "the step value (time/frequency)");
   in.Int(24, 12, "the number of nodes of the result block"); // checked, not needed
   r.Step = static_cast<int>(std::clamp<std::int64_t>(in.Int(58, 5, "the step number (NUMSTP)"),
-    std::numeric_limits<int>::min(), std::numeric_limits<int>::max()));
+                                                     std::numeric_limits<int>::min(),
+                                                     std::numeric_limits<int>::max()));
   r.Analysis = std::string(Trim(in.Field(63, 10)));
   const int format = in.Format(73);
   const std::size_t idW = format == 1 ? 10 : 5;
@@ -478,14 +493,18 @@ void ReadResult(Lines& in, FrdData& d, const NodeIndex& index)
   {
     if (!in.Next() || in.Key() != -5)
     {
-      in.Fail("expected component line ' -5' " + std::to_string(c + 1) + " of " + std::to_string(ncomps) + " of " + r.Name);
+      in.Fail("expected component line ' -5' " + std::to_string(c + 1) + " of " +
+              std::to_string(ncomps) + " of " + r.Name);
     }
     Component comp;
     comp.Name = std::string(Trim(in.Field(5, 8)));
     comp.Type = static_cast<int>(in.Int(18, 5, "the component type"));
-    comp.Ind1 = Trim(in.Field(23, 5)).empty() ? 0 : static_cast<int>(in.Int(23, 5, "a component index"));
-    comp.Ind2 = Trim(in.Field(28, 5)).empty() ? 0 : static_cast<int>(in.Int(28, 5, "a component index"));
-    comp.Exist = Trim(in.Field(33, 5)).empty() ? 0 : static_cast<int>(in.Int(33, 5, "the IEXIST flag"));
+    comp.Ind1 =
+      Trim(in.Field(23, 5)).empty() ? 0 : static_cast<int>(in.Int(23, 5, "a component index"));
+    comp.Ind2 =
+      Trim(in.Field(28, 5)).empty() ? 0 : static_cast<int>(in.Int(28, 5, "a component index"));
+    comp.Exist =
+      Trim(in.Field(33, 5)).empty() ? 0 : static_cast<int>(in.Int(33, 5, "the IEXIST flag"));
     comps.push_back(comp);
   }
   // components actually stored in the file (IEXIST 1 = computed by the viewer, e.g. ALL)
@@ -526,7 +545,7 @@ void ReadResult(Lines& in, FrdData& d, const NodeIndex& index)
     }
   }
   else if (vector && stored[0].Ind1 != stored[1].Ind1 && stored[0].Ind1 != stored[2].Ind1 &&
-    stored[1].Ind1 != stored[2].Ind1)
+           stored[1].Ind1 != stored[2].Ind1)
   {
     r.ComponentNames.resize(3);
     for (int c = 0; c < nv; ++c)
@@ -555,7 +574,7 @@ void ReadResult(Lines& in, FrdData& d, const NodeIndex& index)
     if (!more)
     {
       in.Fail("result block " + r.Name + " of line " + std::to_string(r.Line) +
-        " is not terminated by ' -3' (truncated?)");
+              " is not terminated by ' -3' (truncated?)");
     }
     const int key = in.Key();
     if (key == -3)
@@ -564,13 +583,15 @@ void ReadResult(Lines& in, FrdData& d, const NodeIndex& index)
     }
     if (key != -1)
     {
-      in.Fail("expected a value line ' -1' or the block end ' -3' in " + r.Name + ", got '" + Printable(in.Cur) + "'");
+      in.Fail("expected a value line ' -1' or the block end ' -3' in " + r.Name + ", got '" +
+              Printable(in.Cur) + "'");
     }
     const std::int64_t nid = in.Int(3, idW, "a node id");
     const std::int32_t idx = index.Find(nid);
     if (idx < 0)
     {
-      in.Fail("result " + r.Name + " refers to node " + std::to_string(nid) + " which is not in the node block");
+      in.Fail("result " + r.Name + " refers to node " + std::to_string(nid) +
+              " which is not in the node block");
     }
     int got = 0;
     while (true)
@@ -586,7 +607,7 @@ void ReadResult(Lines& in, FrdData& d, const NodeIndex& index)
       if (!in.Next() || in.Key() != -2)
       {
         in.Fail("node " + std::to_string(nid) + " of " + r.Name + " needs " + std::to_string(nv) +
-          " values; expected a continuation line ' -2'");
+                " values; expected a continuation line ' -2'");
       }
     }
     double* out = r.Values.data() + static_cast<std::size_t>(idx) * nv;

@@ -72,7 +72,7 @@ struct FrdData
   std::vector<double> Points;        ///< NumNodes x 3
   std::vector<std::int32_t> NodeIds; ///< original node id of each node
   std::vector<std::int32_t> ElementIds, ElementTypes, ElementGroups, ElementMaterials;
-  std::vector<std::int64_t> Offsets;     ///< NumElements + 1 offsets into Connectivity
+  std::vector<std::int64_t> Offsets;      ///< NumElements + 1 offsets into Connectivity
   std::vector<std::int32_t> Connectivity; ///< 0-based node indices, frd node order
   std::vector<std::uint8_t> IsCornerNode; ///< per node: 1 if it is a corner of some element
   std::vector<FrdResult> Results;         ///< in file order

@@ -70,7 +70,7 @@ public:
     this->TokenLine = this->Line;
     const std::size_t start = this->Pos;
     while (this->Pos < this->Text.size() && !IsBlank(this->Text[this->Pos]) &&
-      this->Text[this->Pos] != '#')
+           this->Text[this->Pos] != '#')
     {
       ++this->Pos;
     }
@@ -113,7 +113,7 @@ public:
     if (v < lo || v > hi)
     {
       this->Fail(std::string("expected ") + expected + " in [" + std::to_string(lo) + ", " +
-        std::to_string(hi) + "], got " + std::to_string(v));
+                 std::to_string(hi) + "], got " + std::to_string(v));
     }
     return v;
   }
@@ -142,14 +142,16 @@ public:
   /// tokens, so a corrupted header cannot make us allocate huge arrays.
   std::size_t Count(const char* section, std::size_t tokensEach)
   {
-    const std::int64_t n = this->Int(
-      (std::string("the number of ") + section).c_str(), 0, std::numeric_limits<std::int32_t>::max());
+    const std::int64_t n = this->Int((std::string("the number of ") + section).c_str(),
+                                     0,
+                                     std::numeric_limits<std::int32_t>::max());
     const std::size_t left = this->Text.size() - this->Pos;
     // every token takes at least 2 bytes (one character and one separator), minus the last one
     if (static_cast<std::size_t>(n) > (left + 1) / 2 / std::max<std::size_t>(tokensEach, 1))
     {
       this->Fail(std::string(section) + ": the header announces " + std::to_string(n) +
-        " entries but only " + std::to_string(left) + " bytes are left in the file (truncated?)");
+                 " entries but only " + std::to_string(left) +
+                 " bytes are left in the file (truncated?)");
     }
     return static_cast<std::size_t>(n);
   }
@@ -159,7 +161,10 @@ public:
   std::size_t TokenLine = 1;
 
 private:
-  static bool IsBlank(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v'; }
+  static bool IsBlank(char c)
+  {
+    return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v';
+  }
 
   void SkipBlanks()
   {
@@ -225,11 +230,13 @@ void WriteWholeFile(const std::string& fileName, const std::string& text)
 void RejectBinary(const std::string& text, const std::string& fileName)
 {
   // .meshb/.solb start with the int32 code 1 (little or big endian)
-  if (text.size() >= 4 && (text.compare(0, 4, std::string("\1\0\0\0", 4)) == 0 ||
-                            text.compare(0, 4, std::string("\0\0\0\1", 4)) == 0))
+  if (text.size() >= 4 &&
+      (text.compare(0, 4, std::string("\1\0\0\0", 4)) == 0 ||
+       text.compare(0, 4, std::string("\0\0\0\1", 4)) == 0))
   {
-    throw InputError(fileName + ": binary Medit files (.meshb/.solb) are not supported; "
-                                "convert to ASCII .mesh/.sol");
+    throw InputError(fileName +
+                     ": binary Medit files (.meshb/.solb) are not supported; "
+                     "convert to ASCII .mesh/.sol");
   }
 }
 
@@ -250,8 +257,12 @@ void AppendInt(std::string& out, std::int64_t v)
 
 /// Reads `count` simplices of `k` 1-based vertex ids + a ref. Ids are checked against
 /// numVertices now when it is known (>= 0), else later by CheckIds.
-void ReadSimplices(Tokenizer& tok, const char* section, int k, std::int64_t numVertices,
-  std::vector<std::int32_t>& ids, std::vector<std::int32_t>& refs)
+void ReadSimplices(Tokenizer& tok,
+                   const char* section,
+                   int k,
+                   std::int64_t numVertices,
+                   std::vector<std::int32_t>& ids,
+                   std::vector<std::int32_t>& refs)
 {
   const std::size_t n = tok.Count(section, static_cast<std::size_t>(k + 1));
   const std::int64_t hi = numVertices >= 0 ? numVertices : std::numeric_limits<std::int32_t>::max();
@@ -264,22 +275,27 @@ void ReadSimplices(Tokenizer& tok, const char* section, int k, std::int64_t numV
     {
       ids.push_back(static_cast<std::int32_t>(tok.Int(what.c_str(), 1, hi) - 1));
     }
-    refs.push_back(static_cast<std::int32_t>(tok.Int(
-      (std::string("the reference of ") + section).c_str(), std::numeric_limits<std::int32_t>::min(),
-      std::numeric_limits<std::int32_t>::max())));
+    refs.push_back(
+      static_cast<std::int32_t>(tok.Int((std::string("the reference of ") + section).c_str(),
+                                        std::numeric_limits<std::int32_t>::min(),
+                                        std::numeric_limits<std::int32_t>::max())));
   }
 }
 
-void CheckIds(const std::vector<std::int32_t>& ids, std::size_t numVertices, const char* section,
-  std::size_t sectionLine, int k, const std::string& source)
+void CheckIds(const std::vector<std::int32_t>& ids,
+              std::size_t numVertices,
+              const char* section,
+              std::size_t sectionLine,
+              int k,
+              const std::string& source)
 {
   for (std::size_t i = 0; i < ids.size(); ++i)
   {
     if (static_cast<std::size_t>(ids[i]) >= numVertices)
     {
       throw InputError(source + ":" + std::to_string(sectionLine) + ": " + section + " entry " +
-        std::to_string(i / k + 1) + " uses vertex " + std::to_string(ids[i] + 1) + " but there are only " +
-        std::to_string(numVertices) + " vertices");
+                       std::to_string(i / k + 1) + " uses vertex " + std::to_string(ids[i] + 1) +
+                       " but there are only " + std::to_string(numVertices) + " vertices");
     }
   }
 }
@@ -383,8 +399,10 @@ MeditMesh ParseMeditMesh(const std::string& text, const std::string& sourceName)
         {
           points.push_back(tok.Real("a vertex coordinate"));
         }
-        out.PointRefs.push_back(static_cast<std::int32_t>(tok.Int("the reference of a vertex",
-          std::numeric_limits<std::int32_t>::min(), std::numeric_limits<std::int32_t>::max())));
+        out.PointRefs.push_back(
+          static_cast<std::int32_t>(tok.Int("the reference of a vertex",
+                                            std::numeric_limits<std::int32_t>::min(),
+                                            std::numeric_limits<std::int32_t>::max())));
       }
       haveVertices = true;
     }
@@ -410,8 +428,9 @@ MeditMesh ParseMeditMesh(const std::string& text, const std::string& sourceName)
       const std::size_t n = tok.Count(name.c_str(), static_cast<std::size_t>(k + 1));
       for (std::size_t i = 0; i < n * (k + 1); ++i)
       {
-        tok.Int((std::string("an integer of ") + name).c_str(), std::numeric_limits<std::int32_t>::min(),
-          std::numeric_limits<std::int32_t>::max());
+        tok.Int((std::string("an integer of ") + name).c_str(),
+                std::numeric_limits<std::int32_t>::min(),
+                std::numeric_limits<std::int32_t>::max());
       }
       out.IgnoredKeywords.push_back(name);
     }
@@ -428,7 +447,7 @@ MeditMesh ParseMeditMesh(const std::string& text, const std::string& sourceName)
     else
     {
       tok.Fail("expected a keyword (Vertices, Triangles, Tetrahedra, Edges, End, ...), got " +
-        tok.Got(kw));
+               tok.Got(kw));
     }
   }
 
@@ -490,8 +509,12 @@ MeditMesh ReadMeditMesh(const std::string& fileName)
 
 namespace
 {
-void AppendSimplices(std::string& s, const char* name, const std::vector<std::int32_t>& ids,
-  const std::vector<std::int32_t>* refs, int k, std::size_t numPoints)
+void AppendSimplices(std::string& s,
+                     const char* name,
+                     const std::vector<std::int32_t>& ids,
+                     const std::vector<std::int32_t>* refs,
+                     int k,
+                     std::size_t numPoints)
 {
   const std::size_t n = ids.size() / k;
   if (n == 0)
@@ -515,7 +538,7 @@ void AppendSimplices(std::string& s, const char* name, const std::vector<std::in
       if (id < 0 || static_cast<std::size_t>(id) >= numPoints)
       {
         throw InputError(std::string("Medit writer: ") + name + " " + std::to_string(i) +
-          " uses point " + std::to_string(id) + " of " + std::to_string(numPoints));
+                         " uses point " + std::to_string(id) + " of " + std::to_string(numPoints));
       }
       AppendInt(s, id + 1);
       s += ' ';
@@ -536,7 +559,8 @@ std::string FormatMeditMesh(const MeditMesh& m)
   }
   if (mesh.SimplexDim != 2 && mesh.SimplexDim != 3)
   {
-    throw InputError("Medit writer: SimplexDim must be 2 or 3, got " + std::to_string(mesh.SimplexDim));
+    throw InputError("Medit writer: SimplexDim must be 2 or 3, got " +
+                     std::to_string(mesh.SimplexDim));
   }
   if (mesh.SimplexDim == 3 && dim != 3)
   {
@@ -565,7 +589,8 @@ std::string FormatMeditMesh(const MeditMesh& m)
       const double v = mesh.Points[i * dim + d];
       if (!std::isfinite(v))
       {
-        throw InputError("Medit writer: point " + std::to_string(i) + " has a non-finite coordinate");
+        throw InputError("Medit writer: point " + std::to_string(i) +
+                         " has a non-finite coordinate");
       }
       AppendDouble(s, v);
       s += ' ';
@@ -587,8 +612,9 @@ std::string FormatMeditMesh(const MeditMesh& m)
   return s;
 }
 
-std::string FormatMeditMesh(
-  const SimplexMesh& mesh, const std::int32_t* pointRefs, const std::int32_t* cellRefs)
+std::string FormatMeditMesh(const SimplexMesh& mesh,
+                            const std::int32_t* pointRefs,
+                            const std::int32_t* cellRefs)
 {
   MeditMesh m;
   m.Mesh = mesh;
@@ -635,14 +661,14 @@ MeditSol ParseMeditSol(const std::string& text, const std::string& sourceName)
         tok.Fail("a second 'SolAtVertices' section");
       }
       sol.Dimension = dim;
-      const std::int64_t n = tok.Int("the number of vertices of SolAtVertices", 0,
-        std::numeric_limits<std::int32_t>::max());
+      const std::int64_t n = tok.Int(
+        "the number of vertices of SolAtVertices", 0, std::numeric_limits<std::int32_t>::max());
       const int nf = static_cast<int>(tok.Int("the number of solution fields", 1, 64));
       std::size_t perVertex = 0; // values per vertex in the file
       for (int f = 0; f < nf; ++f)
       {
-        const int type = static_cast<int>(
-          tok.Int("a field type (1 scalar, 2 vector, 3 symmetric tensor)", 1, 3));
+        const int type =
+          static_cast<int>(tok.Int("a field type (1 scalar, 2 vector, 3 symmetric tensor)", 1, 3));
         sol.FieldTypes.push_back(type);
         perVertex += type == 1 ? 1 : (type == 2 ? dim : dim * (dim + 1) / 2);
       }
@@ -651,7 +677,7 @@ MeditSol ParseMeditSol(const std::string& text, const std::string& sourceName)
       if (static_cast<std::size_t>(n) > (left + 1) / 2 / perVertex)
       {
         tok.Fail("SolAtVertices announces " + std::to_string(n) + " vertices x " +
-          std::to_string(perVertex) + " values, more than the file can hold (truncated?)");
+                 std::to_string(perVertex) + " values, more than the file can hold (truncated?)");
       }
       sol.NumVertices = static_cast<std::size_t>(n);
       sol.Fields.resize(nf);
@@ -682,7 +708,8 @@ MeditSol ParseMeditSol(const std::string& text, const std::string& sourceName)
             const int k = type == 1 ? 1 : dim;
             for (int j = 0; j < k; ++j)
             {
-              out.push_back(tok.Real(type == 1 ? "a scalar of SolAtVertices" : "a vector component of SolAtVertices"));
+              out.push_back(tok.Real(type == 1 ? "a scalar of SolAtVertices"
+                                               : "a vector component of SolAtVertices"));
             }
           }
         }
@@ -742,8 +769,8 @@ std::string FormatMeditSol(const MeditSol& sol)
     if (sol.Fields[f].size() != sol.NumVertices * sol.FieldComponents(type))
     {
       throw InputError("Medit .sol writer: field " + std::to_string(f) + " has " +
-        std::to_string(sol.Fields[f].size()) + " values, expected " +
-        std::to_string(sol.NumVertices * sol.FieldComponents(type)));
+                       std::to_string(sol.Fields[f].size()) + " values, expected " +
+                       std::to_string(sol.NumVertices * sol.FieldComponents(type)));
     }
   }
   std::string s;
@@ -779,7 +806,8 @@ std::string FormatMeditSol(const MeditSol& sol)
       {
         if (!std::isfinite(v[j]))
         {
-          throw InputError("Medit .sol writer: vertex " + std::to_string(i) + " has a non-finite value");
+          throw InputError("Medit .sol writer: vertex " + std::to_string(i) +
+                           " has a non-finite value");
         }
         AppendDouble(s, v[j]);
         s += ' ';
@@ -801,7 +829,7 @@ MetricField MetricFromMeditSol(const MeditSol& sol, std::size_t field)
   if (field >= sol.Fields.size())
   {
     throw InputError("the .sol has " + std::to_string(sol.Fields.size()) + " field(s), field " +
-      std::to_string(field) + " requested");
+                     std::to_string(field) + " requested");
   }
   const int type = sol.FieldTypes[field];
   const std::vector<double>& f = sol.Fields[field];
@@ -823,7 +851,7 @@ MetricField MetricFromMeditSol(const MeditSol& sol, std::size_t field)
     if (!(h > 0.0) || !std::isfinite(h))
     {
       throw InputError("scalar .sol value at vertex " + std::to_string(i + 1) +
-        " is a size h and must be > 0, got " + std::to_string(h));
+                       " is a size h and must be > 0, got " + std::to_string(h));
     }
     const double m = 1.0 / (h * h);
     double* v = metric.Values.data() + 6 * i;

@@ -32,7 +32,7 @@ struct MeditMesh
   std::vector<std::int32_t> FaceRefs;
   std::vector<std::int32_t> Edges; ///< 2 ids per edge
   std::vector<std::int32_t> EdgeRefs;
-  int Version = 2;                           ///< MeshVersionFormatted value
+  int Version = 2;                          ///< MeshVersionFormatted value
   std::vector<std::string> IgnoredKeywords; ///< keywords found but not kept
 };
 
@@ -63,8 +63,9 @@ MeditMesh ReadMeditMesh(const std::string& fileName);
 /// Formats a mesh as Medit text (MeshVersionFormatted 2, doubles written exactly).
 std::string FormatMeditMesh(const MeditMesh& mesh);
 /// Convenience: a bare SimplexMesh with optional per-point / per-cell refs (else 0).
-std::string FormatMeditMesh(const SimplexMesh& mesh, const std::int32_t* pointRefs = nullptr,
-  const std::int32_t* cellRefs = nullptr);
+std::string FormatMeditMesh(const SimplexMesh& mesh,
+                            const std::int32_t* pointRefs = nullptr,
+                            const std::int32_t* cellRefs = nullptr);
 /// Writes FormatMeditMesh(mesh) to a file; throws InputError if it cannot be written.
 void WriteMeditMesh(const std::string& fileName, const MeditMesh& mesh);
 

@@ -32,19 +32,32 @@ int CellTypeOfFrd(int frdType)
 {
   switch (frdType)
   {
-    case av::FrdHe8: return VTK_HEXAHEDRON;
-    case av::FrdPe6: return VTK_WEDGE;
-    case av::FrdTe4: return VTK_TETRA;
-    case av::FrdHe20: return VTK_QUADRATIC_HEXAHEDRON;
-    case av::FrdPe15: return VTK_QUADRATIC_WEDGE;
-    case av::FrdTe10: return VTK_QUADRATIC_TETRA;
-    case av::FrdTr3: return VTK_TRIANGLE;
-    case av::FrdTr6: return VTK_QUADRATIC_TRIANGLE;
-    case av::FrdQu4: return VTK_QUAD;
-    case av::FrdQu8: return VTK_QUADRATIC_QUAD;
-    case av::FrdBe2: return VTK_LINE;
-    case av::FrdBe3: return VTK_QUADRATIC_EDGE;
-    default: return VTK_EMPTY_CELL;
+    case av::FrdHe8:
+      return VTK_HEXAHEDRON;
+    case av::FrdPe6:
+      return VTK_WEDGE;
+    case av::FrdTe4:
+      return VTK_TETRA;
+    case av::FrdHe20:
+      return VTK_QUADRATIC_HEXAHEDRON;
+    case av::FrdPe15:
+      return VTK_QUADRATIC_WEDGE;
+    case av::FrdTe10:
+      return VTK_QUADRATIC_TETRA;
+    case av::FrdTr3:
+      return VTK_TRIANGLE;
+    case av::FrdTr6:
+      return VTK_QUADRATIC_TRIANGLE;
+    case av::FrdQu4:
+      return VTK_QUAD;
+    case av::FrdQu8:
+      return VTK_QUADRATIC_QUAD;
+    case av::FrdBe2:
+      return VTK_LINE;
+    case av::FrdBe3:
+      return VTK_QUADRATIC_EDGE;
+    default:
+      return VTK_EMPTY_CELL;
   }
 }
 
@@ -58,8 +71,9 @@ vtkSmartPointer<vtkIntArray> MakeIntArray(const char* name, const std::vector<st
 }
 } // namespace
 
-int vtkAnisoFRDReader::RequestData(
-  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+int vtkAnisoFRDReader::RequestData(vtkInformation*,
+                                   vtkInformationVector**,
+                                   vtkInformationVector* outputVector)
 {
   vtkUnstructuredGrid* output = vtkUnstructuredGrid::GetData(outputVector);
   if (this->FileName.empty())
@@ -95,8 +109,9 @@ int vtkAnisoFRDReader::RequestData(
   auto points = vtkSmartPointer<vtkPoints>::New();
   points->SetDataTypeToDouble();
   points->SetNumberOfPoints(np);
-  std::copy(d.Points.begin(), d.Points.end(),
-    static_cast<vtkDoubleArray*>(points->GetData())->GetPointer(0));
+  std::copy(d.Points.begin(),
+            d.Points.end(),
+            static_cast<vtkDoubleArray*>(points->GetData())->GetPointer(0));
 
   const vtkIdType ne = static_cast<vtkIdType>(d.NumElements());
   auto cells = vtkSmartPointer<vtkCellArray>::New();

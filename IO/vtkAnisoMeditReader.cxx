@@ -22,7 +22,9 @@ vtkAnisoMeditReader::vtkAnisoMeditReader()
 
 namespace
 {
-vtkSmartPointer<vtkDoubleArray> MakeArray(const char* name, int nc, const std::vector<double>& values)
+vtkSmartPointer<vtkDoubleArray> MakeArray(const char* name,
+                                          int nc,
+                                          const std::vector<double>& values)
 {
   auto a = vtkSmartPointer<vtkDoubleArray>::New();
   a->SetName(name);
@@ -42,8 +44,9 @@ vtkSmartPointer<vtkIntArray> MakeIntArray(const char* name, const std::vector<st
 }
 } // namespace
 
-int vtkAnisoMeditReader::RequestData(
-  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+int vtkAnisoMeditReader::RequestData(vtkInformation*,
+                                     vtkInformationVector**,
+                                     vtkInformationVector* outputVector)
 {
   vtkUnstructuredGrid* output = vtkUnstructuredGrid::GetData(outputVector);
   if (this->FileName.empty())
@@ -104,7 +107,8 @@ int vtkAnisoMeditReader::RequestData(
       const int fromField = metricField >= 0 ? metricField : sizeField;
       if (fromField >= 0)
       {
-        const av::MetricField metric = av::MetricFromMeditSol(sol, static_cast<std::size_t>(fromField));
+        const av::MetricField metric =
+          av::MetricFromMeditSol(sol, static_cast<std::size_t>(fromField));
         output->GetPointData()->AddArray(MakeArray("Metric", 6, metric.Values));
         output->GetPointData()->SetActiveTensors("Metric");
       }
@@ -115,7 +119,8 @@ int vtkAnisoMeditReader::RequestData(
         {
           continue;
         }
-        const std::string name = fi == sizeField ? std::string("Size") : "SolField" + std::to_string(f);
+        const std::string name =
+          fi == sizeField ? std::string("Size") : "SolField" + std::to_string(f);
         output->GetPointData()->AddArray(
           MakeArray(name.c_str(), sol.FieldComponents(sol.FieldTypes[f]), sol.Fields[f]));
       }

@@ -15,7 +15,6 @@
 
 #include <vector>
 
-
 vtkStandardNewMacro(vtkAnisoMeditWriter);
 
 vtkAnisoMeditWriter::vtkAnisoMeditWriter() = default;
@@ -119,7 +118,8 @@ void vtkAnisoMeditWriter::WriteData()
       vtkDataArray* metric = input->GetPointData()->GetArray(this->MetricArrayName.c_str());
       if (!metric || (metric->GetNumberOfComponents() != 6 && metric->GetNumberOfComponents() != 9))
       {
-        vtkErrorMacro("SolFileName is set but the input has no 6- or 9-component point array named '"
+        vtkErrorMacro(
+          "SolFileName is set but the input has no 6- or 9-component point array named '"
           << this->MetricArrayName << "'.");
         this->SetErrorCode(vtkErrorCode::UnknownError);
         return;

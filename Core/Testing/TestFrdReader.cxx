@@ -7,8 +7,8 @@
 
 #include <algorithm>
 #include <array>
-#include <cstdarg>
 #include <cmath>
+#include <cstdarg>
 #include <cstdio>
 #include <fstream>
 #include <random>
@@ -31,10 +31,10 @@ std::string Fmt(const char* f, ...)
 
 // Reference hex corners in VTK/CalculiX-input order and the 12 edges of VTK's
 // quadratic hexahedron (mid-edge nodes 8..19).
-const double Corner[8][3] = { { 0, 0, 0 }, { 1, 0, 0 }, { 1, 1, 0 }, { 0, 1, 0 }, { 0, 0, 1 },
-  { 1, 0, 1 }, { 1, 1, 1 }, { 0, 1, 1 } };
-const int VTKEdges[12][2] = { { 0, 1 }, { 1, 2 }, { 2, 3 }, { 3, 0 }, { 4, 5 }, { 5, 6 }, { 6, 7 },
-  { 7, 4 }, { 0, 4 }, { 1, 5 }, { 2, 6 }, { 3, 7 } };
+const double Corner[8][3] = { { 0, 0, 0 }, { 1, 0, 0 }, { 1, 1, 0 }, { 0, 1, 0 },
+                              { 0, 0, 1 }, { 1, 0, 1 }, { 1, 1, 1 }, { 0, 1, 1 } };
+const int VTKEdges[12][2] = { { 0, 1 }, { 1, 2 }, { 2, 3 }, { 3, 0 }, { 4, 5 }, { 5, 6 },
+                              { 6, 7 }, { 7, 4 }, { 0, 4 }, { 1, 5 }, { 2, 6 }, { 3, 7 } };
 // frd writes bottom edges, then vertical edges, then top edges.
 const int FrdEdgeOrder[12] = { 0, 1, 2, 3, 8, 9, 10, 11, 4, 5, 6, 7 };
 
@@ -50,7 +50,8 @@ Hand MakeFrd(bool shortFormat = false)
 {
   Hand h;
   std::vector<std::array<int, 20>> elems(2);
-  auto addNode = [&](double x, double y, double z) {
+  auto addNode = [&](double x, double y, double z)
+  {
     for (std::size_t i = 0; i < h.Pts.size(); ++i)
     {
       if (std::abs(h.Pts[i][0] - x) + std::abs(h.Pts[i][1] - y) + std::abs(h.Pts[i][2] - z) < 1e-12)
@@ -71,7 +72,8 @@ Hand MakeFrd(bool shortFormat = false)
     {
       const int* ed = VTKEdges[FrdEdgeOrder[k]];
       elems[e][8 + k] = addNode(0.5 * (Corner[ed[0]][0] + Corner[ed[1]][0]) + e - 2.0,
-        0.5 * (Corner[ed[0]][1] + Corner[ed[1]][1]) - 3.0, 0.5 * (Corner[ed[0]][2] + Corner[ed[1]][2]) - 1.5);
+                                0.5 * (Corner[ed[0]][1] + Corner[ed[1]][1]) - 3.0,
+                                0.5 * (Corner[ed[0]][2] + Corner[ed[1]][2]) - 1.5);
     }
   }
   const int np = static_cast<int>(h.Pts.size());
@@ -81,8 +83,9 @@ Hand MakeFrd(bool shortFormat = false)
   s += Fmt("    2C%18s%12d%37s%1d\n", "", np, "", shortFormat ? 0 : 1);
   for (int i = 0; i < np; ++i)
   {
-    s += shortFormat ? Fmt(" -1%5d%12.5E%12.5E%12.5E\n", id(i), h.Pts[i][0], h.Pts[i][1], h.Pts[i][2])
-                     : Fmt(" -1%10d%12.5E%12.5E%12.5E\n", id(i), h.Pts[i][0], h.Pts[i][1], h.Pts[i][2]);
+    s += shortFormat
+      ? Fmt(" -1%5d%12.5E%12.5E%12.5E\n", id(i), h.Pts[i][0], h.Pts[i][1], h.Pts[i][2])
+      : Fmt(" -1%10d%12.5E%12.5E%12.5E\n", id(i), h.Pts[i][0], h.Pts[i][1], h.Pts[i][2]);
   }
   s += " -3\n";
   s += Fmt("    3C%18s%12d%37s%1d\n", "", 2, "", shortFormat ? 0 : 1);
@@ -119,18 +122,33 @@ Hand MakeFrd(bool shortFormat = false)
   for (int step = 1; step <= 2; ++step)
   {
     s += "    1PSTEP                         1           1           1\n";
-    s += Fmt("  100CL  10%d%12.5E%12d%20s%2d%5d%-10s%2d\n", step, 1000.0 * step, np, "", 2, step,
-      "MODAL", shortFormat ? 0 : 1);
+    s += Fmt("  100CL  10%d%12.5E%12d%20s%2d%5d%-10s%2d\n",
+             step,
+             1000.0 * step,
+             np,
+             "",
+             2,
+             step,
+             "MODAL",
+             shortFormat ? 0 : 1);
     s += " -4  DISP        4    1\n";
     s += " -5  D1          1    2    1    0\n -5  D2          1    2    2    0\n";
     s += " -5  D3          1    2    3    0\n -5  ALL         1    2    0    0    1ALL\n";
     for (int i = 0; i < np; ++i)
     {
-      s += Fmt(fmtId, id(i)) + Fmt("%12.5E%12.5E%12.5E\n", -h.Pts[i][0] * step, -1.0 * step, -2.0 * step);
+      s += Fmt(fmtId, id(i)) +
+        Fmt("%12.5E%12.5E%12.5E\n", -h.Pts[i][0] * step, -1.0 * step, -2.0 * step);
     }
     s += " -3\n";
-    s += Fmt("  100CL  10%d%12.5E%12d%20s%2d%5d%-10s%2d\n", step, 1000.0 * step, np, "", 2, step,
-      "MODAL", shortFormat ? 0 : 1);
+    s += Fmt("  100CL  10%d%12.5E%12d%20s%2d%5d%-10s%2d\n",
+             step,
+             1000.0 * step,
+             np,
+             "",
+             2,
+             step,
+             "MODAL",
+             shortFormat ? 0 : 1);
     s += " -4  STRESS      6    1\n";
     s += " -5  SXX         1    4    1    1\n -5  SYY         1    4    2    2\n";
     s += " -5  SZZ         1    4    3    3\n -5  SXY         1    4    1    2\n";
@@ -139,26 +157,36 @@ Hand MakeFrd(bool shortFormat = false)
     { // values 11..16 (+ node/step offsets): all distinct
       const double b = 100.0 * i + 1000.0 * step;
       s += Fmt(fmtId, id(i)) +
-        Fmt("%12.5E%12.5E%12.5E%12.5E%12.5E%12.5E\n", -(b + 11), b + 12, b + 13, b + 14, b + 15, b + 16);
+        Fmt("%12.5E%12.5E%12.5E%12.5E%12.5E%12.5E\n",
+            -(b + 11),
+            b + 12,
+            b + 13,
+            b + 14,
+            b + 15,
+            b + 16);
     }
     s += " -3\n";
   }
   // a tensor block whose components come in a non-standard order (EZX before EYZ)
-  s += Fmt("  100CL  109%12.5E%12d%20s%2d%5d%-10s%2d\n", 0.0, np, "", 2, 9, "STATIC", shortFormat ? 0 : 1);
+  s += Fmt(
+    "  100CL  109%12.5E%12d%20s%2d%5d%-10s%2d\n", 0.0, np, "", 2, 9, "STATIC", shortFormat ? 0 : 1);
   s += " -4  TOSTRAIN    6    1\n";
   s += " -5  EXX         1    4    1    1\n -5  EYY         1    4    2    2\n";
   s += " -5  EZZ         1    4    3    3\n -5  EXY         1    4    1    2\n";
   s += " -5  EZX         1    4    3    1\n -5  EYZ         1    4    2    3\n";
-  s += Fmt(fmtId, id(0)) + Fmt("%12.5E%12.5E%12.5E%12.5E%12.5E%12.5E\n", 1.0, 2.0, 3.0, 4.0, 5.0, 6.0);
+  s +=
+    Fmt(fmtId, id(0)) + Fmt("%12.5E%12.5E%12.5E%12.5E%12.5E%12.5E\n", 1.0, 2.0, 3.0, 4.0, 5.0, 6.0);
   s += " -3\n";
   // a 7-component block: the 7th value is on a ' -2' continuation line
-  s += Fmt("  100CL  109%12.5E%12d%20s%2d%5d%-10s%2d\n", 0.0, np, "", 2, 9, "STATIC", shortFormat ? 0 : 1);
+  s += Fmt(
+    "  100CL  109%12.5E%12d%20s%2d%5d%-10s%2d\n", 0.0, np, "", 2, 9, "STATIC", shortFormat ? 0 : 1);
   s += " -4  SEVEN       7    1\n";
   for (int c = 1; c <= 7; ++c)
   {
     s += Fmt(" -5  C%-7d     1    1    0    0\n", c);
   }
-  s += Fmt(fmtId, id(1)) + Fmt("%12.5E%12.5E%12.5E%12.5E%12.5E%12.5E\n", 1.0, 2.0, 3.0, 4.0, 5.0, 6.0);
+  s +=
+    Fmt(fmtId, id(1)) + Fmt("%12.5E%12.5E%12.5E%12.5E%12.5E%12.5E\n", 1.0, 2.0, 3.0, 4.0, 5.0, 6.0);
   s += Fmt(shortFormat ? " -2%5s" : " -2%10s", "") + Fmt("%12.5E\n", 7.0);
   s += " -3\n 9999\n";
   return h;
@@ -194,7 +222,7 @@ int CountWrongMidEdges(const av::FrdData& d, double relTol)
       const double* a = P(VTKEdges[k][0]);
       const double* b = P(VTKEdges[k][1]);
       const double len = std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
-        (a[2] - b[2]) * (a[2] - b[2]));
+                                   (a[2] - b[2]) * (a[2] - b[2]));
       wrong += IsMidpoint(P(8 + k), a, b, relTol * len) ? 0 : 1;
     }
   }
@@ -206,11 +234,12 @@ int CountWrongMidEdges(const av::FrdData& d, double relTol)
 /// (3,4,5) and whose mid-edge nodes lie on VTK's edges.
 void TestWedgeOrder()
 {
-  const double c[6][3] = { { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 }, { 1, 0, 1 }, { 0, 1, 1 } };
-  const int frdEdges[9][2] = { { 0, 1 }, { 1, 2 }, { 2, 0 }, { 0, 3 }, { 1, 4 }, { 2, 5 }, { 3, 4 },
-    { 4, 5 }, { 5, 3 } };
-  const int vtkEdges[9][2] = { { 0, 1 }, { 1, 2 }, { 2, 0 }, { 3, 4 }, { 4, 5 }, { 5, 3 }, { 0, 3 },
-    { 1, 4 }, { 2, 5 } };
+  const double c[6][3] = { { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 },
+                           { 0, 0, 1 }, { 1, 0, 1 }, { 0, 1, 1 } };
+  const int frdEdges[9][2] = { { 0, 1 }, { 1, 2 }, { 2, 0 }, { 0, 3 }, { 1, 4 },
+                               { 2, 5 }, { 3, 4 }, { 4, 5 }, { 5, 3 } };
+  const int vtkEdges[9][2] = { { 0, 1 }, { 1, 2 }, { 2, 0 }, { 3, 4 }, { 4, 5 },
+                               { 5, 3 }, { 0, 3 }, { 1, 4 }, { 2, 5 } };
   double frd[15][3];
   for (int i = 0; i < 6; ++i)
   {
@@ -234,13 +263,17 @@ void TestWedgeOrder()
       v[k] = P(2)[k] - P(0)[k];
       w[k] = (P(3)[k] + P(4)[k] + P(5)[k] - P(0)[k] - P(1)[k] - P(2)[k]) / 3.0;
     }
-    const double n[3] = { u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0] };
-    AV_CHECK_MSG(n[0] * w[0] + n[1] * w[1] + n[2] * w[2] < 0, "wedge type " << type << " base normal");
+    const double n[3] = { u[1] * v[2] - u[2] * v[1],
+                          u[2] * v[0] - u[0] * v[2],
+                          u[0] * v[1] - u[1] * v[0] };
+    AV_CHECK_MSG(n[0] * w[0] + n[1] * w[1] + n[2] * w[2] < 0,
+                 "wedge type " << type << " base normal");
     if (type == av::FrdPe15)
     {
       for (int e = 0; e < 9; ++e)
       {
-        AV_CHECK_MSG(IsMidpoint(P(6 + e), P(vtkEdges[e][0]), P(vtkEdges[e][1]), 1e-12), "pe15 edge " << e);
+        AV_CHECK_MSG(IsMidpoint(P(6 + e), P(vtkEdges[e][0]), P(vtkEdges[e][1]), 1e-12),
+                     "pe15 edge " << e);
       }
     }
   }
@@ -307,7 +340,8 @@ void TestHandMade(bool shortFormat)
     AV_CHECK(r.Values[6] == 0.0); // node absent from the block
   }
   const int seven = d.FindResult("SEVEN", 9);
-  AV_CHECK(seven >= 0 && d.Results[seven].NumComponents == 7 && d.Results[seven].Values[7 + 6] == 7.0);
+  AV_CHECK(seven >= 0 && d.Results[seven].NumComponents == 7 &&
+           d.Results[seven].Values[7 + 6] == 7.0);
 }
 
 std::string MessageOf(const std::string& text)
@@ -348,9 +382,12 @@ void TestErrors()
   msg = MessageOf(good.substr(0, good.find(" -3")));
   AV_CHECK_MSG(msg.find("not terminated") != std::string::npos, msg);
   msg = MessageOf(good.substr(0, good.find("SZX") + 40)); // inside a result block
-  AV_CHECK_MSG(msg.find("not terminated") != std::string::npos || msg.find("expected") != std::string::npos, msg);
+  AV_CHECK_MSG(msg.find("not terminated") != std::string::npos ||
+                 msg.find("expected") != std::string::npos,
+               msg);
   const std::string nodeHeader = Fmt("    2C%18s%12d%37s%1d\n", "", 32, "", 1);
-  msg = MessageOf(Replace(good, nodeHeader, Fmt("    2C%18s%12lld%37s%1d\n", "", 999999999999LL, "", 1)));
+  msg = MessageOf(
+    Replace(good, nodeHeader, Fmt("    2C%18s%12lld%37s%1d\n", "", 999999999999LL, "", 1)));
   AV_CHECK_MSG(msg.find("f:3:") == 0, msg);
   msg = MessageOf(Replace(good, nodeHeader, Fmt("    2C%18s%12d%37s%1d\n", "", 20000000, "", 1)));
   AV_CHECK_MSG(msg.find("f:3:") == 0 && msg.find("truncated") != std::string::npos, msg);
@@ -433,7 +470,8 @@ void TestCalculixExample()
   const int s1 = d.FindResult("STRESS", 1);
   AV_CHECK(s1 >= 0);
   if (s1 >= 0)
-  { // node 1: SXX SYY SZZ SXY SYZ SZX = -2.58632E+03 -1.28513E+06 -2.91480E+05 1.59342E+04 6.09583E+05 -7.57145E+03
+  { // node 1: SXX SYY SZZ SXY SYZ SZX = -2.58632E+03 -1.28513E+06
+    // -2.91480E+05 1.59342E+04 6.09583E+05 -7.57145E+03
     const double* v = d.Results[s1].Values.data();
     AV_CHECK(v[0] == -2.58632E+03 && v[1] == -1.28513E+06 && v[2] == -2.91480E+05);
     AV_CHECK(v[3] == 1.59342E+04 && v[4] == 6.09583E+05 && v[5] == -7.57145E+03);

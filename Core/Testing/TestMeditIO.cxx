@@ -98,8 +98,8 @@ void TestTensorOrder()
   {
     AV_CHECK_MSG(s3.Fields[0][j] == expect3[j], "3D component " << j);
   }
-  const av::MeditSol s2 =
-    av::ParseMeditSol("MeshVersionFormatted 2\nDimension 2\nSolAtVertices\n1\n1 3\n11 21 22\nEnd\n");
+  const av::MeditSol s2 = av::ParseMeditSol(
+    "MeshVersionFormatted 2\nDimension 2\nSolAtVertices\n1\n1 3\n11 21 22\nEnd\n");
   const double expect2[6] = { 11, 22, 0, 21, 0, 0 };
   for (int j = 0; j < 6; ++j)
   {
@@ -119,8 +119,8 @@ void TestTensorOrder()
   AV_CHECK(mf.At(1)[2] == 16.0 && mf.At(1)[5] == 0.0);
   AV_CHECK_THROWS(av::MetricFromMeditSol(sc, 1)); // vector field
   AV_CHECK_THROWS(av::MetricFromMeditSol(sc, 2)); // no such field
-  const av::MeditSol neg = av::ParseMeditSol(
-    "MeshVersionFormatted 2\nDimension 3\nSolAtVertices\n1\n1 1\n-0.5\nEnd\n");
+  const av::MeditSol neg =
+    av::ParseMeditSol("MeshVersionFormatted 2\nDimension 3\nSolAtVertices\n1\n1 1\n-0.5\nEnd\n");
   AV_CHECK_THROWS(av::MetricFromMeditSol(neg));
 }
 
@@ -174,13 +174,16 @@ void TestExactRoundTrip()
   m2.Values = { 0.1, 0.2, 0.3, 0.4, 0.5, 0.6 };
   const av::MetricField r2 =
     av::MetricFromMeditSol(av::ParseMeditSol(av::FormatMeditSol(av::MeditSolFromMetric(m2, 2))));
-  AV_CHECK(r2.Values.size() == 6 && r2.Values[0] == 0.1 && r2.Values[1] == 0.2 && r2.Values[3] == 0.4);
+  AV_CHECK(r2.Values.size() == 6 && r2.Values[0] == 0.1 && r2.Values[1] == 0.2 &&
+           r2.Values[3] == 0.4);
   AV_CHECK(r2.Values[2] == 0.0 && r2.Values[4] == 0.0 && r2.Values[5] == 0.0);
 
   // SimplexMesh overload, 2D triangles
   const av::MeditMesh t = av::ParseMeditMesh(TriMesh2D);
-  const av::MeditMesh t2 = av::ParseMeditMesh(av::FormatMeditMesh(t.Mesh, t.PointRefs.data(), t.CellRefs.data()));
-  AV_CHECK(t2.Mesh.Points == t.Mesh.Points && t2.Mesh.Cells == t.Mesh.Cells && t2.CellRefs == t.CellRefs);
+  const av::MeditMesh t2 =
+    av::ParseMeditMesh(av::FormatMeditMesh(t.Mesh, t.PointRefs.data(), t.CellRefs.data()));
+  AV_CHECK(t2.Mesh.Points == t.Mesh.Points && t2.Mesh.Cells == t.Mesh.Cells &&
+           t2.CellRefs == t.CellRefs);
 }
 
 void TestErrors()
@@ -207,11 +210,11 @@ void TestErrors()
   AV_CHECK_THROWS(av::ParseMeditMesh("Dimension 3\nVertices\n1000000000000\n"));
   AV_CHECK_THROWS(av::ParseMeditSol("Dimension 3\nSolAtVertices\n2000000000\n1 3\n1 2 3\nEnd\n"));
   // structure
-  AV_CHECK_THROWS(av::ParseMeditMesh(head + "0 0 0 1\nTriangles\n1\n1 2 1 0\n"));        // no End
-  AV_CHECK_THROWS(av::ParseMeditMesh(head + "0 0 0 1\nEnd\n"));                          // no cells
-  AV_CHECK_THROWS(av::ParseMeditMesh("Dimension 3\nTriangles\n1\n1 2 3 0\nEnd\n"));       // no vertices
+  AV_CHECK_THROWS(av::ParseMeditMesh(head + "0 0 0 1\nTriangles\n1\n1 2 1 0\n"));   // no End
+  AV_CHECK_THROWS(av::ParseMeditMesh(head + "0 0 0 1\nEnd\n"));                     // no cells
+  AV_CHECK_THROWS(av::ParseMeditMesh("Dimension 3\nTriangles\n1\n1 2 3 0\nEnd\n")); // no vertices
   AV_CHECK_THROWS(av::ParseMeditMesh("Dimension 4\nEnd\n"));
-  AV_CHECK_THROWS(av::ParseMeditMesh("Vertices\n1\n0 0 0 0\nEnd\n"));                    // no Dimension
+  AV_CHECK_THROWS(av::ParseMeditMesh("Vertices\n1\n0 0 0 0\nEnd\n")); // no Dimension
   AV_CHECK_THROWS(av::ParseMeditMesh(
     "Dimension 2\nVertices 4\n0 0 0 1 0 0 0 1 0 1 1 0\nTetrahedra 1\n1 2 3 4 0\nEnd\n"));
   msg = MessageOf("Dimension 3\nTriangles\n1\n1 2 3 0\nVertices\n2\n0 0 0 0\n1 1 1 0\nEnd\n");
@@ -234,8 +237,7 @@ void TestErrors()
 /// parsed mesh must be internally consistent.
 void TestFuzz()
 {
-  const std::string valid = av::FormatMeditMesh(av::ParseMeditMesh(TetMesh)) +
-    "";
+  const std::string valid = av::FormatMeditMesh(av::ParseMeditMesh(TetMesh)) + "";
   const std::string validSol =
     "MeshVersionFormatted 2\nDimension 3\nSolAtVertices\n2\n2 3 1\n1 2 3 4 5 6 0.5\n"
     "6 5 4 3 2 1 0.25\nEnd\n";
@@ -276,7 +278,8 @@ void TestFuzz()
         {
           AV_CHECK(id >= 0 && static_cast<std::size_t>(id) < r.Mesh.NumPoints());
         }
-        AV_CHECK(r.CellRefs.size() == r.Mesh.NumCells() && r.PointRefs.size() == r.Mesh.NumPoints());
+        AV_CHECK(r.CellRefs.size() == r.Mesh.NumCells() &&
+                 r.PointRefs.size() == r.Mesh.NumPoints());
       }
       ++parsed;
     }

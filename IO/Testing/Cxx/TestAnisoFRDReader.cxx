@@ -23,14 +23,14 @@
 namespace
 {
 int failures = 0;
-#define CHECK(c)                                                                              \
-  do                                                                                          \
-  {                                                                                           \
-    if (!(c))                                                                                 \
-    {                                                                                         \
-      std::cerr << __FILE__ << ":" << __LINE__ << ": check failed: " #c << std::endl;          \
-      ++failures;                                                                             \
-    }                                                                                         \
+#define CHECK(c)                                                                                   \
+  do                                                                                               \
+  {                                                                                                \
+    if (!(c))                                                                                      \
+    {                                                                                              \
+      std::cerr << __FILE__ << ":" << __LINE__ << ": check failed: " #c << std::endl;              \
+      ++failures;                                                                                  \
+    }                                                                                              \
   } while (0)
 
 class ErrorCounter : public vtkCommand
@@ -86,10 +86,10 @@ std::string Line(const char* fmt, ...)
 /// One unit-cube he20 in frd node order (bottom, vertical, top mid-edges), 2 steps.
 std::string OneHex()
 {
-  const double c[8][3] = { { 0, 0, 0 }, { 1, 0, 0 }, { 1, 1, 0 }, { 0, 1, 0 }, { 0, 0, 1 }, { 1, 0, 1 },
-    { 1, 1, 1 }, { 0, 1, 1 } };
-  const int frdEdges[12][2] = { { 0, 1 }, { 1, 2 }, { 2, 3 }, { 3, 0 }, { 0, 4 }, { 1, 5 }, { 2, 6 },
-    { 3, 7 }, { 4, 5 }, { 5, 6 }, { 6, 7 }, { 7, 4 } };
+  const double c[8][3] = { { 0, 0, 0 }, { 1, 0, 0 }, { 1, 1, 0 }, { 0, 1, 0 },
+                           { 0, 0, 1 }, { 1, 0, 1 }, { 1, 1, 1 }, { 0, 1, 1 } };
+  const int frdEdges[12][2] = { { 0, 1 }, { 1, 2 }, { 2, 3 }, { 3, 0 }, { 0, 4 }, { 1, 5 },
+                                { 2, 6 }, { 3, 7 }, { 4, 5 }, { 5, 6 }, { 6, 7 }, { 7, 4 } };
   double p[20][3];
   for (int i = 0; i < 8; ++i)
   {
@@ -114,27 +114,39 @@ std::string OneHex()
   s += " -3\n";
   s += Line("    3C%18s%12d%37s%1d", "", 1, "", 1);
   s += Line(" -1%10d%5d%5d%5d", 1, 4, 0, 1);
-  s += " -2         1         2         3         4         5         6         7         8         9        10\n";
-  s += " -2        11        12        13        14        15        16        17        18        19        20\n";
+  s += " -2         1         2         3         4         5         6         7         8        "
+       " 9        10\n";
+  s += " -2        11        12        13        14        15        16        17        18        "
+       "19        20\n";
   s += " -3\n";
   for (int step = 1; step <= 2; ++step)
   {
-    s += Line("  100CL  10%d%12.5E%12d%20s%2d%5d%-10s%2d", step, 100.0 * step, 20, "", 2, step, "MODAL", 1);
-    s += " -4  DISP        4    1\n -5  D1          1    2    1    0\n -5  D2          1    2    2    0\n";
+    s += Line(
+      "  100CL  10%d%12.5E%12d%20s%2d%5d%-10s%2d", step, 100.0 * step, 20, "", 2, step, "MODAL", 1);
+    s += " -4  DISP        4    1\n -5  D1          1    2    1    0\n -5  D2          1    2    2 "
+         "   0\n";
     s += " -5  D3          1    2    3    0\n -5  ALL         1    2    0    0    1ALL\n";
     for (int i = 0; i < 20; ++i)
     {
       s += Line(" -1%10d%12.5E%12.5E%12.5E", i + 1, 1.0 * step, 2.0 * step, 3.0 * step);
     }
     s += " -3\n";
-    s += Line("  100CL  10%d%12.5E%12d%20s%2d%5d%-10s%2d", step, 100.0 * step, 20, "", 2, step, "MODAL", 1);
-    s += " -4  STRESS      6    1\n -5  SXX         1    4    1    1\n -5  SYY         1    4    2    2\n";
+    s += Line(
+      "  100CL  10%d%12.5E%12d%20s%2d%5d%-10s%2d", step, 100.0 * step, 20, "", 2, step, "MODAL", 1);
+    s += " -4  STRESS      6    1\n -5  SXX         1    4    1    1\n -5  SYY         1    4    2 "
+         "   2\n";
     s += " -5  SZZ         1    4    3    3\n -5  SXY         1    4    1    2\n";
     s += " -5  SYZ         1    4    2    3\n -5  SZX         1    4    3    1\n";
     for (int i = 0; i < 20; ++i)
     {
-      s += Line(" -1%10d%12.5E%12.5E%12.5E%12.5E%12.5E%12.5E", i + 1, 11.0 * step, 22.0 * step, 33.0 * step,
-        44.0 * step, 55.0 * step, 66.0 * step);
+      s += Line(" -1%10d%12.5E%12.5E%12.5E%12.5E%12.5E%12.5E",
+                i + 1,
+                11.0 * step,
+                22.0 * step,
+                33.0 * step,
+                44.0 * step,
+                55.0 * step,
+                66.0 * step);
     }
     s += " -3\n";
   }

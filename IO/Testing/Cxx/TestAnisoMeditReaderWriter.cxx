@@ -22,14 +22,14 @@
 namespace
 {
 int failures = 0;
-#define CHECK(c)                                                                              \
-  do                                                                                          \
-  {                                                                                           \
-    if (!(c))                                                                                 \
-    {                                                                                         \
-      std::cerr << __FILE__ << ":" << __LINE__ << ": check failed: " #c << std::endl;          \
-      ++failures;                                                                             \
-    }                                                                                         \
+#define CHECK(c)                                                                                   \
+  do                                                                                               \
+  {                                                                                                \
+    if (!(c))                                                                                      \
+    {                                                                                              \
+      std::cerr << __FILE__ << ":" << __LINE__ << ": check failed: " #c << std::endl;              \
+      ++failures;                                                                                  \
+    }                                                                                              \
   } while (0)
 
 class ErrorCounter : public vtkCommand
@@ -51,7 +51,9 @@ std::string Slurp(const std::string& f)
 
 int TestAnisoMeditReaderWriter(int, char*[])
 {
-  const double xyz[5][3] = { { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 }, { 0.1, 0.7, 1.0 / 3 } };
+  const double xyz[5][3] = {
+    { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 }, { 0.1, 0.7, 1.0 / 3 }
+  };
   vtkNew<vtkUnstructuredGrid> ug;
   vtkNew<vtkPoints> pts;
   pts->SetDataTypeToDouble();
@@ -73,7 +75,8 @@ int TestAnisoMeditReaderWriter(int, char*[])
   metric->SetNumberOfComponents(6);
   for (int i = 0; i < 5; ++i)
   { // all six components distinct, not exactly representable in short decimal
-    const double t[6] = { 1 + i / 3.0, 2 + i / 7.0, 3 + i / 11.0, 0.4 + i / 13.0, 0.5 / (i + 1), 0.6 / (i + 3) };
+    const double t[6] = { 1 + i / 3.0,    2 + i / 7.0,   3 + i / 11.0,
+                          0.4 + i / 13.0, 0.5 / (i + 1), 0.6 / (i + 3) };
     metric->InsertNextTuple(t);
   }
   metric->SetTuple6(0, 1, 2, 3, 4, 5, 6);
@@ -141,7 +144,8 @@ int TestAnisoMeditReaderWriter(int, char*[])
   reader->Modified();
   reader->Update();
   rm = reader->GetOutput()->GetPointData()->GetArray("Metric");
-  CHECK(rm && rm->GetComponent(0, 0) == 4.0 && rm->GetComponent(1, 1) == 16.0 && rm->GetComponent(1, 3) == 0.0);
+  CHECK(rm && rm->GetComponent(0, 0) == 4.0 && rm->GetComponent(1, 1) == 16.0 &&
+        rm->GetComponent(1, 3) == 0.0);
   CHECK(reader->GetOutput()->GetPointData()->GetArray("Size") != nullptr);
   CHECK(reader->GetOutput()->GetCellType(0) == VTK_TRIANGLE);
 
