@@ -426,6 +426,26 @@ public:
   // Returns 0: unchanged, 1: cut, -1: empty.
   int Clip(Context<K>& C, std::int32_t site, std::int32_t m) const
   {
+    // Fast path: with the piece's own site as reference, every vertex is clearly on the
+    // site's side (margin far above round-off), so the exact classification would keep all.
+    {
+      const double* dm = DRow(C, m);
+      const double* di = DRow(C, site);
+      double scale = 0.0, gmin = std::numeric_limits<double>::infinity();
+      for (int a = 0; a < NV; ++a)
+        scale = std::max(scale, std::max(dm[a], di[a]));
+      for (const auto& v : C.V)
+      {
+        if (v.Dead)
+          continue;
+        double g = 0.0;
+        for (int a = 0; a < NV; ++a)
+          g += v.Lam[a] * (dm[a] - di[a]);
+        gmin = std::min(gmin, g);
+      }
+      if (gmin > 1e-9 * scale)
+        return 0;
+    }
     int nout = 0, nalive = 0;
     for (auto& v : C.V)
     {
@@ -1083,7 +1103,7 @@ RestrictedVoronoiDiagram ComputeRestrictedVoronoi(const SimplexMesh& mesh,
 
   SiteCloud cloud{ sites.Coords.data(), ns, sites.Dim };
   SiteTree tree(sites.Dim, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(10));
-  int nbrk = options.NumNeighbors > 0 ? options.NumNeighbors : (K == 2 ? 24 : 48);
+  int nbrk = options.NumNeighbors > 0 ? options.NumNeighbors : (K == 2 ? 32 : 64);
   nbrk = static_cast<int>(std::min<std::size_t>(nbrk, ns - 1));
   std::vector<std::uint32_t> nbr(ns * nbrk);
   std::vector<double> nbrd2(ns * nbrk);
