@@ -2,7 +2,9 @@
 
 #include "SurfaceGenerators.h"
 
+#ifndef TETLIBRARY
 #define TETLIBRARY // the Debian library is built with it; the header leaves it commented out
+#endif
 #include <tetgen.h>
 
 #include <Eigen/Core>
