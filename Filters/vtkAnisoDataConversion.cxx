@@ -1,6 +1,8 @@
 #include "vtkAnisoDataConversion.h"
 
+#include <vtkAlgorithm.h>
 #include <vtkCell.h>
+#include <vtkPointData.h>
 #include <vtkCellTypes.h>
 #include <vtkDataArray.h>
 #include <vtkDataSet.h>
@@ -115,6 +117,20 @@ bool ToSimplexMesh(vtkDataSet* input, av::SimplexMesh& mesh, std::string& error,
     }
   }
   return true;
+}
+
+vtkDataArray* FindPointTensorArray(
+  vtkDataArray* chosen, int chosenAssociation, vtkDataSet* input, const char* fallbackName)
+{
+  if (!input)
+    return nullptr;
+  if (chosen)
+  {
+    return chosenAssociation == 0 ? chosen : nullptr; // points only
+  }
+  if (vtkDataArray* tensors = input->GetPointData()->GetTensors())
+    return tensors;
+  return fallbackName ? input->GetPointData()->GetArray(fallbackName) : nullptr;
 }
 
 bool ToMetricField(

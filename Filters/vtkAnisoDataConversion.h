@@ -14,6 +14,7 @@
 #include <vtkSmartPointer.h> // return values
 #include <string>
 
+class vtkAlgorithm;
 class vtkDataArray;
 class vtkDataSet;
 class vtkPointSet;
@@ -29,6 +30,14 @@ namespace vtkAnisoDataConversion
  */
 bool ToSimplexMesh(vtkDataSet* input, av::SimplexMesh& mesh, std::string& error,
   std::string* note = nullptr);
+
+/**
+ * The metric/tensor point array a filter works on: `chosen` (what GetInputArrayToProcess
+ * returned, with its association; must be a point array), else the active point tensors, else the point array
+ * `fallbackName`. Null when none exists.
+ */
+vtkDataArray* FindPointTensorArray(vtkDataArray* chosen, int chosenAssociation, vtkDataSet* input,
+  const char* fallbackName = "Metric");
 
 /// Reads a 6-component (XX,YY,ZZ,XY,YZ,XZ) or 9-component symmetric tensor array into a
 /// MetricField (values copied; NaN/Inf rejected). Only checks finiteness and size.
