@@ -1,0 +1,124 @@
+// EmbeddingSolver: the high-dimensional embedding of a Riemannian metric (paper §3, Alg. 1).
+#ifndef av_EmbeddingSolver_h
+#define av_EmbeddingSolver_h
+
+#include "SimplexMesh.h"
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <vector>
+
+namespace av
+{
+
+/// How the free coordinates (dimensions m+1..TargetDim) start.
+enum class EmbeddingInitialisation
+{
+  /// A smooth, low-frequency random field (a few random plane waves with wavelength of the
+  /// order of the domain size) per free dimension: leaves the flat saddle in a coherent direction.
+  Smooth,
+  /// The paper's i.i.d. small random perturbation of every vertex.
+  Random
+};
+
+/// The three energies of Eq. 15 at one iterate (E_em with the optimal rotations for that iterate).
+struct EmbeddingEnergy
+{
+  double Embedding = 0.0;      ///< E_em, Eq. 11 (weighted if ElementMeasureWeighting)
+  double Regularisation = 0.0; ///< E_reg (quadratic reading, see Documentation/embedding.md)
+  double Total = 0.0;          ///< E_em + Mu * E_reg
+};
+
+class EmbeddingSolver;
+
+/// What the progress callback sees after every iteration.
+struct EmbeddingProgress
+{
+  int Iteration = 0;  ///< 1-based index of the iteration just finished
+  int Iterations = 0; ///< requested number of iterations
+  EmbeddingEnergy Energy;
+  const EmbeddingSolver* Solver = nullptr; ///< call Solver->CurrentEmbedding() for a snapshot
+};
+
+/// Parameters of the embedding (defaults are the paper's, except Initialisation and Anderson).
+struct EmbeddingOptions
+{
+  int TargetDim = 8;       ///< m-bar, in [AmbientDim + 1, 20]
+  int Iterations = 50;     ///< maximum number of local/global iterations (>= 0)
+  double Mu = 100.0;       ///< weight of the regulariser (>= 0)
+  std::uint64_t Seed = 1;  ///< seed of the initial random field (runs are reproducible)
+  /// Stop when (E_prev - E) / E_prev falls below this (0 = run all iterations).
+  double RelativeEnergyTolerance = 0.0;
+  /// false: the paper's unweighted sum over elements (Eq. 11); true: weight each element by its
+  /// measure relative to the mean element measure (better posed on graded meshes).
+  bool ElementMeasureWeighting = false;
+  EmbeddingInitialisation Initialisation = EmbeddingInitialisation::Smooth;
+  /// Amplitude of the initial field relative to the largest bounding-box extent (<= 0: default,
+  /// 0.2 for Smooth and 1e-3 for Random).
+  double InitialAmplitude = 0.0;
+  /// Anderson acceleration window (previous iterates used, 0 = plain local/global). The
+  /// accelerated iterate is kept only when it lowers the energy, so the energy never increases.
+  int AndersonWindow = 5;
+  /// Called after every iteration; return false to stop early (the result then has Aborted set).
+  std::function<bool(const EmbeddingProgress&)> Progress;
+};
+
+/// Output of the solver.
+struct EmbeddingResult
+{
+  Embedding Embedded; ///< NumPoints x TargetDim, first AmbientDim columns = input points exactly
+  /// Energy of the initial state (index 0) and after each iteration; never increases.
+  std::vector<EmbeddingEnergy> EnergyHistory;
+  int IterationsDone = 0;
+  int AndersonAccepted = 0; ///< iterations that kept the accelerated iterate
+  int AndersonRejected = 0; ///< iterations that fell back to the plain step
+  bool Aborted = false;     ///< the progress callback asked to stop
+  double SetupSeconds = 0.0;     ///< validation, element operators, matrix assembly
+  double FactorSeconds = 0.0;    ///< sparse Cholesky (CHOLMOD supernodal) analyse + factorise
+  double IterationSeconds = 0.0; ///< all iterations
+  double LocalStepSeconds = 0.0; ///< part of IterationSeconds in local steps (incl. energies)
+  double SolveSeconds = 0.0;     ///< part of IterationSeconds in the Cholesky back-substitutions
+  std::size_t FactorNonZeros = 0; ///< non-zeros of the Cholesky factor
+};
+
+/**
+ * Computes the self-intersection free high-d embedding of a simplicial mesh equipped with a
+ * per-vertex metric (paper Alg. 1): the first m coordinates stay the input coordinates; the
+ * TargetDim - m free ones minimise E_total = sum_j w_j |T_j - V_j A_j|_F^2 + Mu E_reg by
+ * local (polar decomposition per element) / global (one sparse Cholesky factorisation, one
+ * multi-right-hand-side solve per iteration) steps.
+ *
+ * Supported inputs: 2D domains (AmbientDim 2, SimplexDim 2, SPD 2x2 metrics), volumes (3, 3,
+ * SPD 3x3) and surfaces (3, 2, positive semi-definite, typically rank-2 tangent metrics).
+ * Construction validates the input (throws InputError) and factorises the system; Run() iterates.
+ */
+class EmbeddingSolver
+{
+public:
+  EmbeddingSolver(const SimplexMesh& mesh, const MetricField& metric, const EmbeddingOptions& options);
+  ~EmbeddingSolver();
+  EmbeddingSolver(const EmbeddingSolver&) = delete;
+  EmbeddingSolver& operator=(const EmbeddingSolver&) = delete;
+
+  /// Runs the iterations (once) and returns the result.
+  EmbeddingResult Run();
+
+  /// The current iterate (valid during the progress callback and after Run()).
+  Embedding CurrentEmbedding() const;
+
+  /// Energy of the current iterate.
+  EmbeddingEnergy CurrentEnergy() const;
+
+private:
+  struct Internals;
+  std::unique_ptr<Internals> P;
+};
+
+/// Convenience: EmbeddingSolver(mesh, metric, options).Run().
+EmbeddingResult ComputeEmbedding(const SimplexMesh& mesh, const MetricField& metric,
+  const EmbeddingOptions& options = EmbeddingOptions());
+
+} // namespace av
+
+#endif
