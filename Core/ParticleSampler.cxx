@@ -1,0 +1,775 @@
+#include "ParticleSampler.h"
+
+#include <Eigen/Dense>
+#include <nanoflann.hpp>
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <deque>
+#include <string>
+
+namespace av
+{
+namespace
+{
+constexpr int kMaxDim = 20;
+
+void CheckInputs(const SimplexMesh& mesh, const Embedding& emb)
+{
+  if (mesh.SimplexDim != 2 && mesh.SimplexDim != 3)
+    throw InputError("SampleParticles: only triangles (SimplexDim 2) and tetrahedra (3)");
+  if (mesh.AmbientDim < 2 || mesh.AmbientDim > 3)
+    throw InputError("SampleParticles: AmbientDim must be 2 or 3");
+  if (mesh.Points.size() % static_cast<std::size_t>(mesh.AmbientDim) != 0 ||
+    mesh.Cells.size() % static_cast<std::size_t>(mesh.SimplexDim + 1) != 0)
+    throw InputError("SampleParticles: Points/Cells array sizes are not multiples of the "
+                     "dimension");
+  if (mesh.NumCells() == 0)
+    throw InputError("SampleParticles: the mesh has no cells");
+  const int lo = std::max(mesh.AmbientDim, mesh.SimplexDim);
+  if (emb.Dim < lo || emb.Dim > kMaxDim)
+    throw InputError("SampleParticles: embedding dimension " + std::to_string(emb.Dim) +
+      " is outside [" + std::to_string(lo) + ", " + std::to_string(kMaxDim) + "]");
+  if (emb.Coords.size() != mesh.NumPoints() * static_cast<std::size_t>(emb.Dim))
+    throw InputError("SampleParticles: the embedding has " +
+      std::to_string(emb.Coords.size()) + " values, expected NumPoints (" +
+      std::to_string(mesh.NumPoints()) + ") x Dim (" + std::to_string(emb.Dim) + ")");
+  for (double x : emb.Coords)
+    if (!std::isfinite(x))
+      throw InputError("SampleParticles: the embedding contains NaN or Inf");
+  const auto np = static_cast<std::int64_t>(mesh.NumPoints());
+  for (auto id : mesh.Cells)
+    if (id < 0 || id >= np)
+      throw InputError("SampleParticles: cell refers to point id " + std::to_string(id) +
+        " outside [0, " + std::to_string(np) + ")");
+}
+
+/// Portable uniform double in [0,1) (std distributions differ between standard libraries).
+struct Rng
+{
+  std::uint64_t State;
+  explicit Rng(std::uint64_t seed)
+    : State(seed * 0x9E3779B97F4A7C15ull + 0x632BE59BD9B4E019ull)
+  {
+  }
+  std::uint64_t Next() // splitmix64
+  {
+    std::uint64_t z = (State += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+  }
+  double Uniform() { return static_cast<double>(Next() >> 11) * 0x1.0p-53; }
+};
+
+/// nanoflann adaptor over a row-major n x dim array.
+struct Cloud
+{
+  const double* Data = nullptr;
+  std::size_t N = 0;
+  int Dim = 0;
+  std::size_t kdtree_get_point_count() const { return N; }
+  double kdtree_get_pt(std::size_t i, std::size_t d) const
+  {
+    return Data[i * static_cast<std::size_t>(Dim) + d];
+  }
+  template <class B>
+  bool kdtree_get_bbox(B&) const
+  {
+    return false;
+  }
+};
+
+/**
+ * The optimiser for a compile-time embedding dimension D (Eigen::Dynamic: runtime, stack
+ * storage up to kMaxDim) and simplex dimension K.
+ */
+template <int D, int K>
+class Sampler
+{
+  static constexpr int MaxD = D == Eigen::Dynamic ? kMaxDim : D;
+  static constexpr int NV = K + 1;
+  using Vec = Eigen::Matrix<double, D, 1, Eigen::ColMajor, MaxD, 1>;
+  using Edges = Eigen::Matrix<double, D, Eigen::Dynamic, Eigen::ColMajor, MaxD, K>;
+  using Small = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, K, K>;
+  using SmallVec = Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, K, 1>;
+  using Tree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, Cloud>,
+    Cloud, D == Eigen::Dynamic ? -1 : D, std::uint32_t>;
+
+public:
+  Sampler(const SimplexMesh& mesh, const Embedding& emb, const std::vector<std::int32_t>& nbrs)
+    : Mesh(mesh)
+    , Emb(emb)
+    , Nbrs(nbrs)
+    , Dim(emb.Dim)
+  {
+  }
+
+  Eigen::Map<const Vec> Vertex(std::int32_t v) const
+  {
+    return Eigen::Map<const Vec>(Emb.At(static_cast<std::size_t>(v)), Dim);
+  }
+
+  Vec Position(std::int32_t cell, const double* b) const
+  {
+    const std::int32_t* ids = Mesh.Cell(static_cast<std::size_t>(cell));
+    Vec x = b[0] * Vertex(ids[0]);
+    for (int i = 1; i < NV; ++i)
+      x += b[i] * Vertex(ids[i]);
+    return x;
+  }
+
+  /**
+   * Least-squares barycentric change (sum 0, zero on `active` vertices) whose embedded
+   * displacement best matches d in the cell; returns false for a degenerate cell.
+   */
+  bool TangentBary(std::int32_t cell, const bool active[NV], const Vec& d, double db[NV]) const
+  {
+    const std::int32_t* ids = Mesh.Cell(static_cast<std::size_t>(cell));
+    int fr[NV];
+    int nf = 0;
+    for (int i = 0; i < NV; ++i)
+    {
+      db[i] = 0.0;
+      if (!active[i])
+        fr[nf++] = i;
+    }
+    if (nf <= 1)
+      return true;
+    if (nf == NV)
+    {
+      // Common case (no boundary constraint): fixed-size normal equations.
+      Eigen::Matrix<double, D, K, Eigen::ColMajor, MaxD, K> e(Dim, K);
+      const auto base = Vertex(ids[0]);
+      for (int j = 0; j < K; ++j)
+        e.col(j) = Vertex(ids[j + 1]) - base;
+      const Eigen::Matrix<double, K, K> g = e.transpose() * e;
+      const double det = g.determinant();
+      const double scale = std::pow(g.trace() / K, K);
+      if (!(det > 1e-14 * scale))
+        return false;
+      const Eigen::Matrix<double, K, 1> a = g.inverse() * (e.transpose() * d);
+      double sum = 0.0;
+      for (int j = 0; j < K; ++j)
+      {
+        db[j + 1] = a[j];
+        sum += a[j];
+      }
+      db[0] = -sum;
+      return std::isfinite(sum);
+    }
+    const int m = nf - 1;
+    Edges e(Dim, m);
+    const auto base = Vertex(ids[fr[0]]);
+    for (int j = 0; j < m; ++j)
+      e.col(j) = Vertex(ids[fr[j + 1]]) - base;
+    const Small g = e.transpose() * e;
+    Eigen::LLT<Small> llt(g);
+    if (llt.info() != Eigen::Success || g.diagonal().minCoeff() <= 0.0)
+      return false;
+    const SmallVec a = llt.solve(e.transpose() * d);
+    if (!a.allFinite())
+      return false;
+    double sum = 0.0;
+    for (int j = 0; j < m; ++j)
+    {
+      db[fr[j + 1]] = a[j];
+      sum += a[j];
+    }
+    db[fr[0]] = -sum;
+    return true;
+  }
+
+  /**
+   * Projects the descent direction -g of a particle onto its feasible tangent cone: the
+   * cell's tangent space, restricted to boundary faces it already touches when it points out.
+   * Returns the projected gradient (embedded vector).
+   */
+  Vec ProjectGradient(std::int32_t cell, const double* b, const Vec& g) const
+  {
+    bool active[NV] = {};
+    double db[NV];
+    const Vec d = -g;
+    for (int pass = 0; pass <= K; ++pass)
+    {
+      if (!TangentBary(cell, active, d, db))
+        return Vec::Zero(Dim);
+      bool changed = false;
+      for (int i = 0; i < NV; ++i)
+        if (!active[i] && b[i] <= 1e-12 && db[i] < 0.0 &&
+          Nbrs[static_cast<std::size_t>(cell) * NV + static_cast<std::size_t>(i)] < 0)
+        {
+          active[i] = true;
+          changed = true;
+        }
+      if (!changed)
+        break;
+    }
+    const std::int32_t* ids = Mesh.Cell(static_cast<std::size_t>(cell));
+    Vec p = Vec::Zero(Dim);
+    for (int i = 0; i < NV; ++i)
+      p -= db[i] * Vertex(ids[i]);
+    return p;
+  }
+
+  /**
+   * Moves a particle by the embedded displacement d: projected on the tangent space of the
+   * current cell, walked across faces into neighbours (the rest of d is re-projected there),
+   * sliding along boundary faces.
+   */
+  void Walk(std::int32_t& cell, double* b, Vec d) const
+  {
+    bool active[NV] = {};
+    double db[NV];
+    std::int32_t prev = -1;
+    for (int step = 0; step < 256; ++step)
+    {
+      if (!TangentBary(cell, active, d, db))
+        return;
+      double scale = 0.0;
+      for (int i = 0; i < NV; ++i)
+        scale += std::abs(db[i]);
+      if (scale <= 1e-300)
+        return;
+      double t = 1.0;
+      int hit = -1;
+      for (int i = 0; i < NV; ++i)
+        if (!active[i] && db[i] < -1e-15 * scale)
+        {
+          const double ti = std::max(0.0, b[i]) / -db[i];
+          if (ti < t)
+          {
+            t = ti;
+            hit = i;
+          }
+        }
+      double sum = 0.0;
+      for (int i = 0; i < NV; ++i)
+      {
+        b[i] = std::max(0.0, b[i] + t * db[i]);
+        if (i == hit)
+          b[i] = 0.0;
+        sum += b[i];
+      }
+      for (int i = 0; i < NV; ++i)
+        b[i] /= sum;
+      if (hit < 0)
+        return;
+      d *= (1.0 - t);
+      const std::int32_t nb =
+        Nbrs[static_cast<std::size_t>(cell) * NV + static_cast<std::size_t>(hit)];
+      if (nb < 0 || (nb == prev && t <= 1e-12))
+      {
+        // Boundary (or bouncing back without progress): slide on the face.
+        active[hit] = true;
+        int nfree = 0;
+        for (int i = 0; i < NV; ++i)
+          nfree += active[i] ? 0 : 1;
+        if (nfree <= 1)
+          return;
+        continue;
+      }
+      const std::int32_t* from = Mesh.Cell(static_cast<std::size_t>(cell));
+      const std::int32_t* to = Mesh.Cell(static_cast<std::size_t>(nb));
+      double nbBary[NV];
+      for (int j = 0; j < NV; ++j)
+      {
+        nbBary[j] = 0.0;
+        for (int i = 0; i < NV; ++i)
+          if (from[i] == to[j])
+            nbBary[j] = b[i];
+      }
+      for (int j = 0; j < NV; ++j)
+      {
+        b[j] = nbBary[j];
+        active[j] = false;
+      }
+      prev = cell;
+      cell = nb;
+    }
+  }
+
+  /// Verlet lists: all pairs closer than Cutoff + Skin at the positions x.
+  void BuildNeighbours(const std::vector<double>& x)
+  {
+    ++Rebuilds;
+    ListPositions = x;
+    Cloud cloud{ ListPositions.data(), N, Dim };
+    Tree tree(Dim, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(12));
+    tree.buildIndex();
+    const double r2 = (Cutoff + Skin) * (Cutoff + Skin);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, N),
+      [&](const tbb::blocked_range<std::size_t>& r)
+      {
+        auto& buf = SearchBuffers.local();
+        for (std::size_t p = r.begin(); p != r.end(); ++p)
+        {
+          buf.clear();
+          tree.radiusSearch(x.data() + p * static_cast<std::size_t>(Dim), r2, buf,
+            nanoflann::SearchParams(32, 0.0f, false));
+          auto& list = Lists[p];
+          list.clear();
+          for (const auto& hit : buf)
+            if (hit.first != p)
+              list.push_back(hit.first);
+          // Sorted ids: the summation order does not depend on the tree layout.
+          std::sort(list.begin(), list.end());
+        }
+      });
+  }
+
+  /// Rebuilds the lists when a particle moved more than Skin/2 since the last build, so
+  /// that they always hold every pair closer than Cutoff.
+  void EnsureNeighbours(const std::vector<double>& x)
+  {
+    if (ListPositions.size() == x.size())
+    {
+      const double lim2 = 0.25 * Skin * Skin;
+      bool ok = true;
+      for (std::size_t p = 0; p < N && ok; ++p)
+      {
+        double d2 = 0.0;
+        for (std::size_t i = p * static_cast<std::size_t>(Dim), e = i + static_cast<std::size_t>(Dim);
+             i < e; ++i)
+          d2 += (x[i] - ListPositions[i]) * (x[i] - ListPositions[i]);
+        ok = d2 <= lim2;
+      }
+      if (ok)
+        return;
+    }
+    BuildNeighbours(x);
+  }
+
+  /**
+   * Energy (returned) and projected gradients; per-particle outputs, serial sum. The kernel
+   * is shifted by its value at the cutoff, so the energy is continuous in the positions and
+   * does not depend on the neighbour lists.
+   */
+  double Evaluate(const std::vector<double>& x, const std::vector<std::int32_t>& cells,
+    const std::vector<double>& bary, std::vector<double>* grad)
+  {
+    ++Evaluations;
+    EnsureNeighbours(x);
+    const double inv4s2 = 1.0 / (4.0 * Sigma * Sigma);
+    const double rc2 = Cutoff * Cutoff;
+    const double shift = std::exp(-rc2 * inv4s2);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, N),
+      [&](const tbb::blocked_range<std::size_t>& r)
+      {
+        for (std::size_t p = r.begin(); p != r.end(); ++p)
+        {
+          const Eigen::Map<const Vec> xp(x.data() + p * static_cast<std::size_t>(Dim), Dim);
+          Vec g = Vec::Zero(Dim);
+          double e = 0.0;
+          for (std::uint32_t q : Lists[p])
+          {
+            const Eigen::Map<const Vec> xq(x.data() + q * static_cast<std::size_t>(Dim), Dim);
+            const Vec diff = xp - xq;
+            const double d2 = diff.squaredNorm();
+            if (d2 >= rc2)
+              continue;
+            const double w = std::exp(-d2 * inv4s2);
+            e += w - shift;
+            g -= (2.0 * inv4s2 * w) * diff;
+          }
+          PerParticle[p] = 0.5 * e;
+          if (grad)
+          {
+            Eigen::Map<Vec>(grad->data() + p * static_cast<std::size_t>(Dim), Dim) =
+              ProjectGradient(cells[p], bary.data() + 4 * p, g);
+          }
+        }
+      });
+    double sum = 0.0;
+    for (double v : PerParticle)
+      sum += v;
+    return sum;
+  }
+
+  /// Mean number of neighbours closer than the cutoff.
+  double MeanNeighbours(const std::vector<double>& x)
+  {
+    EnsureNeighbours(x);
+    std::size_t total = 0;
+    for (std::size_t p = 0; p < N; ++p)
+      for (std::uint32_t q : Lists[p])
+      {
+        double d2 = 0.0;
+        for (int d = 0; d < Dim; ++d)
+          d2 += std::pow(x[p * static_cast<std::size_t>(Dim) + static_cast<std::size_t>(d)] -
+              x[q * static_cast<std::size_t>(Dim) + static_cast<std::size_t>(d)],
+            2);
+        total += d2 < Cutoff * Cutoff ? 1 : 0;
+      }
+    return static_cast<double>(total) / static_cast<double>(N);
+  }
+
+  void Run(const ParticleSamplerOptions& opt, ParticleSamplerResult& res)
+  {
+    N = res.Sites.NumSites();
+    Sigma = res.Sigma;
+    const std::size_t nd = N * static_cast<std::size_t>(Dim);
+    Lists.resize(N);
+    PerParticle.assign(N, 0.0);
+    std::vector<double>& x = res.Sites.Coords;
+    std::vector<std::int32_t>& cells = res.Sites.CellIds;
+    std::vector<double>& bary = res.Sites.Bary;
+    Cutoff = opt.NeighbourCutoff * Sigma;
+    Skin = Sigma; // list radius Cutoff + sigma: rebuilt about every few steps
+
+    std::vector<double> g(nd), xt(nd), gt(nd), bt(bary.size());
+    std::vector<std::int32_t> ct(N);
+    Eigen::VectorXd dir(nd);
+    std::deque<std::pair<Eigen::VectorXd, Eigen::VectorXd>> hist; // (s, y)
+
+    double energy = Evaluate(x, cells, bary, &g);
+    res.Energy.push_back(energy);
+    int failures = 0;
+    for (int it = 0; it < opt.Iterations; ++it)
+    {
+      if (opt.Progress && !opt.Progress(static_cast<double>(it) / opt.Iterations))
+      {
+        res.Aborted = true;
+        break;
+      }
+      const Eigen::Map<const Eigen::VectorXd> gv(g.data(), static_cast<Eigen::Index>(nd));
+      // Two-loop recursion.
+      dir = -gv;
+      std::vector<double> alpha(hist.size());
+      for (std::size_t h = hist.size(); h-- > 0;)
+      {
+        const double rho = 1.0 / hist[h].second.dot(hist[h].first);
+        alpha[h] = rho * hist[h].first.dot(dir);
+        dir -= alpha[h] * hist[h].second;
+      }
+      if (!hist.empty())
+      {
+        const auto& last = hist.back();
+        dir *= last.first.dot(last.second) / last.second.squaredNorm();
+      }
+      else
+      {
+        // First step: move the average particle by sigma / 2.
+        const double rms = std::sqrt(gv.squaredNorm() / static_cast<double>(N));
+        if (rms <= 0.0)
+          break;
+        dir *= 0.5 * Sigma / rms;
+      }
+      for (std::size_t h = 0; h < hist.size(); ++h)
+      {
+        const double rho = 1.0 / hist[h].second.dot(hist[h].first);
+        const double beta = rho * hist[h].second.dot(dir);
+        dir += (alpha[h] - beta) * hist[h].first;
+      }
+      if (!(gv.dot(dir) < 0.0))
+      {
+        hist.clear();
+        const double rms = std::sqrt(gv.squaredNorm() / static_cast<double>(N));
+        dir = -gv * (0.5 * Sigma / std::max(rms, 1e-300));
+      }
+      // Trust region per particle: no particle jumps more than one sigma per step.
+      for (std::size_t p = 0; p < N; ++p)
+      {
+        auto dp = dir.segment(static_cast<Eigen::Index>(p) * Dim, Dim);
+        const double len = dp.norm();
+        if (len > Sigma)
+          dp *= Sigma / len;
+      }
+
+      bool accepted = false;
+      double step = 1.0, trialEnergy = energy;
+      for (int ls = 0; ls < 12 && !accepted; ++ls, step *= 0.5)
+      {
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, N),
+          [&](const tbb::blocked_range<std::size_t>& r)
+          {
+            for (std::size_t p = r.begin(); p != r.end(); ++p)
+            {
+              std::int32_t c = cells[p];
+              double* b = bt.data() + 4 * p;
+              std::copy_n(bary.data() + 4 * p, 4, b);
+              Walk(c, b, step * Vec(dir.segment(static_cast<Eigen::Index>(p) * Dim, Dim)));
+              ct[p] = c;
+              Eigen::Map<Vec>(xt.data() + p * static_cast<std::size_t>(Dim), Dim) =
+                Position(c, b);
+            }
+          });
+        trialEnergy = Evaluate(xt, ct, bt, nullptr);
+        double slope = 0.0;
+        for (std::size_t i = 0; i < nd; ++i)
+          slope += g[i] * (xt[i] - x[i]);
+        accepted = trialEnergy <= energy + 1e-4 * slope && trialEnergy < energy;
+      }
+      if (!accepted)
+      {
+        res.Energy.push_back(energy);
+        res.IterationsDone = it + 1;
+        if (hist.empty() || ++failures >= 2)
+          break; // converged as far as the line search can tell
+        hist.clear();
+        continue;
+      }
+      failures = 0;
+      const double newEnergy = Evaluate(xt, ct, bt, &gt);
+      Eigen::VectorXd s(nd), y(nd);
+      for (std::size_t i = 0; i < nd; ++i)
+      {
+        s[static_cast<Eigen::Index>(i)] = xt[i] - x[i];
+        y[static_cast<Eigen::Index>(i)] = gt[i] - g[i];
+      }
+      if (s.dot(y) > 1e-10 * y.squaredNorm())
+      {
+        hist.emplace_back(std::move(s), std::move(y));
+        if (static_cast<int>(hist.size()) > opt.History)
+          hist.pop_front();
+      }
+      x.swap(xt);
+      g.swap(gt);
+      bary.swap(bt);
+      cells.swap(ct);
+      energy = newEnergy;
+      res.Energy.push_back(energy);
+      res.IterationsDone = it + 1;
+    }
+    res.MeanNeighbours = MeanNeighbours(x);
+    res.EnergyEvaluations = Evaluations;
+    res.NeighbourRebuilds = Rebuilds;
+    if (opt.Progress)
+      opt.Progress(1.0);
+  }
+
+private:
+  const SimplexMesh& Mesh;
+  const Embedding& Emb;
+  const std::vector<std::int32_t>& Nbrs;
+  const int Dim;
+  std::size_t N = 0;
+  double Sigma = 1.0;
+  double Cutoff = 5.0;
+  double Skin = 1.0;
+  int Evaluations = 0;
+  int Rebuilds = 0;
+  std::vector<double> ListPositions; // positions at the last list build
+  std::vector<std::vector<std::uint32_t>> Lists;
+  std::vector<double> PerParticle;
+  tbb::enumerable_thread_specific<std::vector<std::pair<std::uint32_t, double>>> SearchBuffers;
+};
+
+template <int D>
+void RunDim(const SimplexMesh& mesh, const Embedding& emb, const std::vector<std::int32_t>& nb,
+  const ParticleSamplerOptions& opt, ParticleSamplerResult& res)
+{
+  if (mesh.SimplexDim == 2)
+    Sampler<D, 2>(mesh, emb, nb).Run(opt, res);
+  else
+    Sampler<D, 3>(mesh, emb, nb).Run(opt, res);
+}
+} // namespace
+
+std::vector<std::int32_t> CellFaceNeighbours(const SimplexMesh& mesh)
+{
+  const std::size_t nc = mesh.NumCells(), np = mesh.NumPoints();
+  const int nv = mesh.VerticesPerCell();
+  // Vertex -> incident cells (CSR); faces are matched by intersecting these short lists.
+  std::vector<std::int64_t> offs(np + 1, 0);
+  for (auto v : mesh.Cells)
+    ++offs[static_cast<std::size_t>(v) + 1];
+  for (std::size_t i = 0; i < np; ++i)
+    offs[i + 1] += offs[i];
+  std::vector<std::int32_t> inc(mesh.Cells.size());
+  {
+    std::vector<std::int64_t> fill(offs.begin(), offs.end() - 1);
+    for (std::size_t c = 0; c < nc; ++c)
+      for (int i = 0; i < nv; ++i)
+        inc[static_cast<std::size_t>(fill[static_cast<std::size_t>(mesh.Cell(c)[i])]++)] =
+          static_cast<std::int32_t>(c);
+  }
+  std::vector<std::int32_t> nbrs(nc * static_cast<std::size_t>(nv), -1);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nc),
+    [&](const tbb::blocked_range<std::size_t>& r)
+    {
+      for (std::size_t c = r.begin(); c != r.end(); ++c)
+      {
+        const std::int32_t* ids = mesh.Cell(c);
+        for (int i = 0; i < nv; ++i)
+        {
+          std::int32_t face[3];
+          int nfv = 0;
+          for (int j = 0; j < nv; ++j)
+            if (j != i)
+              face[nfv++] = ids[j];
+          // Scan the shortest incidence list among the face's vertices.
+          for (int a = 1; a < nfv; ++a)
+          {
+            const auto va = static_cast<std::size_t>(face[a]);
+            const auto v0 = static_cast<std::size_t>(face[0]);
+            if (offs[va + 1] - offs[va] < offs[v0 + 1] - offs[v0])
+              std::swap(face[0], face[a]);
+          }
+          std::int32_t found = -1;
+          int count = 0;
+          const auto v0 = static_cast<std::size_t>(face[0]);
+          for (auto k = offs[v0]; k < offs[v0 + 1]; ++k)
+          {
+            const std::int32_t other = inc[static_cast<std::size_t>(k)];
+            if (other == static_cast<std::int32_t>(c))
+              continue;
+            const std::int32_t* oids = mesh.Cell(static_cast<std::size_t>(other));
+            bool all = true;
+            for (int a = 1; a < nfv && all; ++a)
+              all = std::find(oids, oids + nv, face[a]) != oids + nv;
+            if (all)
+            {
+              found = other;
+              ++count;
+            }
+          }
+          nbrs[c * static_cast<std::size_t>(nv) + static_cast<std::size_t>(i)] =
+            count == 1 ? found : -1;
+        }
+      }
+    });
+  return nbrs;
+}
+
+std::vector<double> EmbeddedCellMeasures(const SimplexMesh& mesh, const Embedding& emb)
+{
+  const std::size_t nc = mesh.NumCells();
+  const int k = mesh.SimplexDim, dim = emb.Dim;
+  std::vector<double> meas(nc, 0.0);
+  const double fact = k == 2 ? 2.0 : 6.0;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nc),
+    [&](const tbb::blocked_range<std::size_t>& r)
+    {
+      Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::ColMajor, kMaxDim, 3> e(dim, 3);
+      for (std::size_t c = r.begin(); c != r.end(); ++c)
+      {
+        const std::int32_t* ids = mesh.Cell(c);
+        const Eigen::Map<const Eigen::VectorXd> v0(emb.At(static_cast<std::size_t>(ids[0])), dim);
+        for (int j = 0; j < k; ++j)
+          e.col(j) =
+            Eigen::Map<const Eigen::VectorXd>(emb.At(static_cast<std::size_t>(ids[j + 1])), dim) -
+            v0;
+        // Gram determinant: measure = sqrt(det(E^T E)) / k!.
+        double det;
+        if (k == 3)
+          det = Eigen::Matrix3d(e.transpose() * e).determinant();
+        else
+        {
+          const auto a = e.col(0), b = e.col(1);
+          det = a.squaredNorm() * b.squaredNorm() - a.dot(b) * a.dot(b);
+        }
+        meas[c] = std::sqrt(std::max(0.0, det)) / fact;
+      }
+    });
+  return meas;
+}
+
+ParticleSamplerResult SampleParticles(
+  const SimplexMesh& mesh, const Embedding& embedding, const ParticleSamplerOptions& opt)
+{
+  const auto t0 = std::chrono::steady_clock::now();
+  CheckInputs(mesh, embedding);
+  if (opt.NumSites == 0)
+    throw InputError("SampleParticles: NumSites must be at least 1");
+  if (opt.NumSites > 8 * mesh.NumPoints())
+    throw InputError("SampleParticles: NumSites (" + std::to_string(opt.NumSites) +
+      ") exceeds 8 x the number of mesh points (" + std::to_string(8 * mesh.NumPoints()) +
+      "); refine the input mesh or ask for fewer sites");
+  if (opt.Iterations < 0 || !(opt.KernelWidthFactor > 0.0) ||
+    !std::isfinite(opt.KernelWidthFactor) || !(opt.NeighbourCutoff > 0.0) ||
+    !std::isfinite(opt.NeighbourCutoff) || opt.History < 1 || opt.MaxThreads < 0)
+    throw InputError("SampleParticles: Iterations >= 0, History >= 1, MaxThreads >= 0 and a "
+                     "positive, finite KernelWidthFactor and NeighbourCutoff are required");
+
+  const int k = mesh.SimplexDim, dim = embedding.Dim;
+  const std::size_t nc = mesh.NumCells(), n = opt.NumSites;
+  const std::vector<double> meas = EmbeddedCellMeasures(mesh, embedding);
+  std::vector<double> cdf(nc);
+  double total = 0.0;
+  for (std::size_t c = 0; c < nc; ++c)
+    cdf[c] = (total += meas[c]);
+  if (!(total > 0.0) || !std::isfinite(total))
+    throw InputError("SampleParticles: the embedded mesh has zero (or non-finite) measure");
+
+  ParticleSamplerResult res;
+  res.EmbeddedMeasure = total;
+  res.Sigma = opt.KernelWidthFactor * std::pow(total / static_cast<double>(n), 1.0 / k);
+  SiteSet& s = res.Sites;
+  s.Dim = dim;
+  s.CellIds.resize(n);
+  s.Bary.assign(4 * n, 0.0);
+  s.Coords.assign(n * static_cast<std::size_t>(dim), 0.0);
+
+  // Initial sites: cell ~ embedded measure, uniform barycentrics (sorted uniforms' gaps).
+  Rng rng(opt.Seed);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const double u = rng.Uniform() * total;
+    auto c = static_cast<std::size_t>(std::upper_bound(cdf.begin(), cdf.end(), u) - cdf.begin());
+    c = std::min(c, nc - 1);
+    while (meas[c] <= 0.0 && c > 0) // never start in a degenerate cell
+      --c;
+    double cut[5] = { 0.0, 0.0, 0.0, 0.0, 0.0 };
+    for (int j = 0; j < k; ++j)
+      cut[j + 1] = rng.Uniform();
+    for (int a = 2; a <= k; ++a) // insertion sort of the k uniforms
+      for (int b = a; b > 1 && cut[b] < cut[b - 1]; --b)
+        std::swap(cut[b], cut[b - 1]);
+    cut[k + 1] = 1.0;
+    double* b = s.Bary.data() + 4 * i;
+    for (int j = 0; j <= k; ++j)
+      b[j] = cut[j + 1] - cut[j];
+    s.CellIds[i] = static_cast<std::int32_t>(c);
+    const std::int32_t* ids = mesh.Cell(c);
+    for (int j = 0; j <= k; ++j)
+      for (int d = 0; d < dim; ++d)
+        s.Coords[i * static_cast<std::size_t>(dim) + static_cast<std::size_t>(d)] +=
+          b[j] * embedding.At(static_cast<std::size_t>(ids[j]))[d];
+  }
+
+  auto run = [&]()
+  {
+    const std::vector<std::int32_t> nbrs = CellFaceNeighbours(mesh);
+    switch (dim)
+    {
+      case 2:
+        RunDim<2>(mesh, embedding, nbrs, opt, res);
+        break;
+      case 3:
+        RunDim<3>(mesh, embedding, nbrs, opt, res);
+        break;
+      case 4:
+        RunDim<4>(mesh, embedding, nbrs, opt, res);
+        break;
+      case 5:
+        RunDim<5>(mesh, embedding, nbrs, opt, res);
+        break;
+      case 6:
+        RunDim<6>(mesh, embedding, nbrs, opt, res);
+        break;
+      case 8:
+        RunDim<8>(mesh, embedding, nbrs, opt, res);
+        break;
+      default:
+        RunDim<Eigen::Dynamic>(mesh, embedding, nbrs, opt, res);
+        break;
+    }
+  };
+  if (opt.MaxThreads > 0)
+  {
+    tbb::task_arena arena(opt.MaxThreads);
+    arena.execute(run);
+  }
+  else
+    run();
+  res.Seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return res;
+}
+
+} // namespace av

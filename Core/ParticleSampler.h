@@ -1,0 +1,79 @@
+// ParticleSampler: isotropic Gaussian-repulsion particle sampling on the embedded
+// surface / volume (paper §4.1), VTK-free.
+#ifndef av_ParticleSampler_h
+#define av_ParticleSampler_h
+
+#include "SimplexMesh.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+namespace av
+{
+
+/// Parameters of SampleParticles (defaults from the paper).
+struct ParticleSamplerOptions
+{
+  std::size_t NumSites = 1000;   ///< number of particles n, 1 .. 8 * NumPoints
+  int Iterations = 50;           ///< L-BFGS iterations (paper: 50), >= 0
+  std::uint64_t Seed = 1;        ///< seeds the initial sampling; same seed -> same output
+  double KernelWidthFactor = 0.3; ///< sigma = factor * (|embedded mesh| / n)^{1/k}
+  double NeighbourCutoff = 5.0;  ///< pairs farther than this many sigma are ignored
+  int History = 7;               ///< L-BFGS memory (pairs of vectors)
+  int MaxThreads = 0;            ///< 0: all cores; the result does not depend on it
+  /// Called once per iteration with the fraction done in [0,1]; return false to abort.
+  std::function<bool(double)> Progress;
+};
+
+/// Output of SampleParticles.
+struct ParticleSamplerResult
+{
+  SiteSet Sites;               ///< embedded coords (Dim each), containing cell, barycentrics
+  std::vector<double> Energy;  ///< Energy[0] at the start, Energy[i] after iteration i
+  double Sigma = 0.0;          ///< the kernel width used
+  double EmbeddedMeasure = 0.0; ///< |embedded mesh|: area (triangles) or volume (tets)
+  double MeanNeighbours = 0.0; ///< average neighbour count within the cutoff at the end
+  int EnergyEvaluations = 0;   ///< energy evaluations (line-search trials included)
+  int NeighbourRebuilds = 0;   ///< kd-tree neighbour-list builds
+  int IterationsDone = 0;
+  bool Aborted = false;        ///< the progress callback asked to stop
+  double Seconds = 0.0;        ///< wall time of the whole call
+};
+
+/**
+ * Samples NumSites particles on the embedded mesh (the cells of `mesh` with the vertex
+ * positions of `embedding`, triangles or tets in R^Dim, Dim 2..20) and spreads them
+ * isotropically by minimising E = sum_{p<q} [exp(-|x_p - x_q|^2 / (4 sigma^2)) - exp(-c^2/4)]
+ * over pairs closer than the cutoff c * sigma (c = NeighbourCutoff). The constant shift
+ * makes E continuous, so it is a function of the positions alone; neighbours come from
+ * kd-tree Verlet lists (radius c sigma + sigma, rebuilt when a particle moved sigma / 2).
+ *
+ * Initial particles are drawn with probability proportional to the embedded cell measure
+ * and uniformly inside the cell. The minimiser is a projected L-BFGS: the gradient of every
+ * particle is projected onto the tangent space of its cell (and onto the boundary face when
+ * it pushes outward), a step is walked in barycentric coordinates across cell faces, and a
+ * particle that reaches the mesh boundary slides along it; a backtracking (Armijo) line
+ * search keeps the energy decreasing. Particles are therefore always on / in the embedded
+ * mesh. Deterministic for a given seed, whatever the number of threads.
+ *
+ * Throws InputError on: NumSites 0 or > 8 * NumPoints, wrong array sizes, Dim outside
+ * [max(AmbientDim, SimplexDim), 20], NaN/Inf, cell ids out of range, zero embedded measure,
+ * non-positive options.
+ */
+ParticleSamplerResult SampleParticles(
+  const SimplexMesh& mesh, const Embedding& embedding, const ParticleSamplerOptions& options);
+
+/**
+ * Face neighbours: entry c * (k+1) + i is the cell sharing the face opposite local vertex i
+ * of cell c, or -1 on the boundary (or where more than two cells share the face).
+ */
+std::vector<std::int32_t> CellFaceNeighbours(const SimplexMesh& mesh);
+
+/// Area (triangles) / volume (tets) of every cell with its vertices at the embedded coords.
+std::vector<double> EmbeddedCellMeasures(const SimplexMesh& mesh, const Embedding& embedding);
+
+} // namespace av
+
+#endif

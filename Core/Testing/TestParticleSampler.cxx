@@ -1,0 +1,387 @@
+// Checks the particle sampler on embeddings with known geometry: identity embeddings of the
+// unit square / cube (uniform spacing, boundary covered), a linear anisotropic embedding
+// (spacing follows the metric), a curved height field; determinism and bad input.
+// `TestParticleSampler --bench` times 5000 sites on a 101x21x21 (44,541-vertex) 8D embedding.
+#include "ParticleSampler.h"
+#include "StructuredMeshes.h"
+#include "TestUtilities.h"
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <iostream>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace
+{
+/// Input coords padded with zeros (plus optional linear extra coords a * x) to dim.
+av::Embedding PaddedEmbedding(const av::SimplexMesh& mesh, int dim, double extraPerX = 0.0)
+{
+  av::Embedding e;
+  e.Dim = dim;
+  e.Coords.assign(mesh.NumPoints() * static_cast<std::size_t>(dim), 0.0);
+  for (std::size_t i = 0; i < mesh.NumPoints(); ++i)
+  {
+    for (int d = 0; d < mesh.AmbientDim; ++d)
+      e.Coords[i * dim + d] = mesh.Point(i)[d];
+    if (extraPerX != 0.0)
+      e.Coords[i * dim + mesh.AmbientDim] = extraPerX * mesh.Point(i)[0];
+  }
+  return e;
+}
+
+/// Nearest-neighbour distance of every site, measured on the first `cols` coordinates.
+std::vector<double> NearestDistances(const av::SiteSet& s, int cols, int offset = 0)
+{
+  const std::size_t n = s.NumSites();
+  std::vector<double> nn(n, std::numeric_limits<double>::infinity());
+  for (std::size_t p = 0; p < n; ++p)
+    for (std::size_t q = 0; q < n; ++q)
+      if (p != q)
+      {
+        double d2 = 0.0;
+        for (int d = offset; d < offset + cols; ++d)
+        {
+          const double v = s.At(p)[d] - s.At(q)[d];
+          d2 += v * v;
+        }
+        nn[p] = std::min(nn[p], std::sqrt(d2));
+      }
+  return nn;
+}
+
+double CoefficientOfVariation(const std::vector<double>& v)
+{
+  double m = 0.0, m2 = 0.0;
+  for (double x : v)
+    m += x;
+  m /= static_cast<double>(v.size());
+  for (double x : v)
+    m2 += (x - m) * (x - m);
+  return std::sqrt(m2 / static_cast<double>(v.size())) / m;
+}
+
+/// Sites are on the embedded mesh: valid cell, barycentrics in [0,1] summing to 1, coords
+/// equal to the barycentric combination of the embedded vertices.
+void CheckOnMesh(const av::SimplexMesh& mesh, const av::Embedding& emb, const av::SiteSet& s)
+{
+  int bad = 0;
+  for (std::size_t i = 0; i < s.NumSites(); ++i)
+  {
+    const auto c = s.CellIds[i];
+    if (c < 0 || static_cast<std::size_t>(c) >= mesh.NumCells())
+    {
+      ++bad;
+      continue;
+    }
+    double sum = 0.0;
+    for (int j = 0; j < 4; ++j)
+    {
+      const double b = s.Bary[4 * i + j];
+      if (b < 0.0 || b > 1.0 || (j > mesh.SimplexDim && b != 0.0))
+        ++bad;
+      sum += b;
+    }
+    if (std::abs(sum - 1.0) > 1e-12)
+      ++bad;
+    for (int d = 0; d < emb.Dim; ++d)
+    {
+      double x = 0.0;
+      for (int j = 0; j <= mesh.SimplexDim; ++j)
+        x += s.Bary[4 * i + j] * emb.At(mesh.Cell(c)[j])[d];
+      if (std::abs(x - s.At(i)[d]) > 1e-12)
+        ++bad;
+    }
+  }
+  AV_CHECK_MSG(bad == 0, bad << " site values are off the mesh");
+}
+
+void CheckEnergy(const av::ParticleSamplerResult& r, double minReduction)
+{
+  AV_CHECK(r.Energy.size() == static_cast<std::size_t>(r.IterationsDone) + 1);
+  // The (shifted, continuous) energy is a function of the positions: every accepted step
+  // must decrease it.
+  int rises = 0;
+  for (std::size_t i = 1; i < r.Energy.size(); ++i)
+    if (r.Energy[i] > r.Energy[i - 1])
+      ++rises;
+  AV_CHECK_MSG(rises == 0, rises << " iterations increased the energy");
+  AV_CHECK_MSG(r.Energy.back() < (1.0 - minReduction) * r.Energy.front(),
+    "energy " << r.Energy.front() << " -> " << r.Energy.back());
+}
+
+bool SameBits(const av::ParticleSamplerResult& a, const av::ParticleSamplerResult& b)
+{
+  return a.Sites.Coords.size() == b.Sites.Coords.size() &&
+    std::memcmp(a.Sites.Coords.data(), b.Sites.Coords.data(),
+      a.Sites.Coords.size() * sizeof(double)) == 0 &&
+    a.Sites.CellIds == b.Sites.CellIds &&
+    std::memcmp(a.Sites.Bary.data(), b.Sites.Bary.data(), a.Sites.Bary.size() * sizeof(double)) ==
+    0 &&
+    a.Energy.size() == b.Energy.size() &&
+    std::memcmp(a.Energy.data(), b.Energy.data(), a.Energy.size() * sizeof(double)) == 0;
+}
+
+int Bench()
+{
+  // Cube2-like input: 101 x 21 x 21 Kuhn grid of the unit cube, 240k tets; a smooth 8D
+  // embedding stretching x by s(x) = 1 + 24 exp(-((x - 0.5) / 0.05)^2): coordinate 4 is
+  // F(x) with F' = sqrt(s^2 - 1) (the exact embedding of that metric), coordinates 5-8 add
+  // small smooth bumps.
+  const double lo[3] = { 0, 0, 0 }, hi[3] = { 1, 1, 1 };
+  const av::SimplexMesh mesh = av::MakeKuhnTetGrid(101, 21, 21, lo, hi);
+  av::Embedding emb;
+  emb.Dim = 8;
+  emb.Coords.assign(mesh.NumPoints() * 8, 0.0);
+  std::vector<double> big(1001, 0.0);
+  for (int i = 1; i <= 1000; ++i)
+  {
+    const double x = (i - 0.5) / 1000.0;
+    const double s = 1.0 + 24.0 * std::exp(-std::pow((x - 0.5) / 0.05, 2));
+    big[i] = big[i - 1] + std::sqrt(s * s - 1.0) / 1000.0;
+  }
+  for (std::size_t i = 0; i < mesh.NumPoints(); ++i)
+  {
+    const double* p = mesh.Point(i);
+    double* e = emb.Coords.data() + 8 * i;
+    e[0] = p[0];
+    e[1] = p[1];
+    e[2] = p[2];
+    e[3] = big[static_cast<int>(std::lround(p[0] * 1000.0))];
+    e[4] = 0.05 * std::sin(3.0 * p[1] + 2.0 * p[2]);
+    e[5] = 0.05 * std::cos(2.0 * p[1] - p[2]);
+    e[6] = 0.03 * std::sin(4.0 * p[2]);
+    e[7] = 0.02 * std::cos(5.0 * p[0]);
+  }
+  av::ParticleSamplerOptions opt;
+  opt.NumSites = 5000;
+  opt.Seed = 3;
+  const auto res = av::SampleParticles(mesh, emb, opt);
+  std::cout << "points " << mesh.NumPoints() << " cells " << mesh.NumCells() << " dim 8 sites "
+            << opt.NumSites << "\nembedded volume " << res.EmbeddedMeasure << " sigma "
+            << res.Sigma << " iterations " << res.IterationsDone << " mean neighbours "
+            << res.MeanNeighbours << " energy evaluations " << res.EnergyEvaluations
+            << " list builds " << res.NeighbourRebuilds << "\nenergy " << res.Energy.front() << " -> "
+            << res.Energy.back() << "\nseconds " << res.Seconds << std::endl;
+  CheckOnMesh(mesh, emb, res.Sites);
+  CheckEnergy(res, 0.3);
+  return AV_TEST_RESULT();
+}
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  if (argc > 1 && std::string(argv[1]) == "--bench")
+    return Bench();
+
+  // Unit square, identity embedding padded to 8D.
+  {
+    const double lo[2] = { 0, 0 }, hi[2] = { 1, 1 };
+    const av::SimplexMesh mesh = av::MakeTriangleGrid(21, 21, lo, hi);
+    const av::Embedding emb = PaddedEmbedding(mesh, 8);
+    av::ParticleSamplerOptions opt;
+    opt.NumSites = 300;
+    opt.Seed = 11;
+    const auto res = av::SampleParticles(mesh, emb, opt);
+    AV_CHECK_NEAR(res.EmbeddedMeasure, 1.0, 1e-12);
+    AV_CHECK_NEAR(res.Sigma, 0.3 * std::sqrt(1.0 / 300.0), 1e-12);
+    AV_CHECK(res.Sites.NumSites() == 300 && res.Sites.Dim == 8);
+    CheckOnMesh(mesh, emb, res.Sites);
+    CheckEnergy(res, 0.5);
+    // Extra coordinates stay zero: particles never leave the (flat) embedded surface.
+    double off = 0.0;
+    for (std::size_t i = 0; i < res.Sites.NumSites(); ++i)
+      for (int d = 2; d < 8; ++d)
+        off = std::max(off, std::abs(res.Sites.At(i)[d]));
+    AV_CHECK(off == 0.0);
+
+    const auto nn = NearestDistances(res.Sites, 2);
+    const double cv = CoefficientOfVariation(nn);
+    av::ParticleSamplerOptions opt0 = opt;
+    opt0.Iterations = 0;
+    const double cv0 =
+      CoefficientOfVariation(NearestDistances(av::SampleParticles(mesh, emb, opt0).Sites, 2));
+    std::cout << "square: energy " << res.Energy.front() << " -> " << res.Energy.back()
+              << " in " << res.IterationsDone << " it, NN CV " << cv0 << " -> " << cv
+              << ", neighbours " << res.MeanNeighbours << ", " << res.Seconds << " s"
+              << std::endl;
+    AV_CHECK_MSG(cv < 0.10, "nearest-neighbour CV " << cv);
+    AV_CHECK(cv0 > 0.3);
+
+    // Boundary covered: every side has sites within half a spacing; no big holes.
+    const double h = std::sqrt(1.0 / 300.0);
+    double nearSide[4] = { 1, 1, 1, 1 };
+    for (std::size_t i = 0; i < res.Sites.NumSites(); ++i)
+    {
+      const double* x = res.Sites.At(i);
+      nearSide[0] = std::min(nearSide[0], x[0]);
+      nearSide[1] = std::min(nearSide[1], 1 - x[0]);
+      nearSide[2] = std::min(nearSide[2], x[1]);
+      nearSide[3] = std::min(nearSide[3], 1 - x[1]);
+    }
+    for (double d : nearSide)
+      AV_CHECK_MSG(d < 0.5 * h, "side distance " << d << " spacing " << h);
+    double hole = 0.0;
+    for (int a = 0; a <= 50; ++a)
+      for (int b = 0; b <= 50; ++b)
+      {
+        double best = 1e9;
+        for (std::size_t i = 0; i < res.Sites.NumSites(); ++i)
+          best = std::min(best, std::hypot(res.Sites.At(i)[0] - a / 50.0,
+                                  res.Sites.At(i)[1] - b / 50.0));
+        hole = std::max(hole, best);
+      }
+    std::cout << "square: largest empty disc radius / spacing " << hole / h << std::endl;
+    AV_CHECK_MSG(hole < 0.9 * h, "hole " << hole / h << " spacings");
+
+    // Determinism: same seed (any thread count) -> same bits; other seed -> other sites.
+    av::ParticleSamplerOptions one = opt;
+    one.MaxThreads = 1;
+    AV_CHECK(SameBits(res, av::SampleParticles(mesh, emb, one)));
+    AV_CHECK(SameBits(res, av::SampleParticles(mesh, emb, opt)));
+    av::ParticleSamplerOptions other = opt;
+    other.Seed = 12;
+    AV_CHECK(!SameBits(res, av::SampleParticles(mesh, emb, other)));
+
+    // Abort from the progress callback.
+    av::ParticleSamplerOptions ab = opt;
+    int calls = 0;
+    ab.Progress = [&](double f)
+    {
+      ++calls;
+      return f < 0.1;
+    };
+    const auto ra = av::SampleParticles(mesh, emb, ab);
+    AV_CHECK(ra.Aborted && ra.IterationsDone == 5 && calls >= 6);
+    CheckOnMesh(mesh, emb, ra.Sites);
+  }
+
+  // Unit cube (Kuhn tets), identity embedding in 7D (runtime-dimension code path).
+  {
+    const double lo[3] = { 0, 0, 0 }, hi[3] = { 1, 1, 1 };
+    const av::SimplexMesh mesh = av::MakeKuhnTetGrid(9, 9, 9, lo, hi);
+    const av::Embedding emb = PaddedEmbedding(mesh, 7);
+    av::ParticleSamplerOptions opt;
+    opt.NumSites = 400;
+    opt.Seed = 5;
+    const auto res = av::SampleParticles(mesh, emb, opt);
+    AV_CHECK_NEAR(res.EmbeddedMeasure, 1.0, 1e-12);
+    CheckOnMesh(mesh, emb, res.Sites);
+    CheckEnergy(res, 0.5);
+    const double cv = CoefficientOfVariation(NearestDistances(res.Sites, 3));
+    std::cout << "cube: energy " << res.Energy.front() << " -> " << res.Energy.back() << " in "
+              << res.IterationsDone << " it, NN CV " << cv << ", neighbours "
+              << res.MeanNeighbours << ", " << res.Seconds << " s" << std::endl;
+    AV_CHECK_MSG(cv < 0.15, "nearest-neighbour CV " << cv);
+    const double h = std::cbrt(1.0 / 400.0);
+    for (int axis = 0; axis < 3; ++axis)
+      for (int side = 0; side < 2; ++side)
+      {
+        double best = 1.0;
+        for (std::size_t i = 0; i < res.Sites.NumSites(); ++i)
+          best = std::min(best, std::abs(res.Sites.At(i)[axis] - side));
+        AV_CHECK_MSG(best < 0.5 * h, "face " << axis << side << " distance " << best);
+      }
+  }
+
+  // Linear anisotropic embedding (x, y, a x): metric diag(1 + a^2, 1) = diag(s^2, 1).
+  // Uniform in the embedding -> in input space the spacing along x is 1/s of that along y.
+  {
+    const double s = 3.0;
+    const double lo[2] = { 0, 0 }, hi[2] = { 1, 1 };
+    const av::SimplexMesh mesh = av::MakeTriangleGrid(31, 11, lo, hi);
+    const av::Embedding emb = PaddedEmbedding(mesh, 3, std::sqrt(s * s - 1));
+    av::ParticleSamplerOptions opt;
+    opt.NumSites = 300;
+    const auto res = av::SampleParticles(mesh, emb, opt);
+    AV_CHECK_NEAR(res.EmbeddedMeasure, s, 1e-12);
+    CheckOnMesh(mesh, emb, res.Sites);
+    CheckEnergy(res, 0.5);
+    const double cvEmb = CoefficientOfVariation(NearestDistances(res.Sites, 3));
+    AV_CHECK_MSG(cvEmb < 0.12, "embedded NN CV " << cvEmb);
+    // Count sites per row / column band: a uniform embedded sampling has s times more
+    // distinct x-layers per unit length than y-layers. Estimate via mean |dx|, |dy| of the
+    // nearest neighbour vectors in input space.
+    double sx = 0.0, sy = 0.0;
+    for (std::size_t p = 0; p < res.Sites.NumSites(); ++p)
+    {
+      double best = 1e9;
+      std::size_t bq = p;
+      for (std::size_t q = 0; q < res.Sites.NumSites(); ++q)
+      {
+        if (q == p)
+          continue;
+        double d2 = 0.0;
+        for (int d = 0; d < 3; ++d)
+          d2 += std::pow(res.Sites.At(p)[d] - res.Sites.At(q)[d], 2);
+        if (d2 < best)
+        {
+          best = d2;
+          bq = q;
+        }
+      }
+      sx += std::abs(res.Sites.At(p)[0] - res.Sites.At(bq)[0]);
+      sy += std::abs(res.Sites.At(p)[1] - res.Sites.At(bq)[1]);
+    }
+    std::cout << "aniso: embedded NN CV " << cvEmb << ", mean |dy|/|dx| of NN " << sy / sx
+              << " (isotropic in embedding -> about s = " << s << ")" << std::endl;
+    AV_CHECK_MSG(sy / sx > 0.6 * s && sy / sx < 1.6 * s, "ratio " << sy / sx);
+  }
+
+  // Curved height field z = 0.3 sin(2 pi x) sin(pi y): sites stay on the surface.
+  {
+    const double lo[2] = { 0, 0 }, hi[2] = { 1, 1 };
+    const av::SimplexMesh mesh = av::MakeTriangleGrid(31, 31, lo, hi);
+    av::Embedding emb = PaddedEmbedding(mesh, 3);
+    for (std::size_t i = 0; i < mesh.NumPoints(); ++i)
+      emb.Coords[3 * i + 2] = 0.3 * std::sin(2 * M_PI * mesh.Point(i)[0]) *
+        std::sin(M_PI * mesh.Point(i)[1]);
+    av::ParticleSamplerOptions opt;
+    opt.NumSites = 400;
+    const auto res = av::SampleParticles(mesh, emb, opt);
+    AV_CHECK(res.EmbeddedMeasure > 1.1);
+    CheckOnMesh(mesh, emb, res.Sites);
+    CheckEnergy(res, 0.5);
+    const double cv = CoefficientOfVariation(NearestDistances(res.Sites, 3));
+    std::cout << "height field: area " << res.EmbeddedMeasure << ", NN CV " << cv << std::endl;
+    AV_CHECK_MSG(cv < 0.12, "embedded NN CV " << cv);
+  }
+
+  // Bad input.
+  {
+    const double lo[2] = { 0, 0 }, hi[2] = { 1, 1 };
+    const av::SimplexMesh mesh = av::MakeTriangleGrid(5, 5, lo, hi);
+    const av::Embedding emb = PaddedEmbedding(mesh, 4);
+    av::ParticleSamplerOptions opt;
+    opt.NumSites = 0;
+    AV_CHECK_THROWS(av::SampleParticles(mesh, emb, opt));
+    opt.NumSites = 8 * 25 + 1;
+    AV_CHECK_THROWS(av::SampleParticles(mesh, emb, opt));
+    opt.NumSites = 10;
+    av::Embedding e2 = emb;
+    e2.Coords.pop_back();
+    AV_CHECK_THROWS(av::SampleParticles(mesh, e2, opt));
+    e2 = emb;
+    e2.Coords[7] = std::numeric_limits<double>::quiet_NaN();
+    AV_CHECK_THROWS(av::SampleParticles(mesh, e2, opt));
+    AV_CHECK_THROWS(av::SampleParticles(mesh, PaddedEmbedding(mesh, 21), opt));
+    av::SimplexMesh m2 = mesh;
+    m2.Cells[4] = 99;
+    AV_CHECK_THROWS(av::SampleParticles(m2, emb, opt));
+    e2 = emb;
+    std::fill(e2.Coords.begin(), e2.Coords.end(), 0.0);
+    AV_CHECK_THROWS(av::SampleParticles(mesh, e2, opt));
+    opt.KernelWidthFactor = -1;
+    AV_CHECK_THROWS(av::SampleParticles(mesh, emb, opt));
+    opt.KernelWidthFactor = 0.3;
+    opt.NumSites = 1; // one site: nothing to repel, still valid
+    const auto r1 = av::SampleParticles(mesh, emb, opt);
+    AV_CHECK(r1.Sites.NumSites() == 1 && r1.Energy.front() == 0.0);
+  }
+
+  return AV_TEST_RESULT();
+}
