@@ -3,6 +3,7 @@
 #include <vtkAlgorithm.h>
 #include <vtkCell.h>
 #include <vtkPointData.h>
+#include <vtkCellLocator.h>
 #include <vtkCellTypes.h>
 #include <vtkDataArray.h>
 #include <vtkDataSet.h>
@@ -13,8 +14,10 @@
 #include <vtkPoints.h>
 #include <vtkUnstructuredGrid.h>
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <vector>
 
 namespace vtkAnisoDataConversion
 {
@@ -251,6 +254,130 @@ bool ToEmbedding(
         error = os.str();
         return false;
       }
+    }
+  }
+  return true;
+}
+
+bool ToSiteSet(vtkDataSet* sites, vtkDataSet* meshData, const av::SimplexMesh& mesh,
+  const av::Embedding& embedding, av::SiteSet& out, std::string& error, std::string* note)
+{
+  out = av::SiteSet();
+  out.Dim = embedding.Dim;
+  const vtkIdType n = sites ? sites->GetNumberOfPoints() : 0;
+  if (n == 0)
+  {
+    error = "the sites input has no points";
+    return false;
+  }
+  const int nv = mesh.VerticesPerCell();
+  const auto numCells = static_cast<vtkIdType>(mesh.NumCells());
+  out.CellIds.resize(static_cast<std::size_t>(n));
+  out.Bary.assign(static_cast<std::size_t>(n) * 4, 0.0);
+  vtkDataArray* cellIds = sites->GetPointData()->GetArray("CellId");
+  vtkDataArray* bary = sites->GetPointData()->GetArray("Barycentric");
+  const bool given = cellIds && bary && cellIds->GetNumberOfComponents() == 1 &&
+    bary->GetNumberOfComponents() == 4;
+  if (given)
+  {
+    for (vtkIdType i = 0; i < n; ++i)
+    {
+      const double c = cellIds->GetComponent(i, 0);
+      if (!(c >= 0 && c < static_cast<double>(numCells)))
+      {
+        std::ostringstream os;
+        os << "site " << i << " has CellId " << c << " but the mesh has " << numCells
+           << " cells: the sites were not sampled on this mesh";
+        error = os.str();
+        return false;
+      }
+      out.CellIds[i] = static_cast<std::int32_t>(c);
+      bary->GetTuple(i, out.Bary.data() + 4 * i);
+    }
+  }
+  else
+  {
+    if (!meshData)
+    {
+      error = "the sites have no CellId/Barycentric arrays and no mesh to locate them in";
+      return false;
+    }
+    // vtk cell id -> simplex index (ToSimplexMesh skips vertex/line cells).
+    std::vector<std::int32_t> simplexOf(static_cast<std::size_t>(meshData->GetNumberOfCells()), -1);
+    std::int32_t next = 0;
+    for (vtkIdType c = 0; c < meshData->GetNumberOfCells(); ++c)
+    {
+      const int type = meshData->GetCellType(c);
+      if (type == VTK_TRIANGLE || type == VTK_TETRA)
+        simplexOf[c] = next++;
+    }
+    vtkNew<vtkCellLocator> locator;
+    locator->SetDataSet(meshData);
+    locator->BuildLocator();
+    const double diag = std::max(meshData->GetLength(), 1e-300);
+    const double tol = 1e-6 * diag;
+    vtkNew<vtkGenericCell> cell;
+    double pcoords[3], weights[8], closest[3], dist2;
+    for (vtkIdType i = 0; i < n; ++i)
+    {
+      double x[3];
+      sites->GetPoint(i, x);
+      vtkIdType cid = locator->FindCell(x, tol * tol, cell, pcoords, weights);
+      if (cid < 0 || simplexOf[cid] < 0)
+      {
+        // Surfaces / round-off: accept the closest cell point within the tolerance.
+        int subId = 0;
+        cid = -1;
+        locator->FindClosestPoint(x, closest, cell, cid, subId, dist2);
+        if (cid >= 0 && simplexOf[cid] >= 0 && dist2 <= tol * tol)
+        {
+          cell->EvaluatePosition(closest, nullptr, subId, pcoords, dist2, weights);
+        }
+        else
+        {
+          cid = -1;
+        }
+      }
+      if (cid < 0 || simplexOf[cid] < 0)
+      {
+        std::ostringstream os;
+        os << "site " << i << " at (" << x[0] << ", " << x[1] << ", " << x[2]
+           << ") is outside the mesh; give sites inside the domain or the CellId/Barycentric "
+              "arrays of the particle sampler";
+        error = os.str();
+        return false;
+      }
+      out.CellIds[i] = simplexOf[cid];
+      // Clamp round-off and renormalise: the kernels require weights >= 0 summing to 1.
+      double sum = 0.0;
+      for (int a = 0; a < nv; ++a)
+        sum += (weights[a] = std::max(0.0, weights[a]));
+      for (int a = 0; a < nv; ++a)
+        out.Bary[4 * i + a] = weights[a] / sum;
+    }
+    if (note)
+      *note = "the sites have no CellId/Barycentric arrays: located them in the mesh";
+  }
+  // Embedded position: barycentric combination of the cell's embedded vertices.
+  const int dim = embedding.Dim;
+  out.Coords.assign(static_cast<std::size_t>(n) * dim, 0.0);
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    const std::int32_t* c = mesh.Cell(out.CellIds[i]);
+    double* x = out.Coords.data() + i * dim;
+    for (int a = 0; a < nv; ++a)
+    {
+      const double w = out.Bary[4 * i + a];
+      if (!std::isfinite(w))
+      {
+        std::ostringstream os;
+        os << "site " << i << " has a NaN/Inf barycentric coordinate";
+        error = os.str();
+        return false;
+      }
+      const double* e = embedding.At(c[a]);
+      for (int d = 0; d < dim; ++d)
+        x[d] += w * e[d];
     }
   }
   return true;

@@ -49,6 +49,17 @@ bool ToMetricField(vtkDataArray* array, std::size_t numPoints, av::MetricField& 
 bool ToEmbedding(vtkDataArray* array, const av::SimplexMesh& mesh, av::Embedding& embedding,
   std::string& error);
 
+/**
+ * Sites (particles) on the mesh from the points of `sites`: with point arrays "CellId" (index of
+ * the containing triangle/tetrahedron in `mesh`) and "Barycentric" (4 components), as the
+ * particle sampler writes them, the embedded position is the barycentric combination of the
+ * cell's embedded vertices. Without them each point is located in `meshData` (input space,
+ * vtkCellLocator) and its embedded position interpolated; a point outside the mesh is an error.
+ */
+bool ToSiteSet(vtkDataSet* sites, vtkDataSet* meshData, const av::SimplexMesh& mesh,
+  const av::Embedding& embedding, av::SiteSet& out, std::string& error,
+  std::string* note = nullptr);
+
 /// A vtkUnstructuredGrid of the mesh's triangles/tetrahedra (z = 0 for a flat 2D domain).
 vtkSmartPointer<vtkUnstructuredGrid> FromSimplexMesh(const av::SimplexMesh& mesh);
 
