@@ -43,9 +43,17 @@ std::string Str(double v)
 
 /// Polar factor V (orthonormal columns) of B (rows x M): V = B (B^T B)^{-1/2}; SVD fallback for
 /// (nearly) rank-deficient B (surfaces with rank-2 metrics).
-template <int M, typename MatB>
+template <int M, bool RankDeficient, typename MatB>
 void PolarFactor(const MatB& b, MatB& v)
 {
+  using MatS = Eigen::Matrix<double, Eigen::Dynamic, M, 0, kMaxTargetDim, M>;
+  if constexpr (RankDeficient)
+  {
+    // Surfaces: B = T A has rank 2; the closed form would amplify round-off along the normal.
+    Eigen::JacobiSVD<MatS> svd(MatS(b), Eigen::ComputeThinU | Eigen::ComputeThinV);
+    v = svd.matrixU() * svd.matrixV().transpose();
+    return;
+  }
   using MatM = Eigen::Matrix<double, M, M>;
   const MatM c = b.transpose() * b;
   Eigen::Matrix<double, M, 1> ev;
@@ -65,14 +73,13 @@ void PolarFactor(const MatB& b, MatB& v)
   }
   // Closed-form eigenvectors are accurate enough when B is well conditioned (always the case
   // for volumes and 2D domains: the fixed input rows make sigma_min(T) >= 1).
-  if (ev(0) > 1e-10 * ev(M - 1) && ev(0) > 0.0)
+  if (ev(0) > 1e-8 * ev(M - 1) && ev(0) > 0.0)
   {
     const Eigen::Matrix<double, M, 1> inv = ev.cwiseSqrt().cwiseInverse();
     v.noalias() = b * (y * inv.asDiagonal() * y.transpose());
     return;
   }
   // One SVD instantiation per M (compile time): copy into a bounded dynamic-size matrix.
-  using MatS = Eigen::Matrix<double, Eigen::Dynamic, M, 0, kMaxTargetDim, M>;
   Eigen::JacobiSVD<MatS> svd(MatS(b), Eigen::ComputeThinU | Eigen::ComputeThinV);
   v = svd.matrixU() * svd.matrixV().transpose();
 }
@@ -726,7 +733,7 @@ double EmbeddingSolver::Internals::LocalStepT()
         t.noalias() += x * g.row(l);
       }
       b.noalias() = t * a; // A is symmetric: T A^T = T A
-      PolarFactor<MT>(b, v);
+      PolarFactor<MT, (KT < MT)>(b, v);
       r.noalias() = v * a;
       const double w = this->W[j];
       e += w * (t - r).squaredNorm();

@@ -1,0 +1,451 @@
+// anisovoronoi-bench: runs a stage of the pipeline on one of the paper's analytic test cases and
+// prints one JSON object per line (machine-readable, comparable with the paper's tables).
+//
+// Stages are functions StageName(const Args&, const Case&, JsonLine&) registered in Stages();
+// a new stage (e.g. "mesh") only adds a function and one table entry.
+#include "AnalyticMetrics.h"
+#include "EdgeLengthError.h"
+#include "EmbeddingSolver.h"
+#include "MetricAlgebra.h"
+#include "StructuredMeshes.h"
+#include "TetMesher.h"
+
+#include <tbb/global_control.h>
+#include <tbb/info.h>
+
+#include <sys/resource.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <functional>
+#include <iostream>
+#include <limits>
+#include <map>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace
+{
+using Clock = std::chrono::steady_clock;
+double Since(Clock::time_point t0)
+{
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+const double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+/// Ordered key/value pairs printed as one JSON object on one line (non-finite numbers -> null).
+class JsonLine
+{
+public:
+  void Set(const std::string& key, const std::string& value)
+  {
+    std::string esc = "\"";
+    for (char c : value)
+    {
+      if (c == '"' || c == '\\')
+      {
+        esc += '\\';
+      }
+      esc += c;
+    }
+    this->Put(key, esc + "\"");
+  }
+  void Set(const std::string& key, const char* value) { this->Set(key, std::string(value)); }
+  void Set(const std::string& key, double value)
+  {
+    if (!std::isfinite(value))
+    {
+      this->Put(key, "null");
+      return;
+    }
+    char buf[64];
+    std::snprintf(buf, sizeof(buf), "%.6g", value);
+    this->Put(key, buf);
+  }
+  void Set(const std::string& key, long long value) { this->Put(key, std::to_string(value)); }
+  void Set(const std::string& key, int value) { this->Put(key, std::to_string(value)); }
+  void Set(const std::string& key, std::size_t value) { this->Put(key, std::to_string(value)); }
+  void Set(const std::string& key, bool value) { this->Put(key, value ? "true" : "false"); }
+  std::string Str() const
+  {
+    std::string s = "{";
+    for (std::size_t i = 0; i < this->Items.size(); ++i)
+    {
+      s += (i ? ", \"" : "\"") + this->Items[i].first + "\": " + this->Items[i].second;
+    }
+    return s + "}";
+  }
+
+private:
+  void Put(const std::string& key, const std::string& raw)
+  {
+    for (auto& kv : this->Items)
+    {
+      if (kv.first == key)
+      {
+        kv.second = raw;
+        return;
+      }
+    }
+    this->Items.emplace_back(key, raw);
+  }
+  std::vector<std::pair<std::string, std::string>> Items;
+};
+
+struct Args
+{
+  std::string CaseName;
+  std::string Stage = "embed";
+  int Dim = -1;        // -1: case default (3 for gaussian2d, else 8)
+  int Iterations = -1; // -1: case default (20 for gaussian2d as Fig. 4, else 50)
+  int Resolution = -1; // -1: case default
+  std::size_t SphereVertices = 0;
+  int Threads = 0;
+  std::uint64_t Seed = 1;
+  double Mu = 100.0;
+  int Anderson = 5;
+  std::string Init = "smooth";
+  bool Weighted = false;
+  bool TrackError = true;
+};
+
+/// Paper values (Tab. 5 and Fig. 4); NaN where the paper gives none.
+struct PaperValues
+{
+  double LAvg = kNaN, LMax = kNaN, EmbedSeconds = kNaN;
+};
+
+struct Case
+{
+  av::AnalyticPreset Preset;
+  av::SimplexMesh Mesh;
+  av::MetricField Metric;
+  double MeshSeconds = 0.0;
+  std::string MeshDescription;
+  PaperValues Paper;
+};
+
+PaperValues PaperFor(av::AnalyticPreset p)
+{
+  PaperValues v;
+  switch (p)
+  {
+    case av::AnalyticPreset::Gaussian2D:
+      v.LAvg = 0.92;
+      v.LMax = 10.58;
+      break;
+    case av::AnalyticPreset::Cube1:
+      v = { 1.65, 17.54, 138.84 };
+      break;
+    case av::AnalyticPreset::Cube2:
+      v = { 1.30, 48.39, 567.56 };
+      break;
+    case av::AnalyticPreset::Cube3:
+      v = { 2.12, 71.32, 562.28 };
+      break;
+    case av::AnalyticPreset::SphereCylindrical:
+      v = { 3.21, 65.01, 587.61 };
+      break;
+    case av::AnalyticPreset::SphereCosine:
+      break;
+  }
+  return v;
+}
+
+Case BuildCase(const Args& a)
+{
+  Case c;
+  c.Preset = av::AnalyticPresetFromName(a.CaseName);
+  c.Paper = PaperFor(c.Preset);
+  const av::AnalyticDomain d = av::RecommendedDomain(c.Preset);
+  const auto t0 = Clock::now();
+  if (d.IsBall)
+  {
+    std::size_t target = d.BallVertices;
+    if (a.SphereVertices > 0)
+    {
+      target = a.SphereVertices;
+    }
+    else if (a.Resolution > 0)
+    {
+      // N vertices across the diameter ~ (pi / 6) N^3 vertices in the ball.
+      target = static_cast<std::size_t>(std::lround(3.14159265358979 / 6.0 * std::pow(a.Resolution, 3)));
+    }
+    c.Mesh = av::TetrahedralizeSphere(d.Radius, target);
+    c.MeshDescription = "tetgen-ball-" + std::to_string(target);
+  }
+  else if (d.AmbientDim == 2)
+  {
+    const int n = a.Resolution > 0 ? a.Resolution : d.GridVertices[0];
+    c.Mesh = av::MakeTriangleGrid(n, n, d.Lo, d.Hi);
+    c.MeshDescription = "grid-" + std::to_string(n) + "x" + std::to_string(n);
+  }
+  else
+  {
+    int n[3] = { d.GridVertices[0], d.GridVertices[1], d.GridVertices[2] };
+    if (a.Resolution > 0)
+    {
+      // Keep the aspect of the recommended grid (cube2/3: 5 cells along x per cell across).
+      const int ratio = (d.GridVertices[0] - 1) / (d.GridVertices[1] - 1);
+      n[0] = ratio * (a.Resolution - 1) + 1;
+      n[1] = n[2] = a.Resolution;
+    }
+    c.Mesh = av::MakeKuhnTetGrid(n[0], n[1], n[2], d.Lo, d.Hi);
+    c.MeshDescription = "kuhn-" + std::to_string(n[0]) + "x" + std::to_string(n[1]) + "x" + std::to_string(n[2]);
+  }
+  c.Metric = av::EvaluateAnalyticMetric(c.Preset, c.Mesh);
+  c.MeshSeconds = Since(t0);
+  return c;
+}
+
+double PeakRssMb()
+{
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return u.ru_maxrss / 1024.0; // Linux: kilobytes
+}
+
+void StretchRange(const Case& c, double& smin, double& smax)
+{
+  smin = std::numeric_limits<double>::infinity();
+  smax = 0.0;
+  for (std::size_t i = 0; i < c.Metric.NumPoints(); ++i)
+  {
+    const double s = c.Mesh.AmbientDim == 2 ? av::StretchRatio(av::UnpackSymmetric2(c.Metric.At(i)))
+                                            : av::StretchRatio(av::UnpackSymmetric(c.Metric.At(i)));
+    smin = std::min(smin, s);
+    smax = std::max(smax, s);
+  }
+}
+
+/// Stage "embed": the high-d embedding and its §5.1 edge length error.
+void StageEmbed(const Args& a, const Case& c, JsonLine& out)
+{
+  av::EmbeddingOptions o;
+  o.TargetDim = a.Dim > 0 ? a.Dim : (c.Mesh.AmbientDim == 2 ? 3 : 8);
+  o.Iterations = a.Iterations >= 0 ? a.Iterations : (c.Preset == av::AnalyticPreset::Gaussian2D ? 20 : 50);
+  o.Mu = a.Mu;
+  o.Seed = a.Seed;
+  o.AndersonWindow = a.Anderson;
+  o.ElementMeasureWeighting = a.Weighted;
+  o.Initialisation = a.Init == "random" ? av::EmbeddingInitialisation::Random : av::EmbeddingInitialisation::Smooth;
+
+  std::unique_ptr<av::EdgeLengthErrorEvaluator> evaluator;
+  if (a.TrackError)
+  {
+    evaluator.reset(new av::EdgeLengthErrorEvaluator(c.Mesh, c.Metric));
+  }
+  int reached = -1;
+  double trackSeconds = 0.0;
+  if (evaluator && std::isfinite(c.Paper.LAvg))
+  {
+    // Error per iteration; its cost is measured and left out of embed_seconds.
+    o.Progress = [&](const av::EmbeddingProgress& p) {
+      const auto t0 = Clock::now();
+      if (reached < 0 &&
+        evaluator->Evaluate(p.Solver->CurrentEmbedding()).AveragePercent <= c.Paper.LAvg)
+      {
+        reached = p.Iteration;
+      }
+      trackSeconds += Since(t0);
+      return true;
+    };
+  }
+  const auto t0 = Clock::now();
+  av::EmbeddingResult r = av::ComputeEmbedding(c.Mesh, c.Metric, o);
+  const double embedSeconds = Since(t0) - trackSeconds;
+  const av::EdgeLengthErrorResult e = evaluator ? evaluator->Evaluate(r.Embedded)
+                                                : av::ComputeEdgeLengthError(c.Mesh, c.Metric, r.Embedded);
+
+  out.Set("dim", o.TargetDim);
+  out.Set("iterations", r.IterationsDone);
+  out.Set("L_avg", e.AveragePercent);
+  out.Set("L_max", e.MaxPercent);
+  out.Set("embed_seconds", embedSeconds);
+  out.Set("setup_seconds", r.SetupSeconds);
+  out.Set("factor_seconds", r.FactorSeconds);
+  out.Set("iteration_seconds", r.IterationSeconds);
+  out.Set("local_step_seconds", r.LocalStepSeconds);
+  out.Set("solve_seconds", r.SolveSeconds);
+  out.Set("factor_entries", r.FactorNonZeros);
+  out.Set("energy_initial", r.EnergyHistory.front().Total);
+  out.Set("energy_final", r.EnergyHistory.back().Total);
+  out.Set("anderson_accepted", r.AndersonAccepted);
+  out.Set("anderson_rejected", r.AndersonRejected);
+  out.Set("paper_L_avg", c.Paper.LAvg);
+  out.Set("paper_L_max", c.Paper.LMax);
+  out.Set("paper_embed_seconds", c.Paper.EmbedSeconds);
+  if (a.TrackError && std::isfinite(c.Paper.LAvg))
+  {
+    out.Set("iterations_to_paper_error", reached);
+  }
+  out.Set("mu", o.Mu);
+  out.Set("anderson", o.AndersonWindow);
+  out.Set("init", a.Init);
+  out.Set("weighted", a.Weighted);
+  out.Set("seed", static_cast<long long>(a.Seed));
+}
+
+using StageFn = std::function<void(const Args&, const Case&, JsonLine&)>;
+const std::map<std::string, StageFn>& Stages()
+{
+  static const std::map<std::string, StageFn> stages = { { "embed", StageEmbed } };
+  return stages;
+}
+
+void Usage(std::ostream& os)
+{
+  os << "usage: anisovoronoi-bench CASE [options]\n"
+        "  CASE: gaussian2d | cube1 | cube2 | cube3 | sphere-cyl | sphere-cos | all\n"
+        "  --stage S         stage to run (embed); default embed\n"
+        "  --dim D           target dimension (default 3 for gaussian2d, else 8)\n"
+        "  --iterations N    solver iterations (default 20 for gaussian2d as Fig. 4, else 50)\n"
+        "  --resolution N    N vertices per side (cube2/3 keep 5:1:1, spheres ~pi/6 N^3 vertices);\n"
+        "                    default: gaussian2d 101^2, cube1 21^3, cube2/3 101x21x21, spheres 50,000\n"
+        "  --vertices V      target vertex count of the sphere meshes (TetGen)\n"
+        "  --threads T       limit TBB threads (default: all cores)\n"
+        "  --seed S          random seed of the initial field (default 1)\n"
+        "  --mu M            regulariser weight (default 100)\n"
+        "  --anderson W      Anderson window, 0 = plain local/global (default 5)\n"
+        "  --init smooth|random  initial free coordinates (default smooth)\n"
+        "  --weighted        element-measure weighted energy (default: paper's unweighted)\n"
+        "  --no-track        do not evaluate L_avg per iteration (iterations_to_paper_error)\n"
+        "Prints one JSON object per case on stdout.\n";
+}
+
+bool Parse(int argc, char** argv, Args& a)
+{
+  if (argc < 2)
+  {
+    return false;
+  }
+  for (int i = 1; i < argc; ++i)
+  {
+    const std::string k = argv[i];
+    auto next = [&]() -> std::string {
+      if (i + 1 >= argc)
+      {
+        throw std::runtime_error("missing value after " + k);
+      }
+      return argv[++i];
+    };
+    if (k == "--help" || k == "-h")
+    {
+      return false;
+    }
+    else if (k == "--stage")
+      a.Stage = next();
+    else if (k == "--dim")
+      a.Dim = std::stoi(next());
+    else if (k == "--iterations")
+      a.Iterations = std::stoi(next());
+    else if (k == "--resolution")
+      a.Resolution = std::stoi(next());
+    else if (k == "--vertices")
+      a.SphereVertices = static_cast<std::size_t>(std::stoll(next()));
+    else if (k == "--threads")
+      a.Threads = std::stoi(next());
+    else if (k == "--seed")
+      a.Seed = static_cast<std::uint64_t>(std::stoull(next()));
+    else if (k == "--mu")
+      a.Mu = std::stod(next());
+    else if (k == "--anderson")
+      a.Anderson = std::stoi(next());
+    else if (k == "--init")
+      a.Init = next();
+    else if (k == "--weighted")
+      a.Weighted = true;
+    else if (k == "--no-track")
+      a.TrackError = false;
+    else if (!k.empty() && k[0] != '-' && a.CaseName.empty())
+      a.CaseName = k;
+    else
+      throw std::runtime_error("unknown argument '" + k + "'");
+  }
+  if (a.Init != "smooth" && a.Init != "random")
+  {
+    throw std::runtime_error("--init must be smooth or random");
+  }
+  if (a.Resolution != -1 && a.Resolution < 2)
+  {
+    throw std::runtime_error("--resolution must be >= 2");
+  }
+  return !a.CaseName.empty();
+}
+} // namespace
+
+int main(int argc, char** argv)
+{
+  Args args;
+  try
+  {
+    if (!Parse(argc, argv, args))
+    {
+      Usage(argc < 2 ? std::cerr : std::cout);
+      return argc < 2 ? 2 : 0;
+    }
+  }
+  catch (const std::exception& e)
+  {
+    std::cerr << "anisovoronoi-bench: " << e.what() << "\n";
+    Usage(std::cerr);
+    return 2;
+  }
+  const auto stage = Stages().find(args.Stage);
+  if (stage == Stages().end())
+  {
+    std::cerr << "anisovoronoi-bench: unknown stage '" << args.Stage << "'\n";
+    return 2;
+  }
+  const int threads = args.Threads > 0 ? args.Threads : tbb::info::default_concurrency();
+  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
+
+  std::vector<std::string> cases;
+  if (args.CaseName == "all")
+  {
+    for (av::AnalyticPreset p : av::AllAnalyticPresets())
+    {
+      cases.push_back(av::AnalyticPresetName(p));
+    }
+  }
+  else
+  {
+    cases.push_back(args.CaseName);
+  }
+  int status = 0;
+  for (const std::string& name : cases)
+  {
+    JsonLine out;
+    out.Set("case", name);
+    out.Set("stage", args.Stage);
+    try
+    {
+      Args a = args;
+      a.CaseName = name;
+      const Case c = BuildCase(a);
+      double smin, smax;
+      StretchRange(c, smin, smax);
+      out.Set("mesh", c.MeshDescription);
+      out.Set("input_vertices", c.Mesh.NumPoints());
+      out.Set("input_elements", c.Mesh.NumCells());
+      out.Set("stretch_min", smin);
+      out.Set("stretch_max", smax);
+      out.Set("mesh_seconds", c.MeshSeconds);
+      stage->second(a, c, out);
+      out.Set("threads", threads);
+      out.Set("peak_rss_mb", PeakRssMb());
+    }
+    catch (const std::exception& e)
+    {
+      out.Set("error", e.what());
+      status = 1;
+    }
+    std::cout << out.Str() << std::endl;
+  }
+  return status;
+}
