@@ -1,0 +1,201 @@
+#include "vtkAnisoCurvatureMetric.h"
+
+#include "SurfaceCurvatureMetric.h"
+
+#include <vtkCellType.h>
+#include <vtkDataSet.h>
+#include <vtkDoubleArray.h>
+#include <vtkFieldData.h>
+#include <vtkIdList.h>
+#include <vtkInformation.h>
+#include <vtkInformationVector.h>
+#include <vtkObjectFactory.h>
+#include <vtkPointData.h>
+
+#include <algorithm>
+#include <limits>
+#include <vector>
+
+vtkStandardNewMacro(vtkAnisoCurvatureMetric);
+
+namespace
+{
+/// A point array scattered from the kernel's compacted vertices (`used`; empty = identity);
+/// points used by no triangle get zeros.
+vtkSmartPointer<vtkDoubleArray> Scatter(const char* name, const std::vector<double>& values,
+  int comps, vtkIdType numPoints, const std::vector<vtkIdType>& used)
+{
+  auto a = vtkSmartPointer<vtkDoubleArray>::New();
+  a->SetName(name);
+  a->SetNumberOfComponents(comps);
+  a->SetNumberOfTuples(numPoints);
+  if (used.empty())
+  {
+    std::copy(values.begin(), values.end(), a->GetPointer(0));
+    return a;
+  }
+  a->FillValue(0.0);
+  for (std::size_t k = 0; k < used.size(); ++k)
+    std::copy(values.begin() + k * comps, values.begin() + (k + 1) * comps,
+      a->GetPointer(used[k] * comps));
+  return a;
+}
+}
+
+vtkAnisoCurvatureMetric::vtkAnisoCurvatureMetric()
+{
+  this->SetMetricArrayName("Metric");
+}
+
+vtkAnisoCurvatureMetric::~vtkAnisoCurvatureMetric()
+{
+  this->SetMetricArrayName(nullptr);
+}
+
+int vtkAnisoCurvatureMetric::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkDataSet* input = vtkDataSet::GetData(inputVector[0]);
+  vtkDataSet* output = vtkDataSet::GetData(outputVector);
+  if (!input || !output)
+  {
+    return 0;
+  }
+  output->ShallowCopy(input);
+  const vtkIdType numPoints = input->GetNumberOfPoints();
+  const vtkIdType numCells = input->GetNumberOfCells();
+  if (numPoints == 0 || numCells == 0)
+  {
+    return 1; // empty in, empty out
+  }
+  if (numPoints > std::numeric_limits<std::int32_t>::max())
+  {
+    vtkErrorMacro("too many points for 32-bit ids");
+    return 0;
+  }
+
+  // Triangles only; vertex/line cells are skipped, anything else is an error.
+  std::vector<std::int32_t> pointToVertex(static_cast<std::size_t>(numPoints), -1);
+  std::vector<vtkIdType> triangles;
+  vtkNew<vtkIdList> ids;
+  for (vtkIdType c = 0; c < numCells; ++c)
+  {
+    const int type = input->GetCellType(c);
+    if (type == VTK_VERTEX || type == VTK_POLY_VERTEX || type == VTK_LINE ||
+      type == VTK_POLY_LINE || type == VTK_EMPTY_CELL)
+    {
+      continue;
+    }
+    input->GetCellPoints(c, ids);
+    if (type != VTK_TRIANGLE)
+    {
+      if (type == VTK_POLYGON || type == VTK_QUAD || type == VTK_TRIANGLE_STRIP ||
+        type == VTK_PIXEL)
+      {
+        vtkErrorMacro("cell " << c << " is not a triangle (" << ids->GetNumberOfIds()
+                              << " points): triangulate the surface first with "
+                                 "vtkTriangleFilter (ParaView: Triangulate)");
+      }
+      else
+      {
+        vtkErrorMacro("cell " << c << " is not a surface triangle: the curvature metric needs a "
+                                      "triangle surface (extract it with vtkDataSetSurfaceFilter "
+                                      "and vtkTriangleFilter)");
+      }
+      return 0;
+    }
+    for (int k = 0; k < 3; ++k)
+      triangles.push_back(ids->GetId(k));
+  }
+  if (triangles.empty())
+  {
+    vtkErrorMacro("the input has no triangle");
+    return 0;
+  }
+
+  // Compact away points used by no triangle (the kernel rejects them).
+  av::SimplexMesh mesh;
+  mesh.AmbientDim = 3;
+  mesh.SimplexDim = 2;
+  std::vector<vtkIdType> used;
+  for (vtkIdType p : triangles)
+  {
+    if (pointToVertex[p] < 0)
+    {
+      pointToVertex[p] = 0; // mark
+    }
+  }
+  for (vtkIdType p = 0; p < numPoints; ++p)
+  {
+    if (pointToVertex[p] == 0)
+    {
+      pointToVertex[p] = static_cast<std::int32_t>(used.size());
+      used.push_back(p);
+    }
+  }
+  mesh.Points.resize(3 * used.size());
+  for (std::size_t k = 0; k < used.size(); ++k)
+    input->GetPoint(used[k], mesh.Points.data() + 3 * k);
+  mesh.Cells.reserve(triangles.size());
+  for (vtkIdType p : triangles)
+    mesh.Cells.push_back(pointToVertex[p]);
+  const bool compacted = used.size() < static_cast<std::size_t>(numPoints);
+  if (compacted)
+  {
+    vtkWarningMacro(<< (numPoints - static_cast<vtkIdType>(used.size()))
+                    << " point(s) are used by no triangle: they get a zero metric");
+  }
+  else
+  {
+    used.clear(); // identity map
+  }
+  this->UpdateProgress(0.2);
+
+  av::SurfaceCurvatureMetricOptions options;
+  options.CurvatureThreshold = this->CurvatureThreshold;
+  options.SmoothingIterations = this->SmoothingIterations;
+  options.MaxStretch = this->MaxStretch;
+  av::SurfaceCurvatureMetricResult result;
+  try
+  {
+    result = av::SurfaceCurvatureMetric(mesh, options);
+  }
+  catch (const av::InputError& e)
+  {
+    vtkErrorMacro(<< e.what()
+                  << (compacted ? " (point/triangle ids count only the triangles' points)" : ""));
+    return 0;
+  }
+  catch (const std::exception& e)
+  {
+    vtkErrorMacro("curvature metric failed: " << e.what());
+    return 0;
+  }
+  this->UpdateProgress(0.9);
+
+  vtkPointData* pd = output->GetPointData();
+  const char* metricName = this->MetricArrayName ? this->MetricArrayName : "Metric";
+  pd->AddArray(Scatter(metricName, result.Metric.Values, 6, numPoints, used));
+  pd->AddArray(Scatter("Stretch", result.StretchRatio, 1, numPoints, used));
+  pd->AddArray(Scatter("KMin", result.MinCurvature, 1, numPoints, used));
+  pd->AddArray(Scatter("KMax", result.MaxCurvature, 1, numPoints, used));
+  pd->AddArray(Scatter("VMin", result.MinDirection, 3, numPoints, used));
+  pd->AddArray(Scatter("VMax", result.MaxDirection, 3, numPoints, used));
+  pd->SetActiveTensors(metricName);
+  vtkNew<vtkDoubleArray> floor;
+  floor->SetName("CurvatureFloor");
+  floor->InsertNextValue(result.CurvatureFloor);
+  output->GetFieldData()->AddArray(floor);
+  this->UpdateProgress(1.0);
+  return 1;
+}
+
+void vtkAnisoCurvatureMetric::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "CurvatureThreshold: " << this->CurvatureThreshold << "\n";
+  os << indent << "SmoothingIterations: " << this->SmoothingIterations << "\n";
+  os << indent << "MaxStretch: " << this->MaxStretch << "\n";
+  os << indent << "MetricArrayName: " << (this->MetricArrayName ? this->MetricArrayName : "")
+     << "\n";
+}
