@@ -16,6 +16,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <vector>
 
@@ -317,27 +318,43 @@ bool ToSiteSet(vtkDataSet* sites, vtkDataSet* meshData, const av::SimplexMesh& m
     const double diag = std::max(meshData->GetLength(), 1e-300);
     const double tol = 1e-6 * diag;
     vtkNew<vtkGenericCell> cell;
-    double pcoords[3], weights[8], closest[3], dist2;
+    vtkNew<vtkIdList> candidates;
+    double pcoords[3], weights[8], best[8], closest[3], dist2;
     for (vtkIdType i = 0; i < n; ++i)
     {
       double x[3];
       sites->GetPoint(i, x);
-      vtkIdType cid = locator->FindCell(x, tol * tol, cell, pcoords, weights);
-      if (cid < 0 || simplexOf[cid] < 0)
+      // VTK's cells accept points slightly outside (parametric tolerance): among the cells
+      // near x keep the one where x is most inside (largest smallest weight), so that a point
+      // on a shared face does not get the neighbour's clamped weights.
+      double box[6] = { x[0] - tol, x[0] + tol, x[1] - tol, x[1] + tol, x[2] - tol,
+        x[2] + tol };
+      locator->FindCellsWithinBounds(box, candidates);
+      vtkIdType cid = -1;
+      double bestMin = -std::numeric_limits<double>::infinity();
+      for (vtkIdType k = 0; k < candidates->GetNumberOfIds(); ++k)
       {
-        // Surfaces / round-off: accept the closest cell point within the tolerance.
+        const vtkIdType c = candidates->GetId(k);
+        if (simplexOf[c] < 0)
+          continue;
+        meshData->GetCell(c, cell);
         int subId = 0;
-        cid = -1;
-        locator->FindClosestPoint(x, closest, cell, cid, subId, dist2);
-        if (cid >= 0 && simplexOf[cid] >= 0 && dist2 <= tol * tol)
+        if (cell->EvaluatePosition(x, closest, subId, pcoords, dist2, weights) < 0 ||
+          dist2 > tol * tol)
+          continue;
+        double wmin = weights[0];
+        for (int a = 1; a < nv; ++a)
+          wmin = std::min(wmin, weights[a]);
+        if (wmin > bestMin)
         {
-          cell->EvaluatePosition(closest, nullptr, subId, pcoords, dist2, weights);
-        }
-        else
-        {
-          cid = -1;
+          bestMin = wmin;
+          cid = c;
+          std::copy(weights, weights + nv, best);
         }
       }
+      // A point outside every cell by more than round-off is outside the mesh.
+      if (cid >= 0 && bestMin < -1e-6)
+        cid = -1;
       if (cid < 0 || simplexOf[cid] < 0)
       {
         std::ostringstream os;
@@ -347,6 +364,7 @@ bool ToSiteSet(vtkDataSet* sites, vtkDataSet* meshData, const av::SimplexMesh& m
         error = os.str();
         return false;
       }
+      std::copy(best, best + nv, weights);
       out.CellIds[i] = simplexOf[cid];
       // Clamp round-off and renormalise: the kernels require weights >= 0 summing to 1.
       double sum = 0.0;

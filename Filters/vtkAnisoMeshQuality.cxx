@@ -1,0 +1,164 @@
+#include "vtkAnisoMeshQuality.h"
+
+#include "MeshQuality.h"
+#include "vtkAnisoDataConversion.h"
+
+#include <vtkCellData.h>
+#include <vtkDataSet.h>
+#include <vtkDoubleArray.h>
+#include <vtkFieldData.h>
+#include <vtkInformation.h>
+#include <vtkInformationVector.h>
+#include <vtkIntArray.h>
+#include <vtkObjectFactory.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkTable.h>
+#include <vtkUnsignedCharArray.h>
+#include <vtkUnstructuredGrid.h>
+
+vtkStandardNewMacro(vtkAnisoMeshQuality);
+
+namespace
+{
+void AddFieldValue(vtkFieldData* fd, const char* name, double value)
+{
+  vtkNew<vtkDoubleArray> a;
+  a->SetName(name);
+  a->InsertNextValue(value);
+  fd->AddArray(a);
+}
+}
+
+vtkAnisoMeshQuality::vtkAnisoMeshQuality()
+{
+  this->SetNumberOfOutputPorts(2);
+  // Default: the active point tensors (FindPointTensorArray then falls back to "Metric").
+  this->SetInputArrayToProcess(
+    0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, vtkDataSetAttributes::TENSORS);
+}
+
+int vtkAnisoMeshQuality::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkDataSet");
+  return 1;
+}
+
+int vtkAnisoMeshQuality::FillOutputPortInformation(int port, vtkInformation* info)
+{
+  info->Set(vtkDataObject::DATA_TYPE_NAME(), port == 0 ? "vtkUnstructuredGrid" : "vtkTable");
+  return 1;
+}
+
+int vtkAnisoMeshQuality::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkDataSet* input = vtkDataSet::GetData(inputVector[0]);
+  vtkUnstructuredGrid* output = vtkUnstructuredGrid::GetData(outputVector, 0);
+  vtkTable* histogram = vtkTable::GetData(outputVector, 1);
+  if (!input || input->GetNumberOfPoints() == 0 || input->GetNumberOfCells() == 0)
+  {
+    return 1; // empty in, empty out
+  }
+  av::SimplexMesh mesh;
+  std::string error, note;
+  if (!vtkAnisoDataConversion::ToSimplexMesh(input, mesh, error, &note))
+  {
+    vtkErrorMacro(<< error);
+    return 0;
+  }
+  if (!note.empty())
+  {
+    vtkWarningMacro(<< note);
+  }
+  int association = -1;
+  vtkDataArray* chosen = this->GetInputArrayToProcess(0, inputVector, association);
+  vtkDataArray* metricArray =
+    vtkAnisoDataConversion::FindPointTensorArray(chosen, association, input);
+  av::MetricField metric;
+  if (!vtkAnisoDataConversion::ToMetricField(metricArray, mesh.NumPoints(), metric, error))
+  {
+    vtkErrorMacro(<< error);
+    return 0;
+  }
+  av::MeshQualityResult q;
+  try
+  {
+    q = av::EvaluateMeshQuality(mesh, metric);
+  }
+  catch (const av::InputError& e)
+  {
+    vtkErrorMacro(<< e.what());
+    return 0;
+  }
+  catch (const std::exception& e)
+  {
+    vtkErrorMacro("mesh quality failed: " << e.what());
+    return 0;
+  }
+
+  // The simplices only (vertex / line cells dropped), on the input's exact points.
+  output->ShallowCopy(vtkAnisoDataConversion::FromSimplexMesh(mesh));
+  {
+    vtkNew<vtkPoints> pts;
+    pts->SetDataTypeToDouble();
+    pts->SetNumberOfPoints(input->GetNumberOfPoints());
+    for (vtkIdType i = 0; i < input->GetNumberOfPoints(); ++i)
+      pts->SetPoint(i, input->GetPoint(i));
+    output->SetPoints(pts);
+  }
+  output->GetPointData()->ShallowCopy(input->GetPointData());
+  if (static_cast<std::size_t>(input->GetNumberOfCells()) == mesh.NumCells())
+  {
+    output->GetCellData()->ShallowCopy(input->GetCellData());
+  }
+  output->GetFieldData()->ShallowCopy(input->GetFieldData());
+  const std::size_t nc = mesh.NumCells();
+  output->GetCellData()->AddArray(vtkAnisoDataConversion::MakeArray("G", q.G.data(), nc, 1));
+  output->GetCellData()->AddArray(
+    vtkAnisoDataConversion::MakeArray("MinAngle", q.MinAngle.data(), nc, 1));
+  vtkNew<vtkUnsignedCharArray> inverted;
+  inverted->SetName("Inverted");
+  inverted->SetNumberOfTuples(static_cast<vtkIdType>(nc));
+  std::copy(q.Inverted.begin(), q.Inverted.end(), inverted->GetPointer(0));
+  output->GetCellData()->AddArray(inverted);
+  output->GetCellData()->SetActiveScalars("G");
+
+  const av::MeshQualitySummary& s = q.Summary;
+  this->GMin = s.GMin;
+  this->GAvg = s.GAvg;
+  this->ThetaMin = s.ThetaMin;
+  this->ThetaAvg = s.ThetaAvg;
+  this->PercentBad = s.PercentBad;
+  vtkFieldData* fd = output->GetFieldData();
+  AddFieldValue(fd, "G_min", s.GMin);
+  AddFieldValue(fd, "G_avg", s.GAvg);
+  AddFieldValue(fd, "theta_min", s.ThetaMin);
+  AddFieldValue(fd, "theta_avg", s.ThetaAvg);
+  AddFieldValue(fd, "pct_bad", s.PercentBad);
+  AddFieldValue(fd, "inverted", static_cast<double>(s.NumInverted));
+  AddFieldValue(fd, "edges_in_unit_range", s.PercentEdgesInUnitRange);
+  AddFieldValue(fd, "NumberOfCells", static_cast<double>(s.NumCells));
+
+  vtkNew<vtkDoubleArray> centre;
+  centre->SetName("MinAngle");
+  vtkNew<vtkIntArray> count;
+  count->SetName("Count");
+  for (std::size_t b = 0; b < s.AngleHistogram.size(); ++b)
+  {
+    centre->InsertNextValue((static_cast<double>(b) + 0.5) * s.HistogramBinWidth);
+    count->InsertNextValue(static_cast<int>(s.AngleHistogram[b]));
+  }
+  histogram->AddColumn(centre);
+  histogram->AddColumn(count);
+  return 1;
+}
+
+void vtkAnisoMeshQuality::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "G_min / G_avg (last run): " << this->GMin << " / " << this->GAvg << "\n";
+  os << indent << "theta_min / theta_avg (last run): " << this->ThetaMin << " / "
+     << this->ThetaAvg << "\n";
+  os << indent << "PercentBad (last run): " << this->PercentBad << "\n";
+}

@@ -1,0 +1,193 @@
+#include "vtkAnisoParticleSampler.h"
+
+#include "MeshQuality.h" // InterpolateMetricAtSites
+#include "ParticleSampler.h"
+#include "vtkAnisoDataConversion.h"
+
+#include <vtkCellArray.h>
+#include <vtkDataSet.h>
+#include <vtkDoubleArray.h>
+#include <vtkFieldData.h>
+#include <vtkInformation.h>
+#include <vtkInformationVector.h>
+#include <vtkIntArray.h>
+#include <vtkObjectFactory.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkTable.h>
+
+#include <algorithm>
+
+vtkStandardNewMacro(vtkAnisoParticleSampler);
+
+namespace
+{
+void AddFieldValue(vtkFieldData* fd, const char* name, double value)
+{
+  vtkNew<vtkDoubleArray> a;
+  a->SetName(name);
+  a->InsertNextValue(value);
+  fd->AddArray(a);
+}
+}
+
+vtkAnisoParticleSampler::vtkAnisoParticleSampler()
+{
+  this->SetNumberOfOutputPorts(2);
+  this->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "Embedding");
+}
+
+int vtkAnisoParticleSampler::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkDataSet");
+  return 1;
+}
+
+int vtkAnisoParticleSampler::FillOutputPortInformation(int port, vtkInformation* info)
+{
+  info->Set(vtkDataObject::DATA_TYPE_NAME(), port == 0 ? "vtkPolyData" : "vtkTable");
+  return 1;
+}
+
+int vtkAnisoParticleSampler::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkDataSet* input = vtkDataSet::GetData(inputVector[0]);
+  vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
+  vtkTable* energyTable = vtkTable::GetData(outputVector, 1);
+  if (!input || input->GetNumberOfPoints() == 0 || input->GetNumberOfCells() == 0)
+  {
+    return 1; // empty in, empty out
+  }
+  if (this->NumberOfSites <= 0)
+  {
+    vtkErrorMacro("NumberOfSites must be at least 1");
+    return 0;
+  }
+
+  av::SimplexMesh mesh;
+  std::string error, note;
+  if (!vtkAnisoDataConversion::ToSimplexMesh(input, mesh, error, &note))
+  {
+    vtkErrorMacro(<< error);
+    return 0;
+  }
+  if (!note.empty())
+  {
+    vtkWarningMacro(<< note);
+  }
+  av::Embedding embedding;
+  if (!vtkAnisoDataConversion::ToEmbedding(
+        this->GetInputArrayToProcess(0, inputVector), mesh, embedding, error))
+  {
+    vtkErrorMacro(<< error);
+    return 0;
+  }
+  // The metric is optional: interpolated at the sites for the quality measures downstream.
+  vtkDataArray* metricArray = vtkAnisoDataConversion::FindPointTensorArray(nullptr, -1, input);
+  av::MetricField metric;
+  const bool haveMetric = metricArray &&
+    vtkAnisoDataConversion::ToMetricField(metricArray, mesh.NumPoints(), metric, error);
+
+  av::ParticleSamplerOptions options;
+  options.NumSites = static_cast<std::size_t>(this->NumberOfSites);
+  options.Iterations = this->Iterations;
+  options.Seed = static_cast<std::uint64_t>(static_cast<std::uint32_t>(this->Seed));
+  options.KernelWidthFactor = this->KernelWidthFactor;
+  options.NeighbourCutoff = this->NeighbourCutoff;
+  options.Progress = [this](double f) {
+    this->UpdateProgress(0.05 + 0.9 * f);
+    return !this->GetAbortExecute();
+  };
+
+  av::ParticleSamplerResult result;
+  av::MetricField siteMetric;
+  try
+  {
+    this->UpdateProgress(0.01);
+    result = av::SampleParticles(mesh, embedding, options);
+    if (haveMetric)
+    {
+      siteMetric = av::InterpolateMetricAtSites(mesh, metric, result.Sites);
+    }
+  }
+  catch (const av::InputError& e)
+  {
+    vtkErrorMacro(<< e.what());
+    return 0;
+  }
+  catch (const std::exception& e)
+  {
+    vtkErrorMacro("particle sampling failed: " << e.what());
+    return 0;
+  }
+  if (result.Aborted)
+  {
+    vtkWarningMacro("sampling aborted after " << result.IterationsDone << " iterations");
+  }
+  this->Sigma = result.Sigma;
+
+  const av::SiteSet& sites = result.Sites;
+  const std::size_t n = sites.NumSites();
+  const int dim = sites.Dim;
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(static_cast<vtkIdType>(n));
+  vtkNew<vtkCellArray> verts;
+  verts->AllocateExact(static_cast<vtkIdType>(n), static_cast<vtkIdType>(n));
+  vtkNew<vtkIntArray> cellIds;
+  cellIds->SetName("CellId");
+  cellIds->SetNumberOfTuples(static_cast<vtkIdType>(n));
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const double* x = sites.At(i);
+    points->SetPoint(
+      static_cast<vtkIdType>(i), x[0], x[1], mesh.AmbientDim == 3 ? x[2] : 0.0);
+    const vtkIdType id = static_cast<vtkIdType>(i);
+    verts->InsertNextCell(1, &id);
+    cellIds->SetValue(static_cast<vtkIdType>(i), sites.CellIds[i]);
+  }
+  output->SetPoints(points);
+  output->SetVerts(verts);
+  vtkPointData* pd = output->GetPointData();
+  pd->AddArray(vtkAnisoDataConversion::MakeArray("Embedding", sites.Coords.data(), n, dim));
+  pd->AddArray(cellIds);
+  pd->AddArray(vtkAnisoDataConversion::MakeArray("Barycentric", sites.Bary.data(), n, 4));
+  if (haveMetric)
+  {
+    auto m = vtkAnisoDataConversion::MakeArray("Metric", siteMetric.Values.data(), n, 6);
+    pd->AddArray(m);
+    pd->SetActiveTensors("Metric");
+  }
+  vtkFieldData* fd = output->GetFieldData();
+  AddFieldValue(fd, "Sigma", result.Sigma);
+  AddFieldValue(fd, "EmbeddedMeasure", result.EmbeddedMeasure);
+  AddFieldValue(fd, "MeanNeighbours", result.MeanNeighbours);
+  AddFieldValue(fd, "SamplerIterations", result.IterationsDone);
+  AddFieldValue(fd, "SamplerSeconds", result.Seconds);
+
+  vtkNew<vtkIntArray> iteration;
+  iteration->SetName("Iteration");
+  vtkNew<vtkDoubleArray> energy;
+  energy->SetName("Energy");
+  for (std::size_t k = 0; k < result.Energy.size(); ++k)
+  {
+    iteration->InsertNextValue(static_cast<int>(k));
+    energy->InsertNextValue(result.Energy[k]);
+  }
+  energyTable->AddColumn(iteration);
+  energyTable->AddColumn(energy);
+  this->UpdateProgress(1.0);
+  return 1;
+}
+
+void vtkAnisoParticleSampler::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "NumberOfSites: " << this->NumberOfSites << "\n";
+  os << indent << "Iterations: " << this->Iterations << "\n";
+  os << indent << "Seed: " << this->Seed << "\n";
+  os << indent << "KernelWidthFactor: " << this->KernelWidthFactor << "\n";
+  os << indent << "NeighbourCutoff: " << this->NeighbourCutoff << "\n";
+}

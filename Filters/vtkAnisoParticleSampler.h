@@ -1,0 +1,97 @@
+/**
+ * @class vtkAnisoParticleSampler
+ * @brief Isotropic particle sampling of the embedded mesh (paper §4.1): sites whose spacing in
+ * R^m̄ is uniform, hence anisotropic (following the metric) in the input space.
+ *
+ * Input: the output of vtkAnisoEmbedding, a triangle / tetrahedral mesh with an embedding point
+ * array (m̄ components, the first m equal to the input coordinates), chosen with
+ * SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, name); default
+ * "Embedding".
+ *
+ * NumberOfSites particles are drawn on the embedded mesh (probability proportional to the
+ * embedded element measure) and spread by minimising the Gaussian repulsion energy
+ * E = sum exp(-|x_p - x_q|^2 / (4 sigma^2)) with sigma = KernelWidthFactor (|embedded mesh| / n)^{1/k}
+ * over pairs closer than NeighbourCutoff sigma (projected L-BFGS, particles stay on / in the
+ * embedded mesh). Deterministic for a given Seed.
+ *
+ * Output 0 (vtkPolyData): one vertex cell per site at its input-space position (the first m
+ * embedded coordinates; z = 0 for a flat 2D domain), with point arrays
+ * - "Embedding": m̄ components, the embedded position;
+ * - "CellId": index of the containing triangle / tetrahedron (= input cell id when the input
+ *   has only triangles / tetrahedra);
+ * - "Barycentric": 4 components, barycentric coordinates in that cell (4th = 0 for triangles);
+ * - "Metric": the input's metric (6 components) interpolated at the site, when the input has
+ *   one (active point tensors or an array named "Metric").
+ * Field data: "Sigma", "EmbeddedMeasure", "MeanNeighbours", "SamplerIterations",
+ * "SamplerSeconds".
+ * Output 1 (vtkTable): "Iteration", "Energy" per iteration (0 = initial sampling).
+ *
+ * Parameters: NumberOfSites (default 2000; between 1 and 8 x the input's point count),
+ * Iterations (50), Seed (1), KernelWidthFactor (0.3), NeighbourCutoff (5).
+ */
+#ifndef vtkAnisoParticleSampler_h
+#define vtkAnisoParticleSampler_h
+
+#include "AnisoVoronoiFiltersModule.h" // export macro
+#include <vtkPolyDataAlgorithm.h>
+
+class ANISOVORONOIFILTERS_EXPORT vtkAnisoParticleSampler : public vtkPolyDataAlgorithm
+{
+public:
+  static vtkAnisoParticleSampler* New();
+  vtkTypeMacro(vtkAnisoParticleSampler, vtkPolyDataAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /// Number of sites n (default 2000). 0 or more than 8 x the input's point count is an error.
+  vtkSetClampMacro(NumberOfSites, int, 0, VTK_INT_MAX);
+  vtkGetMacro(NumberOfSites, int);
+  ///@}
+
+  ///@{
+  /// L-BFGS iterations of the repulsion (default 50 as the paper; 0 = random sampling only).
+  vtkSetClampMacro(Iterations, int, 0, 100000);
+  vtkGetMacro(Iterations, int);
+  ///@}
+
+  ///@{
+  /// Seed of the initial random sampling (default 1): same seed, same sites.
+  vtkSetMacro(Seed, int);
+  vtkGetMacro(Seed, int);
+  ///@}
+
+  ///@{
+  /// sigma = KernelWidthFactor * (|embedded mesh| / n)^{1/k} (default 0.3, the paper's).
+  vtkSetClampMacro(KernelWidthFactor, double, 1e-3, 10.0);
+  vtkGetMacro(KernelWidthFactor, double);
+  ///@}
+
+  ///@{
+  /// Pairs farther apart than NeighbourCutoff * sigma do not interact (default 5).
+  vtkSetClampMacro(NeighbourCutoff, double, 1.0, 20.0);
+  vtkGetMacro(NeighbourCutoff, double);
+  ///@}
+
+  /// Kernel width of the last run (also in the output's field data).
+  vtkGetMacro(Sigma, double);
+
+protected:
+  vtkAnisoParticleSampler();
+  ~vtkAnisoParticleSampler() override = default;
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int FillOutputPortInformation(int port, vtkInformation* info) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  int NumberOfSites = 2000;
+  int Iterations = 50;
+  int Seed = 1;
+  double KernelWidthFactor = 0.3;
+  double NeighbourCutoff = 5.0;
+  double Sigma = 0.0;
+
+private:
+  vtkAnisoParticleSampler(const vtkAnisoParticleSampler&) = delete;
+  void operator=(const vtkAnisoParticleSampler&) = delete;
+};
+
+#endif

@@ -1,0 +1,98 @@
+"""pvbatch: the plugin's sampling / Voronoi / Delaunay / quality proxies.
+
+Cube1 (6^3 grid) -> Aniso Embedding (5D) -> Aniso Particle Sampler (80 sites) ->
+Aniso Restricted Voronoi (ShrinkFactor 0.8) and Aniso Restricted Delaunay -> Aniso Mesh
+Quality. Checks the numbers that come back to the client (one cell per site, shrunk volume =
+0.8^3 of the box, dual mesh vertices = sites, quality in range, histogram total) and renders
+the shrunken cells coloured by SiteId into a PNG that must not be blank.
+Run: xvfb-run -a pvbatch --force-offscreen-rendering TestPluginVoronoi.py (env AV_PLUGIN).
+"""
+import os
+import sys
+import tempfile
+
+from paraview.simple import *  # noqa: F401,F403
+from paraview import servermanager
+
+plugin = os.environ.get("AV_PLUGIN")
+assert plugin and os.path.exists(plugin), "set AV_PLUGIN to the built AnisoVoronoi.so"
+LoadPlugin(plugin, ns=globals())
+
+
+def field(proxy, name, port=0):
+    data = servermanager.Fetch(proxy, port) if port else servermanager.Fetch(proxy)
+    arr = data.GetFieldData().GetArray(name)
+    assert arr is not None, name
+    return arr.GetTuple1(0)
+
+
+source = AnisoAnalyticMetricSource(Preset=1, Resolution=6)  # Cube1 on [0, 1]^3
+embedding = AnisoEmbedding(Input=source, TargetDimension=5, Iterations=10)
+sampler = AnisoParticleSampler(Input=embedding, NumberOfSites=80, Iterations=10)
+sampler.UpdatePipeline()
+sites = servermanager.Fetch(sampler)
+assert sites.GetNumberOfPoints() == 80, sites.GetNumberOfPoints()
+assert sites.GetPointData().GetArray("Embedding").GetNumberOfComponents() == 5
+
+voronoi = AnisoRestrictedVoronoi(Input=embedding, Sites=sampler, ShrinkFactor=0.8)
+voronoi.UpdatePipeline()
+cells = servermanager.Fetch(voronoi)
+measure = cells.GetCellData().GetArray("Measure")
+site_ids = {int(cells.GetCellData().GetArray("SiteId").GetTuple1(c))
+            for c in range(cells.GetNumberOfCells())}
+total = sum(measure.GetTuple1(c) for c in range(cells.GetNumberOfCells()))
+print("RVD: %d cells, shrunk volume %.12g" % (cells.GetNumberOfCells(), total))
+assert cells.GetNumberOfCells() == 80
+assert site_ids == set(range(80))
+assert cells.GetCellType(0) == 42  # VTK_POLYHEDRON
+assert abs(total - 0.8 ** 3) < 1e-9, total
+assert field(voronoi, "RelativeVolumeError") < 1e-9
+faces = servermanager.Fetch(voronoi, voronoi, 1)
+kinds = faces.GetCellData().GetArray("FaceKind")
+assert kinds is not None and faces.GetNumberOfCells() > cells.GetNumberOfCells()
+assert {int(kinds.GetTuple1(c)) for c in range(faces.GetNumberOfCells())} == {0, 1}
+
+delaunay = AnisoRestrictedDelaunay(Input=embedding, Sites=sampler)
+quality = AnisoMeshQuality(Input=delaunay)
+quality.UpdatePipeline()
+mesh = servermanager.Fetch(delaunay)
+print("RDT: %d tets, inverted %g, non-manifold %g" % (
+    mesh.GetNumberOfCells(), field(delaunay, "NumInverted"), field(delaunay, "NumNonManifoldFaces")))
+assert mesh.GetNumberOfPoints() == 80
+assert mesh.GetNumberOfCells() > 80
+q = servermanager.Fetch(quality)
+gavg, gmin = q.GetFieldData().GetArray("G_avg").GetTuple1(0), q.GetFieldData().GetArray("G_min").GetTuple1(0)
+print("quality: G_min %.3f G_avg %.3f theta_min %.2f" % (
+    gmin, gavg, q.GetFieldData().GetArray("theta_min").GetTuple1(0)))
+assert 0.0 <= gmin <= gavg <= 1.0 and gavg > 0.5
+hist = servermanager.Fetch(quality, quality, 1)
+assert sum(hist.GetValueByName(r, "Count").ToInt() for r in range(hist.GetNumberOfRows())) == \
+    mesh.GetNumberOfCells()
+
+# Render the shrunken cells coloured by SiteId; the picture must not be blank.
+view = CreateView("RenderView")
+view.ViewSize = [400, 300]
+view.OrientationAxesVisibility = 0
+display = Show(voronoi, view)
+ColorBy(display, ("CELLS", "SiteId"))
+display.RescaleTransferFunctionToDataRange(True)
+view.CameraPosition = [2.2, -1.6, 1.9]
+view.CameraFocalPoint = [0.5, 0.5, 0.5]
+view.CameraViewUp = [0, 0, 1]
+view.ResetCamera()
+Render(view)
+png = os.path.join(tempfile.mkdtemp(), "voronoi_cells.png")
+SaveScreenshot(png, view, ImageResolution=[400, 300])
+assert os.path.getsize(png) > 1000
+
+from vtkmodules.vtkIOImage import vtkPNGReader  # noqa: E402
+
+reader = vtkPNGReader()
+reader.SetFileName(png)
+reader.Update()
+scalars = reader.GetOutput().GetPointData().GetScalars()
+colours = {scalars.GetTuple(i) for i in range(0, scalars.GetNumberOfTuples(), 7)}
+print("distinct colours sampled: %d" % len(colours))
+assert len(colours) > 20, "the screenshot looks blank"
+print("OK")
+sys.exit(0)

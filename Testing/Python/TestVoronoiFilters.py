@@ -1,0 +1,126 @@
+"""The sampling / Voronoi / Delaunay / quality filters from Python (/usr/bin/python3).
+
+Gaussian2D (paper §6.2) on a 25 x 25 grid: embedding in 3D, 200 sites, then
+- the Voronoi polygons tile the square [-1, 1]^2 (shoelace areas = "Measure", sum = 4),
+  each polygon is counter-clockwise and belongs to one site;
+- the edges output: boundary edges have total length 8 (the square's perimeter);
+- the dual mesh uses every site, has no inverted triangle and its quality is good;
+- ShrinkFactor scales areas by its square.
+"""
+import math
+import sys
+
+from vtkmodules.vtkCommonCore import vtkCommand
+from anisovoronoi import (vtkAnisoAnalyticMetricSource, vtkAnisoEmbedding,
+                          vtkAnisoParticleSampler, vtkAnisoRestrictedVoronoi,
+                          vtkAnisoRestrictedDelaunay, vtkAnisoMeshQuality)
+
+
+def field(obj, name):
+    arr = obj.GetFieldData().GetArray(name)
+    assert arr is not None, name
+    return arr.GetTuple1(0)
+
+
+def polygon_area(pts, ids):
+    a = 0.0
+    for i in range(len(ids)):
+        x0, y0, _ = pts.GetPoint(ids[i])
+        x1, y1, _ = pts.GetPoint(ids[(i + 1) % len(ids)])
+        a += x0 * y1 - x1 * y0
+    return 0.5 * a
+
+
+source = vtkAnisoAnalyticMetricSource()
+source.SetPreset(0)  # Gaussian2D on [-1, 1]^2
+source.SetResolution(25)
+embedding = vtkAnisoEmbedding()
+embedding.SetInputConnection(source.GetOutputPort())
+embedding.SetTargetDimension(3)
+sampler = vtkAnisoParticleSampler()
+sampler.SetInputConnection(embedding.GetOutputPort())
+sampler.SetNumberOfSites(200)
+sampler.SetIterations(30)
+rvd = vtkAnisoRestrictedVoronoi()
+rvd.SetInputConnection(0, embedding.GetOutputPort())
+rvd.SetInputConnection(1, sampler.GetOutputPort())
+rvd.Update()
+
+sites = sampler.GetOutput()
+assert sites.GetNumberOfPoints() == 200
+for name in ("Embedding", "CellId", "Barycentric", "Metric"):
+    assert sites.GetPointData().GetArray(name) is not None, name
+assert sites.GetPointData().GetArray("Barycentric").GetNumberOfComponents() == 4
+assert field(sites, "Sigma") > 0
+
+cells = rvd.GetOutput()
+pts = cells.GetPoints()
+measure = cells.GetCellData().GetArray("Measure")
+site_id = cells.GetCellData().GetArray("SiteId")
+total = 0.0
+seen = set()
+for c in range(cells.GetNumberOfCells()):
+    assert cells.GetCellType(c) == 7  # VTK_POLYGON
+    cell = cells.GetCell(c)
+    ids = [cell.GetPointId(i) for i in range(cell.GetNumberOfPoints())]
+    area = polygon_area(pts, ids)
+    assert area > 0, "polygon %d is not counter-clockwise" % c
+    assert abs(area - measure.GetTuple1(c)) <= 1e-9 * max(area, 1e-12), (area, measure.GetTuple1(c))
+    total += area
+    seen.add(int(site_id.GetTuple1(c)))
+print("RVD: %d polygons, area %.15g" % (cells.GetNumberOfCells(), total))
+assert abs(total - 4.0) < 1e-9
+assert seen == set(range(200))
+assert field(cells, "RelativeVolumeError") < 1e-9
+assert field(cells, "NumberOfVoronoiCells") == 200
+
+edges = rvd.GetOutputDataObject(1)
+kind = edges.GetCellData().GetArray("FaceKind")
+perimeter = 0.0
+for c in range(edges.GetNumberOfCells()):
+    if kind.GetTuple1(c) == 1:
+        cell = edges.GetCell(c)
+        p0 = edges.GetPoint(cell.GetPointId(0))
+        p1 = edges.GetPoint(cell.GetPointId(1))
+        perimeter += math.dist(p0, p1)
+print("boundary length %.15g" % perimeter)
+assert abs(perimeter - 8.0) < 1e-9
+
+rvd.SetShrinkFactor(0.8)
+rvd.Update()
+shrunk = sum(rvd.GetOutput().GetCellData().GetArray("Measure").GetTuple1(c)
+             for c in range(rvd.GetOutput().GetNumberOfCells()))
+assert abs(shrunk / total - 0.64) < 1e-9, shrunk / total
+
+rdt = vtkAnisoRestrictedDelaunay()
+rdt.SetInputConnection(0, embedding.GetOutputPort())
+rdt.SetInputConnection(1, sampler.GetOutputPort())
+quality = vtkAnisoMeshQuality()
+quality.SetInputConnection(rdt.GetOutputPort())
+quality.Update()
+mesh = rdt.GetOutput()
+print("RDT: %d triangles, inverted %g, unused %g" % (
+    mesh.GetNumberOfCells(), field(mesh, "NumInverted"), field(mesh, "NumUnusedSites")))
+assert mesh.GetNumberOfPoints() == 200
+assert field(mesh, "NumInverted") == 0
+assert field(mesh, "NumUnusedSites") == 0
+# A triangulated disk with V = 200: F = 2V - 2 - B (B boundary vertices), so F < 2V.
+assert 200 < mesh.GetNumberOfCells() < 400
+q = quality.GetOutput()
+print("quality: G_min %.3f G_avg %.3f theta_min %.2f pct_bad %.2f" % (
+    field(q, "G_min"), field(q, "G_avg"), field(q, "theta_min"), field(q, "pct_bad")))
+assert field(q, "G_avg") > 0.8
+assert quality.GetGAvg() == field(q, "G_avg")
+hist = quality.GetOutputDataObject(1)
+assert hist.GetNumberOfRows() == 18
+assert sum(hist.GetValueByName(r, "Count").ToInt() for r in range(18)) == mesh.GetNumberOfCells()
+
+# Bad input: no embedding array -> error event, empty output, no exception.
+errors = []
+bad = vtkAnisoParticleSampler()
+bad.AddObserver(vtkCommand.ErrorEvent, lambda obj, ev: errors.append(ev))
+bad.SetInputConnection(source.GetOutputPort())
+bad.Update()
+assert errors and bad.GetOutput().GetNumberOfPoints() == 0
+print("OK")
+sys.exit(0)
