@@ -22,8 +22,11 @@ namespace
 {
 /// A point array scattered from the kernel's compacted vertices (`used`; empty = identity);
 /// points used by no triangle get zeros.
-vtkSmartPointer<vtkDoubleArray> Scatter(const char* name, const std::vector<double>& values,
-  int comps, vtkIdType numPoints, const std::vector<vtkIdType>& used)
+vtkSmartPointer<vtkDoubleArray> Scatter(const char* name,
+  const std::vector<double>& values,
+  int comps,
+  vtkIdType numPoints,
+  const std::vector<vtkIdType>& used)
 {
   auto a = vtkSmartPointer<vtkDoubleArray>::New();
   a->SetName(name);
@@ -36,8 +39,8 @@ vtkSmartPointer<vtkDoubleArray> Scatter(const char* name, const std::vector<doub
   }
   a->FillValue(0.0);
   for (std::size_t k = 0; k < used.size(); ++k)
-    std::copy(values.begin() + k * comps, values.begin() + (k + 1) * comps,
-      a->GetPointer(used[k] * comps));
+    std::copy(
+      values.begin() + k * comps, values.begin() + (k + 1) * comps, a->GetPointer(used[k] * comps));
   return a;
 }
 }
@@ -52,8 +55,9 @@ vtkAnisoCurvatureMetric::~vtkAnisoCurvatureMetric()
   this->SetMetricArrayName(nullptr);
 }
 
-int vtkAnisoCurvatureMetric::RequestData(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+int vtkAnisoCurvatureMetric::RequestData(vtkInformation*,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
 {
   vtkDataSet* input = vtkDataSet::GetData(inputVector[0]);
   vtkDataSet* output = vtkDataSet::GetData(outputVector);
@@ -98,9 +102,10 @@ int vtkAnisoCurvatureMetric::RequestData(
       }
       else
       {
-        vtkErrorMacro("cell " << c << " is not a surface triangle: the curvature metric needs a "
-                                      "triangle surface (extract it with vtkDataSetSurfaceFilter "
-                                      "and vtkTriangleFilter)");
+        vtkErrorMacro("cell " << c
+                              << " is not a surface triangle: the curvature metric needs a "
+                                 "triangle surface (extract it with vtkDataSetSurfaceFilter "
+                                 "and vtkTriangleFilter)");
       }
       return 0;
     }

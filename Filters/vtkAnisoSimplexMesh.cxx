@@ -37,23 +37,40 @@ std::string PluralName(int type)
 {
   switch (type)
   {
-    case VTK_TRIANGLE: return "triangles";
-    case VTK_TETRA: return "tetrahedra";
-    case VTK_QUAD: return "quads";
-    case VTK_PIXEL: return "pixels";
-    case VTK_HEXAHEDRON: return "hexahedra";
-    case VTK_VOXEL: return "voxels";
-    case VTK_WEDGE: return "wedges";
-    case VTK_PYRAMID: return "pyramids";
-    case VTK_QUADRATIC_TRIANGLE: return "quadratic triangles";
-    case VTK_QUADRATIC_QUAD: return "quadratic quads";
-    case VTK_QUADRATIC_TETRA: return "quadratic tetrahedra";
-    case VTK_QUADRATIC_HEXAHEDRON: return "quadratic hexahedra";
-    case VTK_QUADRATIC_WEDGE: return "quadratic wedges";
-    case VTK_QUADRATIC_PYRAMID: return "quadratic pyramids";
-    case VTK_BIQUADRATIC_QUAD: return "biquadratic quads";
-    case VTK_TRIQUADRATIC_HEXAHEDRON: return "triquadratic hexahedra";
-    default: return av::VtkCellTypeName(type) + " cells";
+    case VTK_TRIANGLE:
+      return "triangles";
+    case VTK_TETRA:
+      return "tetrahedra";
+    case VTK_QUAD:
+      return "quads";
+    case VTK_PIXEL:
+      return "pixels";
+    case VTK_HEXAHEDRON:
+      return "hexahedra";
+    case VTK_VOXEL:
+      return "voxels";
+    case VTK_WEDGE:
+      return "wedges";
+    case VTK_PYRAMID:
+      return "pyramids";
+    case VTK_QUADRATIC_TRIANGLE:
+      return "quadratic triangles";
+    case VTK_QUADRATIC_QUAD:
+      return "quadratic quads";
+    case VTK_QUADRATIC_TETRA:
+      return "quadratic tetrahedra";
+    case VTK_QUADRATIC_HEXAHEDRON:
+      return "quadratic hexahedra";
+    case VTK_QUADRATIC_WEDGE:
+      return "quadratic wedges";
+    case VTK_QUADRATIC_PYRAMID:
+      return "quadratic pyramids";
+    case VTK_BIQUADRATIC_QUAD:
+      return "biquadratic quads";
+    case VTK_TRIQUADRATIC_HEXAHEDRON:
+      return "triquadratic hexahedra";
+    default:
+      return av::VtkCellTypeName(type) + " cells";
   }
 }
 
@@ -74,8 +91,9 @@ int vtkAnisoSimplexMesh::FillInputPortInformation(int, vtkInformation* info)
   return 1;
 }
 
-int vtkAnisoSimplexMesh::RequestData(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+int vtkAnisoSimplexMesh::RequestData(vtkInformation*,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
 {
   vtkDataSet* input = vtkDataSet::GetData(inputVector[0]);
   vtkUnstructuredGrid* output = vtkUnstructuredGrid::GetData(outputVector);
@@ -199,8 +217,13 @@ int vtkAnisoSimplexMesh::RequestData(
   av::SimplexSplitResult split;
   try
   {
-    split = av::SplitIntoSimplices(coords.data(), static_cast<std::size_t>(numPoints),
-      types.data(), offsets.data(), connectivity.data(), types.size(), 3);
+    split = av::SplitIntoSimplices(coords.data(),
+      static_cast<std::size_t>(numPoints),
+      types.data(),
+      offsets.data(),
+      connectivity.data(),
+      types.size(),
+      3);
   }
   catch (const av::InputError& e)
   {
@@ -288,7 +311,8 @@ int vtkAnisoSimplexMesh::RequestData(
     os << (first ? "" : ", ") << kv.second << " " << PluralName(kv.first);
     first = false;
   }
-  os << " into " << piecesOfSplitCells << " " << (mesh.SimplexDim == 3 ? "tetrahedra" : "triangles");
+  os << " into " << piecesOfSplitCells << " "
+     << (mesh.SimplexDim == 3 ? "tetrahedra" : "triangles");
   os << " (" << split.NumAddedPoints << " centre points added";
   if (dropped > 0)
     os << ", " << dropped << " unused or mid-edge points dropped";

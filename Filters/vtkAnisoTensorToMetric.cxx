@@ -41,7 +41,8 @@ std::vector<std::int32_t> ExtractEdges(vtkDataSet* input)
   std::vector<std::pair<std::int32_t, std::int32_t>> pairs;
   vtkNew<vtkGenericCell> cell;
   std::vector<vtkIdType> chain;
-  auto addChain = [&pairs](const std::vector<vtkIdType>& ids) {
+  auto addChain = [&pairs](const std::vector<vtkIdType>& ids)
+  {
     for (std::size_t k = 0; k + 1 < ids.size(); ++k)
     {
       auto a = static_cast<std::int32_t>(ids[k]);
@@ -111,8 +112,9 @@ vtkAnisoTensorToMetric::~vtkAnisoTensorToMetric()
   this->SetMetricArrayName(nullptr);
 }
 
-int vtkAnisoTensorToMetric::RequestData(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+int vtkAnisoTensorToMetric::RequestData(vtkInformation*,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
 {
   vtkDataSet* input = vtkDataSet::GetData(inputVector[0]);
   vtkDataSet* output = vtkDataSet::GetData(outputVector);
@@ -137,10 +139,10 @@ int vtkAnisoTensorToMetric::RequestData(
   vtkDataArray* tensors = this->GetInputArrayToProcess(0, inputVector, association);
   vtkInformation* arrayInfo = this->GetInputArrayInformation(0);
   if (!tensors && arrayInfo && arrayInfo->Has(vtkDataObject::FIELD_NAME()) &&
-    arrayInfo->Get(vtkDataObject::FIELD_NAME()))
+    arrayInfo->Get(vtkDataObject::FIELD_NAME()) && *arrayInfo->Get(vtkDataObject::FIELD_NAME()))
   {
-    vtkErrorMacro("the input has no array named '" << arrayInfo->Get(vtkDataObject::FIELD_NAME())
-                                                  << "'");
+    vtkErrorMacro(
+      "the input has no array named '" << arrayInfo->Get(vtkDataObject::FIELD_NAME()) << "'");
     return 0;
   }
   if (!tensors)
@@ -235,8 +237,8 @@ int vtkAnisoTensorToMetric::RequestData(
   options.Interpretation = this->Interpretation == TENSOR_AS_METRIC
     ? av::TensorInterpretation::TensorAsMetric
     : av::TensorInterpretation::EigenvaluesAsStretch;
-  options.Eigenvalues =
-    this->EigenvalueMode == CLAMP ? av::EigenvalueHandling::Clamp : av::EigenvalueHandling::Absolute;
+  options.Eigenvalues = this->EigenvalueMode == CLAMP ? av::EigenvalueHandling::Clamp
+                                                      : av::EigenvalueHandling::Absolute;
   options.MinimumEigenvalue = this->MinimumEigenvalue;
   options.MaximumAnisotropy = this->MaximumAnisotropy;
   options.SmoothingIterations = this->SmoothingIterations;
@@ -278,8 +280,8 @@ int vtkAnisoTensorToMetric::RequestData(
   av::TensorToMetricResult result;
   try
   {
-    result = av::TensorToMetric(
-      values.data(), static_cast<std::size_t>(numTuples), nc, options, edges);
+    result =
+      av::TensorToMetric(values.data(), static_cast<std::size_t>(numTuples), nc, options, edges);
   }
   catch (const av::InputError& e)
   {

@@ -68,7 +68,10 @@ public:
   /// How the tensor becomes a metric (default EIGENVALUES_AS_STRETCH).
   vtkSetClampMacro(Interpretation, int, EIGENVALUES_AS_STRETCH, TENSOR_AS_METRIC);
   vtkGetMacro(Interpretation, int);
-  void SetInterpretationToEigenvaluesAsStretch() { this->SetInterpretation(EIGENVALUES_AS_STRETCH); }
+  void SetInterpretationToEigenvaluesAsStretch()
+  {
+    this->SetInterpretation(EIGENVALUES_AS_STRETCH);
+  }
   void SetInterpretationToTensorAsMetric() { this->SetInterpretation(TENSOR_AS_METRIC); }
   ///@}
 

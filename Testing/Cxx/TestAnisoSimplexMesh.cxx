@@ -105,7 +105,8 @@ vtkSmartPointer<vtkUnstructuredGrid> MakeBlock(int nx, int ny, int nz, vtkIdType
   field->SetName("F");
   vtkNew<vtkIntArray> ids;
   ids->SetName("Id");
-  auto addPoint = [&](const double r[3]) {
+  auto addPoint = [&](const double r[3])
+  {
     double x[3];
     for (int i = 0; i < 3; ++i)
       x[i] = A[i][0] * r[0] + A[i][1] * r[1] + A[i][2] * r[2];
@@ -130,15 +131,30 @@ vtkSmartPointer<vtkUnstructuredGrid> MakeBlock(int nx, int ny, int nz, vtkIdType
     for (int j = 0; j < ny; ++j)
       for (int i = 0; i < nx; ++i)
       {
-        vtkIdType hex[20] = { pid(i, j, k), pid(i + 1, j, k), pid(i + 1, j + 1, k),
-          pid(i, j + 1, k), pid(i, j, k + 1), pid(i + 1, j, k + 1), pid(i + 1, j + 1, k + 1),
+        vtkIdType hex[20] = { pid(i, j, k),
+          pid(i + 1, j, k),
+          pid(i + 1, j + 1, k),
+          pid(i, j + 1, k),
+          pid(i, j, k + 1),
+          pid(i + 1, j, k + 1),
+          pid(i + 1, j + 1, k + 1),
           pid(i, j + 1, k + 1) };
         const vtkIdType c = grid->GetNumberOfCells();
         if (c == quadratic)
         {
           // VTK edge order: 0-1, 1-2, 2-3, 3-0, 4-5, 5-6, 6-7, 7-4, 0-4, 1-5, 2-6, 3-7.
-          const int edges[12][2] = { { 0, 1 }, { 1, 2 }, { 2, 3 }, { 3, 0 }, { 4, 5 }, { 5, 6 },
-            { 6, 7 }, { 7, 4 }, { 0, 4 }, { 1, 5 }, { 2, 6 }, { 3, 7 } };
+          const int edges[12][2] = { { 0, 1 },
+            { 1, 2 },
+            { 2, 3 },
+            { 3, 0 },
+            { 4, 5 },
+            { 5, 6 },
+            { 6, 7 },
+            { 7, 4 },
+            { 0, 4 },
+            { 1, 5 },
+            { 2, 6 },
+            { 3, 7 } };
           for (int e = 0; e < 12; ++e)
           {
             double r[3];
@@ -206,7 +222,8 @@ void TestHexBlock(EventCounter* events)
   CHECK(filter->GetNumberOfAddedPoints() == numHex);
   // Corners + centres; the 12 mid-edge nodes of the quadratic cell are dropped.
   CHECK(out->GetNumberOfPoints() == inPoints - 12 + numHex);
-  auto* summary = vtkStringArray::SafeDownCast(out->GetFieldData()->GetAbstractArray("SplitSummary"));
+  auto* summary =
+    vtkStringArray::SafeDownCast(out->GetFieldData()->GetAbstractArray("SplitSummary"));
   CHECK(summary && summary->GetNumberOfValues() == 1 &&
     summary->GetValue(0).find("split 11 hexahedra, 1 quadratic hexahedra into 144 tetrahedra") !=
       std::string::npos);
@@ -238,7 +255,8 @@ void TestHexBlock(EventCounter* events)
     ref->GetTuple(i, r);
     out->GetPoint(i, x);
     for (int d = 0; d < 3; ++d)
-      maxErr = std::max(maxErr, std::abs(x[d] - (A[d][0] * r[0] + A[d][1] * r[1] + A[d][2] * r[2])));
+      maxErr =
+        std::max(maxErr, std::abs(x[d] - (A[d][0] * r[0] + A[d][1] * r[1] + A[d][2] * r[2])));
     maxErr = std::max(maxErr, std::abs(field->GetTuple1(i) - Field(r)));
     const bool isCentre = std::abs(r[0] - std::floor(r[0]) - 0.5) < 1e-12;
     centres += isCentre;
@@ -247,7 +265,8 @@ void TestHexBlock(EventCounter* events)
       const vtkIdType id = static_cast<vtkIdType>(ids->GetTuple1(i));
       double y[3];
       block->GetPoint(id, y);
-      maxErr = std::max(maxErr, std::abs(x[0] - y[0]) + std::abs(x[1] - y[1]) + std::abs(x[2] - y[2]));
+      maxErr =
+        std::max(maxErr, std::abs(x[0] - y[0]) + std::abs(x[1] - y[1]) + std::abs(x[2] - y[2]));
     }
   }
   CHECK(maxErr < 1e-12);
@@ -278,8 +297,9 @@ void TestHexBlock(EventCounter* events)
     const int f[4][3] = { { 0, 1, 2 }, { 0, 1, 3 }, { 0, 2, 3 }, { 1, 2, 3 } };
     for (const auto& face : f)
     {
-      std::array<vtkIdType, 3> key = { cell->GetId(face[0]), cell->GetId(face[1]),
-        cell->GetId(face[2]) };
+      std::array<vtkIdType, 3> key = {
+        cell->GetId(face[0]), cell->GetId(face[1]), cell->GetId(face[2])
+      };
       std::sort(key.begin(), key.end());
       ++faces[key];
     }
@@ -379,7 +399,8 @@ void TestQuadsAndErrors(EventCounter* events)
     for (int k = 0; k < 3; ++k)
       out->GetPoint(ids->GetId(k), p[k]);
     area += 0.5 *
-      std::abs((p[1][0] - p[0][0]) * (p[2][1] - p[0][1]) - (p[1][1] - p[0][1]) * (p[2][0] - p[0][0]));
+      std::abs(
+        (p[1][0] - p[0][0]) * (p[2][1] - p[0][1]) - (p[1][1] - p[0][1]) * (p[2][0] - p[0][0]));
   }
   CHECK_NEAR(area, 3.0 * 1.0, 1e-12); // 3 x 2 parallelograms of base 1 and height 0.5
 

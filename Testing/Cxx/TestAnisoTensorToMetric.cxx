@@ -77,9 +77,11 @@ void Rotation(double r[3][3])
   vtkMath::Normalize(axis);
   const double a = 0.7, c = std::cos(a), s = std::sin(a);
   const double x = axis[0], y = axis[1], z = axis[2];
-  const double m[3][3] = { { c + x * x * (1 - c), x * y * (1 - c) - z * s, x * z * (1 - c) + y * s },
+  const double m[3][3] = {
+    { c + x * x * (1 - c), x * y * (1 - c) - z * s, x * z * (1 - c) + y * s },
     { y * x * (1 - c) + z * s, c + y * y * (1 - c), y * z * (1 - c) - x * s },
-    { z * x * (1 - c) - y * s, z * y * (1 - c) + x * s, c + z * z * (1 - c) } };
+    { z * x * (1 - c) - y * s, z * y * (1 - c) + x * s, c + z * z * (1 - c) }
+  };
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j)
       r[i][j] = m[i][j];
@@ -291,8 +293,15 @@ void TestNonSymmetric(EventCounter* events)
     Pack6(t, v);
     sym->SetTypedTuple(i, v);
     const double a[3] = { 0.3, -0.2, 0.1 }; // antisymmetric part
-    const double f[9] = { t[0][0], t[0][1] + a[0], t[0][2] + a[1], t[1][0] - a[0], t[1][1],
-      t[1][2] + a[2], t[2][0] - a[1], t[2][1] - a[2], t[2][2] };
+    const double f[9] = { t[0][0],
+      t[0][1] + a[0],
+      t[0][2] + a[1],
+      t[1][0] - a[0],
+      t[1][1],
+      t[1][2] + a[2],
+      t[2][0] - a[1],
+      t[2][1] - a[2],
+      t[2][2] };
     full->SetTypedTuple(i, f);
   }
   grid->GetPointData()->AddArray(sym);
@@ -306,9 +315,8 @@ void TestNonSymmetric(EventCounter* events)
   CHECK(filter->GetExecutive()->Update() == 1);
   CHECK(events->Warnings == 0);
   vtkNew<vtkDoubleArray> reference;
-  reference->DeepCopy(vtkDataSet::SafeDownCast(filter->GetOutputDataObject(0))
-                        ->GetPointData()
-                        ->GetArray("Metric"));
+  reference->DeepCopy(
+    vtkDataSet::SafeDownCast(filter->GetOutputDataObject(0))->GetPointData()->GetArray("Metric"));
 
   filter->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "Full");
   events->Reset();
@@ -386,7 +394,7 @@ void TestSmoothingEdges(EventCounter* events)
   CHECK(filter->GetExecutive()->Update() == 1);
   vtkDataArray* metric =
     vtkDataSet::SafeDownCast(filter->GetOutputDataObject(0))->GetPointData()->GetArray("Metric");
-  const vtkIdType edgeNeighbour = 13 + 1;    // (2, 1, 1)
+  const vtkIdType edgeNeighbour = 13 + 1;     // (2, 1, 1)
   const vtkIdType diagonalNeighbour = 13 + 4; // (2, 2, 1): a face diagonal of a voxel
   const vtkIdType corner = 0;
   CHECK(metric->GetComponent(edgeNeighbour, 0) > 1.01);
