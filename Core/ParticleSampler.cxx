@@ -11,6 +11,7 @@
 #include <chrono>
 #include <cmath>
 #include <deque>
+#include <limits>
 #include <string>
 
 namespace av
@@ -108,6 +109,28 @@ public:
     , Nbrs(nbrs)
     , Dim(emb.Dim)
   {
+    // Inverse Gram matrices (E^T E)^{-1} of the embedded edge vectors, one per cell; NaN
+    // marks a degenerate cell (particles never move inside it).
+    const std::size_t nc = mesh.NumCells();
+    InvGram.resize(nc * K * K);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nc),
+      [&](const tbb::blocked_range<std::size_t>& r)
+      {
+        for (std::size_t c = r.begin(); c != r.end(); ++c)
+        {
+          const std::int32_t* ids = mesh.Cell(c);
+          Eigen::Matrix<double, D, K, Eigen::ColMajor, MaxD, K> e(Dim, K);
+          for (int j = 0; j < K; ++j)
+            e.col(j) = Vertex(ids[j + 1]) - Vertex(ids[0]);
+          const Eigen::Matrix<double, K, K> g = e.transpose() * e;
+          const double scale = std::pow(g.trace() / K, K);
+          Eigen::Map<Eigen::Matrix<double, K, K>> out(InvGram.data() + c * K * K);
+          if (g.determinant() > 1e-14 * scale)
+            out = g.inverse();
+          else
+            out.setConstant(std::numeric_limits<double>::quiet_NaN());
+        }
+      });
   }
 
   Eigen::Map<const Vec> Vertex(std::int32_t v) const
@@ -143,17 +166,15 @@ public:
       return true;
     if (nf == NV)
     {
-      // Common case (no boundary constraint): fixed-size normal equations.
-      Eigen::Matrix<double, D, K, Eigen::ColMajor, MaxD, K> e(Dim, K);
-      const auto base = Vertex(ids[0]);
-      for (int j = 0; j < K; ++j)
-        e.col(j) = Vertex(ids[j + 1]) - base;
-      const Eigen::Matrix<double, K, K> g = e.transpose() * e;
-      const double det = g.determinant();
-      const double scale = std::pow(g.trace() / K, K);
-      if (!(det > 1e-14 * scale))
+      // Common case (no boundary constraint): precomputed inverse Gram matrix of the cell.
+      const double* gi = InvGram.data() + static_cast<std::size_t>(cell) * K * K;
+      if (!std::isfinite(gi[0]))
         return false;
-      const Eigen::Matrix<double, K, 1> a = g.inverse() * (e.transpose() * d);
+      const auto base = Vertex(ids[0]);
+      Eigen::Matrix<double, K, 1> rhs;
+      for (int j = 0; j < K; ++j)
+        rhs[j] = (Vertex(ids[j + 1]) - base).dot(d);
+      const Eigen::Matrix<double, K, 1> a = Eigen::Map<const Eigen::Matrix<double, K, K>>(gi) * rhs;
       double sum = 0.0;
       for (int j = 0; j < K; ++j)
       {
@@ -161,7 +182,7 @@ public:
         sum += a[j];
       }
       db[0] = -sum;
-      return std::isfinite(sum);
+      return true;
     }
     const int m = nf - 1;
     Edges e(Dim, m);
@@ -294,7 +315,8 @@ public:
     }
   }
 
-  /// Verlet lists: all pairs closer than Cutoff + Skin at the positions x.
+  /// Verlet lists: all pairs closer than Cutoff + Skin at the positions x. The tree build and
+  /// each query are sequential and deterministic, so list order (summation order) is too.
   void BuildNeighbours(const std::vector<double>& x)
   {
     ++Rebuilds;
@@ -317,8 +339,6 @@ public:
           for (const auto& hit : buf)
             if (hit.first != p)
               list.push_back(hit.first);
-          // Sorted ids: the summation order does not depend on the tree layout.
-          std::sort(list.begin(), list.end());
         }
       });
   }
@@ -499,7 +519,7 @@ public:
                 Position(c, b);
             }
           });
-        trialEnergy = Evaluate(xt, ct, bt, nullptr);
+        trialEnergy = Evaluate(xt, ct, bt, &gt);
         double slope = 0.0;
         for (std::size_t i = 0; i < nd; ++i)
           slope += g[i] * (xt[i] - x[i]);
@@ -515,7 +535,7 @@ public:
         continue;
       }
       failures = 0;
-      const double newEnergy = Evaluate(xt, ct, bt, &gt);
+      const double newEnergy = trialEnergy;
       Eigen::VectorXd s(nd), y(nd);
       for (std::size_t i = 0; i < nd; ++i)
       {
@@ -554,6 +574,7 @@ private:
   double Skin = 1.0;
   int Evaluations = 0;
   int Rebuilds = 0;
+  std::vector<double> InvGram;       // per cell, K x K
   std::vector<double> ListPositions; // positions at the last list build
   std::vector<std::vector<std::uint32_t>> Lists;
   std::vector<double> PerParticle;
@@ -598,7 +619,7 @@ std::vector<std::int32_t> CellFaceNeighbours(const SimplexMesh& mesh)
         const std::int32_t* ids = mesh.Cell(c);
         for (int i = 0; i < nv; ++i)
         {
-          std::int32_t face[3];
+          std::int32_t face[3] = { 0, 0, 0 };
           int nfv = 0;
           for (int j = 0; j < nv; ++j)
             if (j != i)
@@ -708,6 +729,7 @@ ParticleSamplerResult SampleParticles(
 
   // Initial sites: cell ~ embedded measure, uniform barycentrics (sorted uniforms' gaps).
   Rng rng(opt.Seed);
+  std::vector<std::pair<std::size_t, double>> draws(n); // (cell, second uniform seed)
   for (std::size_t i = 0; i < n; ++i)
   {
     const double u = rng.Uniform() * total;
@@ -715,6 +737,15 @@ ParticleSamplerResult SampleParticles(
     c = std::min(c, nc - 1);
     while (meas[c] <= 0.0 && c > 0) // never start in a degenerate cell
       --c;
+    draws[i] = { c, u };
+  }
+  // Particles in cell order: neighbouring cells are usually close in memory, which makes the
+  // walks, tree queries and energy sums cache friendly. (Deterministic: ties keep draw order.)
+  std::stable_sort(draws.begin(), draws.end(),
+    [](const auto& a, const auto& b) { return a.first < b.first; });
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const std::size_t c = draws[i].first;
     double cut[5] = { 0.0, 0.0, 0.0, 0.0, 0.0 };
     for (int j = 0; j < k; ++j)
       cut[j + 1] = rng.Uniform();
