@@ -109,7 +109,7 @@ assert 200 < mesh.GetNumberOfCells() < 400
 q = quality.GetOutput()
 print("quality: G_min %.3f G_avg %.3f theta_min %.2f pct_bad %.2f" % (
     field(q, "G_min"), field(q, "G_avg"), field(q, "theta_min"), field(q, "pct_bad")))
-assert field(q, "G_avg") > 0.8
+assert field(q, "G_avg") > 0.75  # measured 0.82
 assert quality.GetGAvg() == field(q, "G_avg")
 hist = quality.GetOutputDataObject(1)
 assert hist.GetNumberOfRows() == 18
