@@ -50,8 +50,9 @@ int vtkAnisoMeshQuality::FillOutputPortInformation(int port, vtkInformation* inf
   return 1;
 }
 
-int vtkAnisoMeshQuality::RequestData(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+int vtkAnisoMeshQuality::RequestData(vtkInformation*,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
 {
   vtkDataSet* input = vtkDataSet::GetData(inputVector[0]);
   vtkUnstructuredGrid* output = vtkUnstructuredGrid::GetData(outputVector, 0);
@@ -158,7 +159,7 @@ void vtkAnisoMeshQuality::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "G_min / G_avg (last run): " << this->GMin << " / " << this->GAvg << "\n";
-  os << indent << "theta_min / theta_avg (last run): " << this->ThetaMin << " / "
-     << this->ThetaAvg << "\n";
+  os << indent << "theta_min / theta_avg (last run): " << this->ThetaMin << " / " << this->ThetaAvg
+     << "\n";
   os << indent << "PercentBad (last run): " << this->PercentBad << "\n";
 }

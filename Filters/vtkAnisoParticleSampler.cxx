@@ -50,8 +50,9 @@ int vtkAnisoParticleSampler::FillOutputPortInformation(int port, vtkInformation*
   return 1;
 }
 
-int vtkAnisoParticleSampler::RequestData(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+int vtkAnisoParticleSampler::RequestData(vtkInformation*,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
 {
   vtkDataSet* input = vtkDataSet::GetData(inputVector[0]);
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
@@ -96,7 +97,8 @@ int vtkAnisoParticleSampler::RequestData(
   options.Seed = static_cast<std::uint64_t>(static_cast<std::uint32_t>(this->Seed));
   options.KernelWidthFactor = this->KernelWidthFactor;
   options.NeighbourCutoff = this->NeighbourCutoff;
-  options.Progress = [this](double f) {
+  options.Progress = [this](double f)
+  {
     this->UpdateProgress(0.05 + 0.9 * f);
     return !this->GetAbortExecute();
   };
@@ -142,8 +144,7 @@ int vtkAnisoParticleSampler::RequestData(
   for (std::size_t i = 0; i < n; ++i)
   {
     const double* x = sites.At(i);
-    points->SetPoint(
-      static_cast<vtkIdType>(i), x[0], x[1], mesh.AmbientDim == 3 ? x[2] : 0.0);
+    points->SetPoint(static_cast<vtkIdType>(i), x[0], x[1], mesh.AmbientDim == 3 ? x[2] : 0.0);
     const vtkIdType id = static_cast<vtkIdType>(i);
     verts->InsertNextCell(1, &id);
     cellIds->SetValue(static_cast<vtkIdType>(i), sites.CellIds[i]);

@@ -10,7 +10,8 @@
  *
  * NumberOfSites particles are drawn on the embedded mesh (probability proportional to the
  * embedded element measure) and spread by minimising the Gaussian repulsion energy
- * E = sum exp(-|x_p - x_q|^2 / (4 sigma^2)) with sigma = KernelWidthFactor (|embedded mesh| / n)^{1/k}
+ * E = sum exp(-|x_p - x_q|^2 / (4 sigma^2)),
+ * sigma = KernelWidthFactor (|embedded mesh| / n)^{1/k},
  * over pairs closer than NeighbourCutoff sigma (projected L-BFGS, particles stay on / in the
  * embedded mesh). Deterministic for a given Seed.
  *

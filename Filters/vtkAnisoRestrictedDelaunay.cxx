@@ -49,14 +49,15 @@ int vtkAnisoRestrictedDelaunay::FillInputPortInformation(int, vtkInformation* in
   return 1;
 }
 
-int vtkAnisoRestrictedDelaunay::RequestData(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+int vtkAnisoRestrictedDelaunay::RequestData(vtkInformation*,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
 {
   vtkDataSet* input = vtkDataSet::GetData(inputVector[0]);
   vtkDataSet* sitesInput = vtkDataSet::GetData(inputVector[1]);
   vtkUnstructuredGrid* output = vtkUnstructuredGrid::GetData(outputVector, 0);
-  if (!input || input->GetNumberOfPoints() == 0 || input->GetNumberOfCells() == 0 ||
-    !sitesInput || sitesInput->GetNumberOfPoints() == 0)
+  if (!input || input->GetNumberOfPoints() == 0 || input->GetNumberOfCells() == 0 || !sitesInput ||
+    sitesInput->GetNumberOfPoints() == 0)
   {
     return 1; // empty in, empty out
   }
@@ -146,13 +147,15 @@ int vtkAnisoRestrictedDelaunay::RequestData(
   AddFieldValue(fd, "NumNonManifoldFaces", static_cast<double>(rdt.NumNonManifoldFaces));
   AddFieldValue(fd, "NumOpenInteriorFaces", static_cast<double>(rdt.NumOpenInteriorFaces));
   AddFieldValue(fd, "NumUnusedSites", static_cast<double>(rdt.NumUnusedSites));
-  AddFieldValue(fd, "DelaunaySeconds",
+  AddFieldValue(fd,
+    "DelaunaySeconds",
     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   if (rdt.NumInverted > 0 || rdt.NumNonManifoldFaces > 0)
   {
     vtkWarningMacro("the dual mesh has " << rdt.NumInverted << " inverted element(s) and "
-      << rdt.NumNonManifoldFaces << " non-manifold face(s) (not repaired; more sites or a "
-      "better embedding reduce them)");
+                                         << rdt.NumNonManifoldFaces
+                                         << " non-manifold face(s) (not repaired; more sites or a "
+                                            "better embedding reduce them)");
   }
   this->UpdateProgress(1.0);
   return 1;
@@ -162,6 +165,5 @@ void vtkAnisoRestrictedDelaunay::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "NumberOfInverted (last run): " << this->NumberOfInverted << "\n";
-  os << indent << "NumberOfNonManifoldFaces (last run): " << this->NumberOfNonManifoldFaces
-     << "\n";
+  os << indent << "NumberOfNonManifoldFaces (last run): " << this->NumberOfNonManifoldFaces << "\n";
 }

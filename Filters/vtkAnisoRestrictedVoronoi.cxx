@@ -65,8 +65,9 @@ double SignedMeasure(const av::SimplexMesh& mesh, std::size_t c)
   const double* p2 = mesh.Point(v[2]);
   const double a[3] = { p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2] };
   const double b[3] = { p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2] };
-  const double c3[3] = { a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
-    a[0] * b[1] - a[1] * b[0] };
+  const double c3[3] = {
+    a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]
+  };
   return std::sqrt(c3[0] * c3[0] + c3[1] * c3[1] + c3[2] * c3[2]);
 }
 
@@ -121,9 +122,9 @@ struct OutputBuilder
 
   // Scratch of the current cell: local points and faces (local ids).
   std::vector<std::array<double, 3>> P, Q;
-  std::vector<vtkIdType> FaceIds;   // concatenated
+  std::vector<vtkIdType> FaceIds; // concatenated
   std::vector<int> FaceSizes, Kinds, Neighbors;
-  std::vector<vtkIdType> Loop;       // 2D polygon loop (local ids)
+  std::vector<vtkIdType> Loop; // 2D polygon loop (local ids)
   std::vector<vtkIdType> Ids, Remap;
 
   OutputBuilder()
@@ -193,7 +194,8 @@ struct OutputBuilder
     const vtkIdType base = this->Points->GetNumberOfPoints();
     for (const auto& p : this->P)
       this->Points->InsertNextPoint(c[0] + this->Shrink * (p[0] - c[0]),
-        c[1] + this->Shrink * (p[1] - c[1]), c[2] + this->Shrink * (p[2] - c[2]));
+        c[1] + this->Shrink * (p[1] - c[1]),
+        c[2] + this->Shrink * (p[2] - c[2]));
     const double scale = std::pow(this->Shrink, this->K);
     if (this->K == 3)
     {
@@ -267,15 +269,16 @@ int vtkAnisoRestrictedVoronoi::FillOutputPortInformation(int port, vtkInformatio
   return 1;
 }
 
-int vtkAnisoRestrictedVoronoi::RequestData(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+int vtkAnisoRestrictedVoronoi::RequestData(vtkInformation*,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
 {
   vtkDataSet* input = vtkDataSet::GetData(inputVector[0]);
   vtkDataSet* sitesInput = vtkDataSet::GetData(inputVector[1]);
   vtkUnstructuredGrid* output = vtkUnstructuredGrid::GetData(outputVector, 0);
   vtkPolyData* faces = vtkPolyData::GetData(outputVector, 1);
-  if (!input || input->GetNumberOfPoints() == 0 || input->GetNumberOfCells() == 0 ||
-    !sitesInput || sitesInput->GetNumberOfPoints() == 0)
+  if (!input || input->GetNumberOfPoints() == 0 || input->GetNumberOfCells() == 0 || !sitesInput ||
+    sitesInput->GetNumberOfPoints() == 0)
   {
     return 1; // empty in, empty out
   }
@@ -308,10 +311,14 @@ int vtkAnisoRestrictedVoronoi::RequestData(
   options.KeepEmbeddedPoints = false;
   options.MergeBySite = this->MergeBySite;
   av::RestrictedVoronoiDiagram rvd;
+  double kernelSeconds = 0.0;
   try
   {
     av::ValidateRestrictedVoronoiInput(mesh, embedding, sites);
+    const auto kernelStart = std::chrono::steady_clock::now();
     rvd = av::ComputeRestrictedVoronoi(mesh, embedding, sites, options);
+    kernelSeconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - kernelStart).count();
   }
   catch (const av::InputError& e)
   {
@@ -343,14 +350,16 @@ int vtkAnisoRestrictedVoronoi::RequestData(
   OutputBuilder out;
   out.K = K;
   out.Shrink = this->ShrinkFactor;
-  auto point = [&](std::int64_t v) {
+  auto point = [&](std::int64_t v)
+  {
     const double* x = rvd.Points.data() + v * adim;
     return std::array<double, 3>{ x[0], x[1], adim == 3 ? x[2] : 0.0 };
   };
 
   std::vector<vtkIdType> pieceIds;
   // Emits piece p on its own (MergeBySite off, or a 2D cell that is not one simple loop).
-  auto emitPiece = [&](std::size_t p) {
+  auto emitPiece = [&](std::size_t p)
+  {
     out.Begin();
     const std::int64_t v0 = rvd.PieceVertexOffsets[p], v1 = rvd.PieceVertexOffsets[p + 1];
     const bool f = flip[rvd.PieceElement[p]];
@@ -371,8 +380,8 @@ int vtkAnisoRestrictedVoronoi::RequestData(
         std::reverse(ids.begin(), ids.end());
       out.AddFace(ids.data(), static_cast<int>(ids.size()), rvd.FaceKind[fc], rvd.FaceNeighbor[fc]);
     }
-    out.End(rvd.PieceSite[p], rvd.PieceElement[p], rvd.PieceMeasure[p],
-      rvd.PieceEmbeddedMeasure[p]);
+    out.End(
+      rvd.PieceSite[p], rvd.PieceElement[p], rvd.PieceMeasure[p], rvd.PieceEmbeddedMeasure[p]);
   };
 
   const std::size_t np = rvd.NumPieces();
@@ -438,7 +447,8 @@ int vtkAnisoRestrictedVoronoi::RequestData(
             continue; // collapsed (degenerate) face
           if (f)
             std::reverse(ids.begin(), ids.end());
-          out.AddFace(ids.data(), static_cast<int>(ids.size()), rvd.FaceKind[fc], rvd.FaceNeighbor[fc]);
+          out.AddFace(
+            ids.data(), static_cast<int>(ids.size()), rvd.FaceKind[fc], rvd.FaceNeighbor[fc]);
         }
       }
       bool ok = true;
@@ -515,7 +525,8 @@ int vtkAnisoRestrictedVoronoi::RequestData(
   this->DomainMeasure = domain;
   const double seconds =
     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  for (vtkDataObject* o : { static_cast<vtkDataObject*>(output), static_cast<vtkDataObject*>(faces) })
+  for (vtkDataObject* o :
+    { static_cast<vtkDataObject*>(output), static_cast<vtkDataObject*>(faces) })
   {
     vtkFieldData* fd = o->GetFieldData();
     AddFieldValue(fd, "TotalMeasure", total);
@@ -523,6 +534,7 @@ int vtkAnisoRestrictedVoronoi::RequestData(
     AddFieldValue(fd, "RelativeVolumeError", domain > 0 ? std::abs(total - domain) / domain : 0.0);
     AddFieldValue(fd, "NumberOfVoronoiCells", static_cast<double>(nonEmpty));
     AddFieldValue(fd, "NumberOfEmptySites", static_cast<double>(sites.NumSites() - nonEmpty));
+    AddFieldValue(fd, "VoronoiKernelSeconds", kernelSeconds);
     AddFieldValue(fd, "VoronoiSeconds", seconds);
   }
   this->UpdateProgress(1.0);

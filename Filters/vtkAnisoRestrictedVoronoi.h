@@ -34,7 +34,8 @@
  *
  * Field data of both outputs: "TotalMeasure" (sum of the unshrunk cells), "DomainMeasure"
  * (measure of the input mesh), "RelativeVolumeError" (|Total - Domain| / Domain),
- * "NumberOfVoronoiCells" (non-empty sites), "NumberOfEmptySites", "VoronoiSeconds".
+ * "NumberOfVoronoiCells" (non-empty sites), "NumberOfEmptySites", "VoronoiKernelSeconds" (the
+ * clipping alone), "VoronoiSeconds" (the whole filter).
  */
 #ifndef vtkAnisoRestrictedVoronoi_h
 #define vtkAnisoRestrictedVoronoi_h

@@ -207,8 +207,11 @@ int main(int, char*[])
   PolyhedraCheck merged = CheckPolyhedra(cells);
   std::printf("merged: %lld cells, sum Measure %.15g, divergence volume %.15g, box %.15g, "
               "max |vol - Measure| / Measure %.3g\n",
-    static_cast<long long>(cells->GetNumberOfCells()), merged.TotalMeasure, merged.TotalVolume,
-    boxVolume, merged.MaxVolumeError);
+    static_cast<long long>(cells->GetNumberOfCells()),
+    merged.TotalMeasure,
+    merged.TotalVolume,
+    boxVolume,
+    merged.MaxVolumeError);
   CHECK(merged.NonPolyhedra == 0);
   CHECK(merged.OpenCells == 0);
   CHECK_NEAR(merged.TotalMeasure / boxVolume, 1.0, 1e-9);
@@ -271,8 +274,8 @@ int main(int, char*[])
   for (const auto& s : merged.MeasureBySite)
     worstSite = std::max(worstSite, std::abs(pieces.MeasureBySite[s.first] - s.second) / s.second);
   CHECK(worstSite < 1e-12);
-  CHECK_NEAR(FaceArea(vtkPolyData::SafeDownCast(rvd->GetOutputDataObject(1)), 1) / boxArea, 1.0,
-    1e-9);
+  CHECK_NEAR(
+    FaceArea(vtkPolyData::SafeDownCast(rvd->GetOutputDataObject(1)), 1) / boxArea, 1.0, 1e-9);
 
   // Shrink: geometry scaled about each cell's centroid (volume x 0.125, boundary area x 0.25).
   rvd->MergeBySiteOn();
@@ -283,8 +286,8 @@ int main(int, char*[])
   CHECK_NEAR(shrunk.TotalMeasure / merged.TotalMeasure, 0.125, 1e-12);
   CHECK_NEAR(shrunk.TotalVolume / merged.TotalVolume, 0.125, 1e-9);
   CHECK(shrunk.MaxVolumeError < 1e-8);
-  CHECK_NEAR(FaceArea(vtkPolyData::SafeDownCast(rvd->GetOutputDataObject(1)), 1) / boxArea, 0.25,
-    1e-9);
+  CHECK_NEAR(
+    FaceArea(vtkPolyData::SafeDownCast(rvd->GetOutputDataObject(1)), 1) / boxArea, 0.25, 1e-9);
   CHECK(rvd->GetOutput()->GetNumberOfPoints() ==
     vtkPolyData::SafeDownCast(rvd->GetOutputDataObject(1))->GetNumberOfPoints());
   CHECK(FieldValue(rvd->GetOutput(), "RelativeVolumeError") < 1e-9); // the true cells

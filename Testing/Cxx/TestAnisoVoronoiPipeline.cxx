@@ -85,8 +85,8 @@ int main(int, char*[])
   quality->SetInputConnection(rdt->GetOutputPort());
   auto t0 = std::chrono::steady_clock::now();
   embedding->Update();
-  std::printf("embedding %.3f s, L_avg %.3g %%\n", Seconds(t0),
-    embedding->GetAverageEdgeLengthError());
+  std::printf(
+    "embedding %.3f s, L_avg %.3g %%\n", Seconds(t0), embedding->GetAverageEdgeLengthError());
   t0 = std::chrono::steady_clock::now();
   sampler->Update();
   std::printf("sampler %.3f s, sigma %.4g\n", Seconds(t0), sampler->GetSigma());
@@ -110,8 +110,10 @@ int main(int, char*[])
   vtkUnstructuredGrid* mesh = rdt->GetOutput();
   const vtkIdType nc = mesh->GetNumberOfCells();
   std::printf("RDT: %lld triangles, %g inverted, %g non-manifold, %g open, %g unused\n",
-    static_cast<long long>(nc), FieldValue(mesh, "NumInverted"),
-    FieldValue(mesh, "NumNonManifoldFaces"), FieldValue(mesh, "NumOpenInteriorFaces"),
+    static_cast<long long>(nc),
+    FieldValue(mesh, "NumInverted"),
+    FieldValue(mesh, "NumNonManifoldFaces"),
+    FieldValue(mesh, "NumOpenInteriorFaces"),
     FieldValue(mesh, "NumUnusedSites"));
   CHECK(mesh->GetNumberOfPoints() == 300);
   CHECK(FieldValue(mesh, "NumInverted") == 0);
@@ -159,8 +161,8 @@ int main(int, char*[])
   for (const auto& d : boundaryDegree)
     badBoundaryVertex += d.second != 2;
   const long long euler = 300 - static_cast<long long>(edges.size()) + nc;
-  std::printf("edges %zu (boundary %d), Euler characteristic %lld\n", edges.size(), boundaryEdges,
-    euler);
+  std::printf(
+    "edges %zu (boundary %d), Euler characteristic %lld\n", edges.size(), boundaryEdges, euler);
   CHECK(overused == 0);
   CHECK(boundaryEdges > 0);
   CHECK(badBoundaryVertex == 0);
@@ -171,8 +173,13 @@ int main(int, char*[])
   const double gavg = FieldValue(q, "G_avg");
   std::printf("quality: G_min %.3f G_avg %.3f theta_min %.2f theta_avg %.2f bad %.2f %% "
               "inverted %g unit edges %.1f %%\n",
-    FieldValue(q, "G_min"), gavg, FieldValue(q, "theta_min"), FieldValue(q, "theta_avg"),
-    FieldValue(q, "pct_bad"), FieldValue(q, "inverted"), FieldValue(q, "edges_in_unit_range"));
+    FieldValue(q, "G_min"),
+    gavg,
+    FieldValue(q, "theta_min"),
+    FieldValue(q, "theta_avg"),
+    FieldValue(q, "pct_bad"),
+    FieldValue(q, "inverted"),
+    FieldValue(q, "edges_in_unit_range"));
   CHECK(gavg >= 0.8);
   CHECK(FieldValue(q, "inverted") == 0);
   CHECK(q->GetCellData()->GetArray("G") && q->GetCellData()->GetArray("MinAngle"));
