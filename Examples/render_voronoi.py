@@ -10,13 +10,13 @@ import sys
 
 import numpy as np
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
-from vtkmodules.vtkIOXMLPython import vtkXMLPolyDataReader
-from vtkmodules.vtkRenderingCorePython import (vtkActor, vtkPolyDataMapper,
+from vtkmodules.vtkIOXML import vtkXMLPolyDataReader
+from vtkmodules.vtkRenderingCore import (vtkActor, vtkPolyDataMapper,
                                                vtkRenderer, vtkRenderWindow,
                                                vtkWindowToImageFilter)
-from vtkmodules.vtkRenderingAnnotationPython import vtkScalarBarActor
-from vtkmodules.vtkCommonCorePython import vtkLookupTable
-from vtkmodules.vtkIOImagePython import vtkPNGWriter
+from vtkmodules.vtkRenderingAnnotation import vtkScalarBarActor
+from vtkmodules.vtkCommonCore import vtkLookupTable
+from vtkmodules.vtkIOImage import vtkPNGWriter
 import vtkmodules.vtkRenderingOpenGL2  # noqa: F401  (registers the OpenGL back end)
 import vtkmodules.vtkRenderingFreeType  # noqa: F401  (scalar bar text)
 
@@ -86,11 +86,21 @@ def main():
     renderer.SetBackground(1.0, 1.0, 1.0)
     renderer.GradientBackgroundOn()
     renderer.SetBackground2(0.75, 0.8, 0.9)
+    # Look across the thinnest extent of the domain, so that the cells fill the picture.
+    b = faces.GetBounds()
+    size = [b[1] - b[0], b[3] - b[2], b[5] - b[4]]
+    thin = size.index(min(size))
+    centre = [(b[0] + b[1]) / 2, (b[2] + b[3]) / 2, (b[4] + b[5]) / 2]
+    direction = [0.35, 0.35, 0.35]
+    direction[thin] = 1.0
+    up = [0.0, 0.0, 0.0]
+    up[(thin + 2) % 3] = 1.0
     camera = renderer.GetActiveCamera()
-    camera.Elevation(25)
-    camera.Azimuth(35)
+    camera.SetFocalPoint(centre)
+    camera.SetPosition([centre[i] + direction[i] for i in range(3)])
+    camera.SetViewUp(up)
     renderer.ResetCamera()
-    camera.Zoom(1.3)
+    camera.Zoom(1.1)
     window = vtkRenderWindow()
     window.SetOffScreenRendering(1)
     window.SetSize(1200, 900)

@@ -16,7 +16,8 @@ if [[ ! -f $FRD ]]; then
   echo "run-main: $FRD is missing (package calculix-cgx-examples; is /usr/share/doc excluded by dpkg?)" >&2
   exit 1
 fi
-"$BUILD_DIR/bin/anisovoronoi" "$FRD" --metric tensor:STRESS --sites 3000 --dim 8 \
+"$BUILD_DIR/bin/anisovoronoi" "$FRD" --metric tensor:STRESS --min-eigenvalue 0.1 \
+  --max-anisotropy 10 --smooth 10 --sites 3000 --dim 8 \
   --iterations 50 --shrink 0.7 --output-dir "$OUT" "$@"
 PYTHONPATH="$PWD/$BUILD_DIR/lib/python3/dist-packages:/usr/lib/python3/dist-packages" \
   xvfb-run -a /usr/bin/python3 Examples/render_voronoi.py "$OUT" "$OUT/voronoi.png"

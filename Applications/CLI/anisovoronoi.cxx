@@ -15,6 +15,7 @@
 #include "vtkAnisoRestrictedVoronoi.h"
 #include "vtkAnisoSimplexMesh.h"
 #include "vtkAnisoTensorToMetric.h"
+#include "vtkAnisoTetMesher.h"
 
 #include <vtkAlgorithmOutput.h>
 #include <vtkCallbackCommand.h>
@@ -24,7 +25,11 @@
 #include <vtkDataObject.h>
 #include <vtkDataSet.h>
 #include <vtkDataSetReader.h>
+#include <vtkDataSetSurfaceFilter.h>
 #include <vtkExecutive.h>
+#include <vtkProbeFilter.h>
+#include <vtkStaticPointLocator.h>
+#include <vtkTrivialProducer.h>
 #include <vtkFieldData.h>
 #include <vtkNew.h>
 #include <vtkOBJReader.h>
@@ -84,6 +89,9 @@ options:
   --min-eigenvalue X       tensor: floor relative to the largest |eigenvalue| (default 1e-3)
   --max-anisotropy X       tensor: cap on the stretch ratio (default 25, 0 = none)
   --smooth N               tensor: log-Euclidean smoothing iterations (default 0)
+  --refine N               volumes: remesh the domain with TetGen to about N vertices and
+                           interpolate the input's point data onto it (a coarse FE mesh
+                           cannot carry a fast-varying metric; default 0 = off)
   --output-dir DIR         where the results go (created if missing)
   --quiet                  no progress on stderr
   --help                   this text
@@ -96,7 +104,7 @@ struct Options
 {
   std::string Input, Metric, Sol, OutputDir;
   int Step = 0, Resolution = 0, Sites = 2000, Dim = 8, Iterations = 50, SampleIterations = 50;
-  int Seed = 1, Smooth = 0;
+  int Seed = 1, Smooth = 0, Refine = 0;
   double Mu = 100.0, Shrink = 0.8, MinEigenvalue = 1e-3, MaxAnisotropy = 25.0;
   bool TensorAsMetric = false, Clamp = false, Quiet = false;
 };
@@ -182,6 +190,8 @@ Options ParseCommandLine(int argc, char* argv[])
       o.SampleIterations = ParseInt(a, next());
     else if (a == "--seed")
       o.Seed = ParseInt(a, next());
+    else if (a == "--refine")
+      o.Refine = ParseInt(a, next());
     else if (a == "--smooth")
       o.Smooth = ParseInt(a, next());
     else if (a == "--mu")
@@ -404,6 +414,59 @@ int main(int argc, char* argv[])
   simplices->SetInputConnection(source->GetOutputPort());
   pipeline.Run(simplices, "split into simplices");
 
+  // 2b. Optional finer background mesh: TetGen on the boundary surface, point data probed.
+  vtkSmartPointer<vtkAlgorithm> domain = simplices.GetPointer();
+  vtkNew<vtkDataSetSurfaceFilter> boundary;
+  vtkNew<vtkTriangleFilter> boundaryTriangles;
+  vtkNew<vtkAnisoTetMesher> remesher;
+  vtkNew<vtkProbeFilter> probe;
+  vtkNew<vtkUnstructuredGrid> refined;
+  vtkNew<vtkTrivialProducer> refinedProducer;
+  if (o.Refine > 0)
+  {
+    vtkDataSet* ds = vtkDataSet::SafeDownCast(simplices->GetOutputDataObject(0));
+    if (!ds || ds->GetNumberOfCells() == 0 || ds->GetCellType(0) != VTK_TETRA)
+      Fail("--refine applies to volume (tetrahedral) inputs only", 2);
+    boundary->SetInputConnection(simplices->GetOutputPort());
+    boundaryTriangles->SetInputConnection(boundary->GetOutputPort());
+    remesher->SetInputConnection(boundaryTriangles->GetOutputPort());
+    remesher->SetShapeToInputSurface();
+    remesher->SetTargetVertices(o.Refine);
+    pipeline.Run(remesher, "remesh with TetGen (" + std::to_string(o.Refine) + " vertices)");
+    probe->SetInputConnection(remesher->GetOutputPort());
+    probe->SetSourceConnection(simplices->GetOutputPort());
+    probe->PassPointArraysOff();
+    pipeline.Run(probe, "interpolate point data onto the new mesh");
+    // Points the probe missed (round-off on the boundary) take the nearest input point's data.
+    refined->DeepCopy(probe->GetOutputDataObject(0));
+    vtkDataArray* mask = refined->GetPointData()->GetArray(probe->GetValidPointMaskArrayName());
+    vtkDataSet* coarse = vtkDataSet::SafeDownCast(simplices->GetOutputDataObject(0));
+    vtkNew<vtkStaticPointLocator> locator;
+    locator->SetDataSet(coarse);
+    locator->BuildLocator();
+    vtkIdType fixedPoints = 0;
+    for (vtkIdType i = 0; mask && i < refined->GetNumberOfPoints(); ++i)
+    {
+      if (mask->GetTuple1(i) > 0.5)
+        continue;
+      const vtkIdType nearest = locator->FindClosestPoint(refined->GetPoint(i));
+      for (int a = 0; a < refined->GetPointData()->GetNumberOfArrays(); ++a)
+      {
+        vtkDataArray* target = refined->GetPointData()->GetArray(a);
+        vtkDataArray* from =
+          target ? coarse->GetPointData()->GetArray(target->GetName()) : nullptr;
+        if (from && from->GetNumberOfComponents() == target->GetNumberOfComponents())
+          target->SetTuple(i, from->GetTuple(nearest));
+      }
+      ++fixedPoints;
+    }
+    if (!o.Quiet && fixedPoints > 0)
+      std::cerr << "[anisovoronoi] " << fixedPoints
+                << " boundary point(s) took the nearest input point's data" << std::endl;
+    refinedProducer->SetOutput(refined);
+    domain = refinedProducer.GetPointer();
+  }
+
   // 3. Metric.
   vtkSmartPointer<vtkAlgorithm> metric;
   const char* metricName = "Metric";
@@ -412,19 +475,19 @@ int main(int argc, char* argv[])
     auto m = vtkSmartPointer<vtkAnisoAnalyticMetric>::New();
     if (!m->SetPresetByName(presetName.c_str()))
       Fail("unknown preset '" + presetName + "'", 2);
-    m->SetInputConnection(simplices->GetOutputPort());
+    m->SetInputConnection(domain->GetOutputPort());
     metric = m;
   }
   else if (preset)
   {
-    metric = simplices.GetPointer(); // the source already carries the preset's metric
+    metric = domain; // the source already carries the preset's metric
   }
   else if (o.Metric.rfind("tensor:", 0) == 0)
   {
     auto m = vtkSmartPointer<vtkAnisoTensorToMetric>::New();
-    m->SetInputConnection(simplices->GetOutputPort());
+    m->SetInputConnection(domain->GetOutputPort());
     const std::string array = o.Metric.substr(7);
-    vtkDataSet* ds = vtkDataSet::SafeDownCast(simplices->GetOutputDataObject(0));
+    vtkDataSet* ds = vtkDataSet::SafeDownCast(domain->GetOutputDataObject(0));
     const bool onCells = ds && !ds->GetPointData()->GetArray(array.c_str()) &&
       ds->GetCellData()->GetArray(array.c_str());
     if (ds && !ds->GetPointData()->GetArray(array.c_str()) && !onCells)
@@ -443,13 +506,13 @@ int main(int argc, char* argv[])
   }
   else if (o.Metric.rfind("metric:", 0) == 0)
   {
-    metric = simplices.GetPointer();
+    metric = domain;
     metricName = nullptr; // chosen below on the embedding
   }
   else if (o.Metric == "curvature")
   {
     auto m = vtkSmartPointer<vtkAnisoCurvatureMetric>::New();
-    m->SetInputConnection(simplices->GetOutputPort());
+    m->SetInputConnection(domain->GetOutputPort());
     metric = m;
   }
   else
@@ -457,7 +520,7 @@ int main(int argc, char* argv[])
     Fail("unknown metric SPEC '" + o.Metric +
       "' (tensor:ARRAY, metric:ARRAY, curvature or preset:NAME)", 2);
   }
-  if (metric.GetPointer() != simplices.GetPointer())
+  if (metric != domain)
     pipeline.Run(metric, "metric (" + o.Metric + ")");
 
   // 4. Embedding.
