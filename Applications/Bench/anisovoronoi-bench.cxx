@@ -6,6 +6,7 @@
 #include "AnalyticMetrics.h"
 #include "EdgeLengthError.h"
 #include "EmbeddingSolver.h"
+#include "MeshStage.h"
 #include "MetricAlgebra.h"
 #include "StructuredMeshes.h"
 #include "TetMesher.h"
@@ -112,6 +113,8 @@ struct Args
   std::string Init = "smooth";
   bool Weighted = false;
   bool TrackError = true;
+  std::size_t Sites = 0;     // 0: case default (paper Tab. 5 / Tab. 3)
+  int SampleIterations = 50; // sampler L-BFGS iterations
 };
 
 /// Paper values (Tab. 5 and Fig. 4); NaN where the paper gives none.
@@ -223,8 +226,8 @@ void StretchRange(const Case& c, double& smin, double& smax)
   }
 }
 
-/// Stage "embed": the high-d embedding and its §5.1 edge length error.
-void StageEmbed(const Args& a, const Case& c, JsonLine& out)
+/// Stage "embed": the high-d embedding and its §5.1 edge length error (kept in *keep if given).
+void StageEmbed(const Args& a, const Case& c, JsonLine& out, av::Embedding* keep = nullptr)
 {
   av::EmbeddingOptions o;
   o.TargetDim = a.Dim > 0 ? a.Dim : (c.Mesh.AmbientDim == 2 ? 3 : 8);
@@ -289,12 +292,72 @@ void StageEmbed(const Args& a, const Case& c, JsonLine& out)
   out.Set("init", a.Init);
   out.Set("weighted", a.Weighted);
   out.Set("seed", static_cast<long long>(a.Seed));
+  if (keep)
+  {
+    *keep = std::move(r.Embedded);
+  }
+}
+
+/// Stage "mesh" (and "all" = embed + mesh keys): sampling, RVD, RDT and the dual's quality.
+/// The embedding is computed first; with "mesh" only its dimension is reported.
+void StageMesh(const Args& a, const Case& c, JsonLine& out)
+{
+  av::Embedding embedded;
+  if (a.Stage == "all")
+  {
+    StageEmbed(a, c, out, &embedded);
+  }
+  else
+  {
+    Args quiet = a;
+    quiet.TrackError = false; // the per-iteration error is only for the embed report
+    JsonLine scratch;
+    StageEmbed(quiet, c, scratch, &embedded);
+    out.Set("dim", embedded.Dim);
+  }
+  avbench::MeshStageOptions o;
+  o.Sites = a.Sites > 0 ? a.Sites : avbench::DefaultSitesFor(c.Preset);
+  o.SampleIterations = a.SampleIterations;
+  o.Seed = a.Seed;
+  const avbench::MeshStageResult r = avbench::RunMeshStage(c.Mesh, c.Metric, embedded, o);
+  const avbench::PaperMeshValues p = avbench::PaperMeshValuesFor(c.Preset);
+  out.Set("sites", r.Sites);
+  out.Set("sample_iterations", o.SampleIterations);
+  out.Set("sample_seconds", r.SampleSeconds);
+  out.Set("rvd_seconds", r.RvdSeconds);
+  out.Set("rdt_seconds", r.RdtSeconds);
+  out.Set("mesh_seconds", r.MeshSeconds);
+  out.Set("output_cells", r.Cells);
+  out.Set("G_min", r.GMin);
+  out.Set("G_avg", r.GAvg);
+  out.Set("theta_min", r.ThetaMin);
+  out.Set("theta_avg", r.ThetaAvg);
+  out.Set("pct_bad", r.PercentBad);
+  out.Set("inverted", r.Inverted);
+  out.Set("rdt_inverted", r.RdtInverted);
+  out.Set("edges_in_unit_range", r.PercentEdgesInUnitRange);
+  out.Set("rvd_volume_error", r.RvdVolumeError);
+  out.Set("rvd_pieces", r.RvdPieces);
+  out.Set("nonmanifold_faces", r.NonManifoldFaces);
+  out.Set("unused_sites", r.UnusedSites);
+  out.Set("paper_G_min", p.GMin);
+  out.Set("paper_G_avg", p.GAvg);
+  out.Set("paper_theta_min", p.ThetaMin);
+  out.Set("paper_theta_avg", p.ThetaAvg);
+  out.Set("paper_pct_bad", p.PercentBad);
+  out.Set("paper_mesh_seconds", p.MeshSeconds);
+  if (c.Preset == av::AnalyticPreset::Gaussian2D)
+  {
+    out.Set("paper_mesh_note", "Tab. 3 2D Domain row: a different metric");
+  }
 }
 
 using StageFn = std::function<void(const Args&, const Case&, JsonLine&)>;
 const std::map<std::string, StageFn>& Stages()
 {
-  static const std::map<std::string, StageFn> stages = { { "embed", StageEmbed } };
+  static const std::map<std::string, StageFn> stages = {
+    { "embed", [](const Args& a, const Case& c, JsonLine& o) { StageEmbed(a, c, o); } },
+    { "mesh", StageMesh }, { "all", StageMesh } };
   return stages;
 }
 
@@ -302,7 +365,8 @@ void Usage(std::ostream& os)
 {
   os << "usage: anisovoronoi-bench CASE [options]\n"
         "  CASE: gaussian2d | cube1 | cube2 | cube3 | sphere-cyl | sphere-cos | all\n"
-        "  --stage S         stage to run (embed); default embed\n"
+        "  --stage S         embed | mesh (embedding, then sampling + RVD + RDT + quality) | all\n"
+        "                    (both reports); default embed\n"
         "  --dim D           target dimension (default 3 for gaussian2d, else 8)\n"
         "  --iterations N    solver iterations (default 20 for gaussian2d as Fig. 4, else 50)\n"
         "  --resolution N    N vertices per side (cube2/3 keep 5:1:1, spheres ~pi/6 N^3 vertices);\n"
@@ -315,6 +379,9 @@ void Usage(std::ostream& os)
         "  --init smooth|random  initial free coordinates (default smooth)\n"
         "  --weighted        element-measure weighted energy (default: paper's unweighted)\n"
         "  --no-track        do not evaluate L_avg per iteration (iterations_to_paper_error)\n"
+        "  --sites N         sites for mesh (default: cube1 2000, cube2 5000, cube3 5600,\n"
+        "                    sphere-cyl 5000, sphere-cos 1000, gaussian2d 4000)\n"
+        "  --sample-iterations N  sampler iterations (default 50)\n"
         "Prints one JSON object per case on stdout.\n";
 }
 
@@ -362,6 +429,10 @@ bool Parse(int argc, char** argv, Args& a)
       a.Weighted = true;
     else if (k == "--no-track")
       a.TrackError = false;
+    else if (k == "--sites")
+      a.Sites = static_cast<std::size_t>(std::stoll(next()));
+    else if (k == "--sample-iterations")
+      a.SampleIterations = std::stoi(next());
     else if (!k.empty() && k[0] != '-' && a.CaseName.empty())
       a.CaseName = k;
     else
@@ -435,7 +506,7 @@ int main(int argc, char** argv)
       out.Set("input_elements", c.Mesh.NumCells());
       out.Set("stretch_min", smin);
       out.Set("stretch_max", smax);
-      out.Set("mesh_seconds", c.MeshSeconds);
+      out.Set("input_mesh_seconds", c.MeshSeconds);
       stage->second(a, c, out);
       out.Set("threads", threads);
       out.Set("peak_rss_mb", PeakRssMb());

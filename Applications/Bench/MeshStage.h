@@ -1,0 +1,61 @@
+// MeshStage: the "mesh" stage of anisovoronoi-bench (sampling, restricted Voronoi, restricted
+// Delaunay and the §5.2 quality of the dual mesh), kept apart from the JSON / CLI code.
+#ifndef av_bench_MeshStage_h
+#define av_bench_MeshStage_h
+
+#include "AnalyticMetrics.h"
+#include "SimplexMesh.h"
+
+#include <cstddef>
+#include <cstdint>
+
+namespace avbench
+{
+
+/// Paper's numbers for the meshing of a case (Tab. 5; Tab. 3 "2D Domain" for gaussian2d);
+/// NaN where the paper gives none.
+struct PaperMeshValues
+{
+  double GMin, GAvg, ThetaMin, ThetaAvg, PercentBad, MeshSeconds;
+};
+PaperMeshValues PaperMeshValuesFor(av::AnalyticPreset preset);
+
+/// Number of sites of the paper's Tab. 5 row (Tab. 3 for the 2D case).
+std::size_t DefaultSitesFor(av::AnalyticPreset preset);
+
+/// Options of RunMeshStage.
+struct MeshStageOptions
+{
+  std::size_t Sites = 1000;
+  int SampleIterations = 50;
+  std::uint64_t Seed = 1;
+};
+
+/// Timings and quality of one meshing run.
+struct MeshStageResult
+{
+  std::size_t Sites = 0;
+  double SampleSeconds = 0.0, RvdSeconds = 0.0, RdtSeconds = 0.0;
+  double MeshSeconds = 0.0; ///< wall of sampling + RVD + RDT
+  std::size_t Cells = 0;    ///< restricted Delaunay cells
+  double GMin = 0.0, GAvg = 0.0, ThetaMin = 0.0, ThetaAvg = 0.0, PercentBad = 0.0;
+  std::size_t Inverted = 0;          ///< by the quality evaluator (input-space signed measure)
+  std::size_t RdtInverted = 0;       ///< by ComputeRestrictedDelaunay (back-projection)
+  std::size_t NonManifoldFaces = 0;
+  std::size_t UnusedSites = 0;
+  double PercentEdgesInUnitRange = 0.0;
+  double RvdVolumeError = 0.0; ///< |sum piece measures - domain measure| / domain measure
+  std::size_t RvdPieces = 0;
+};
+
+/**
+ * Samples `options.Sites` particles on the embedded mesh, computes the restricted Voronoi
+ * diagram (measures only) and its dual, and evaluates the dual against `metric` interpolated
+ * at the sites. Throws what the kernels throw.
+ */
+MeshStageResult RunMeshStage(const av::SimplexMesh& mesh, const av::MetricField& metric,
+  const av::Embedding& embedding, const MeshStageOptions& options);
+
+} // namespace avbench
+
+#endif
