@@ -906,10 +906,9 @@ template <int K, int DIM>
 void RunBlocks(const SimplexMesh& mesh, const Embedding& emb, const SiteSet& sites,
   const RestrictedVoronoiOptions& opt, const SiteTree& tree, const std::vector<std::int32_t>& adj,
   const std::vector<std::uint32_t>& nbr, const std::vector<double>& nbrd2, int nbrk,
-  std::vector<Chunk>& chunks, std::size_t blockSize)
+  std::vector<Chunk>& chunks, std::size_t blockSize, std::size_t first, std::size_t last)
 {
   tbb::enumerable_thread_specific<Context<K>> contexts;
-  const std::size_t ncells = mesh.NumCells();
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, chunks.size()),
     [&](const tbb::blocked_range<std::size_t>& r) {
       Context<K>& C = contexts.local();
@@ -917,7 +916,7 @@ void RunBlocks(const SimplexMesh& mesh, const Embedding& emb, const SiteSet& sit
       Worker<K, DIM> w(mesh, emb, sites, opt, tree, adj, nbr, nbrd2, nbrk);
       for (std::size_t b = r.begin(); b != r.end(); ++b)
       {
-        const std::size_t e0 = b * blockSize, e1 = std::min(ncells, e0 + blockSize);
+        const std::size_t e0 = first + b * blockSize, e1 = std::min(last, e0 + blockSize);
         for (std::size_t e = e0; e < e1; ++e)
           w.ProcessElement(C, static_cast<std::int32_t>(e), chunks[b]);
       }
@@ -928,17 +927,17 @@ template <int K>
 void RunDim(int dim, const SimplexMesh& mesh, const Embedding& emb, const SiteSet& sites,
   const RestrictedVoronoiOptions& opt, const SiteTree& tree, const std::vector<std::int32_t>& adj,
   const std::vector<std::uint32_t>& nbr, const std::vector<double>& nbrd2, int nbrk,
-  std::vector<Chunk>& chunks, std::size_t bs)
+  std::vector<Chunk>& chunks, std::size_t bs, std::size_t e0, std::size_t e1)
 {
   switch (dim)
   {
-    case 2: RunBlocks<K, 2>(mesh, emb, sites, opt, tree, adj, nbr, nbrd2, nbrk, chunks, bs); break;
-    case 3: RunBlocks<K, 3>(mesh, emb, sites, opt, tree, adj, nbr, nbrd2, nbrk, chunks, bs); break;
-    case 4: RunBlocks<K, 4>(mesh, emb, sites, opt, tree, adj, nbr, nbrd2, nbrk, chunks, bs); break;
-    case 5: RunBlocks<K, 5>(mesh, emb, sites, opt, tree, adj, nbr, nbrd2, nbrk, chunks, bs); break;
-    case 6: RunBlocks<K, 6>(mesh, emb, sites, opt, tree, adj, nbr, nbrd2, nbrk, chunks, bs); break;
-    case 8: RunBlocks<K, 8>(mesh, emb, sites, opt, tree, adj, nbr, nbrd2, nbrk, chunks, bs); break;
-    default: RunBlocks<K, -1>(mesh, emb, sites, opt, tree, adj, nbr, nbrd2, nbrk, chunks, bs);
+    case 2: RunBlocks<K, 2>(mesh, emb, sites, opt, tree, adj, nbr, nbrd2, nbrk, chunks, bs, e0, e1); break;
+    case 3: RunBlocks<K, 3>(mesh, emb, sites, opt, tree, adj, nbr, nbrd2, nbrk, chunks, bs, e0, e1); break;
+    case 4: RunBlocks<K, 4>(mesh, emb, sites, opt, tree, adj, nbr, nbrd2, nbrk, chunks, bs, e0, e1); break;
+    case 5: RunBlocks<K, 5>(mesh, emb, sites, opt, tree, adj, nbr, nbrd2, nbrk, chunks, bs, e0, e1); break;
+    case 6: RunBlocks<K, 6>(mesh, emb, sites, opt, tree, adj, nbr, nbrd2, nbrk, chunks, bs, e0, e1); break;
+    case 8: RunBlocks<K, 8>(mesh, emb, sites, opt, tree, adj, nbr, nbrd2, nbrk, chunks, bs, e0, e1); break;
+    default: RunBlocks<K, -1>(mesh, emb, sites, opt, tree, adj, nbr, nbrd2, nbrk, chunks, bs, e0, e1);
   }
 }
 
@@ -1130,12 +1129,20 @@ RestrictedVoronoiDiagram ComputeRestrictedVoronoi(const SimplexMesh& mesh,
       }
     });
 
+  // Element range (a distributed run clips one block per process).
+  if (options.ElementBegin < 0 || options.ElementBegin > static_cast<std::int64_t>(nc) ||
+    (options.ElementEnd >= 0 &&
+      (options.ElementEnd < options.ElementBegin || options.ElementEnd > static_cast<std::int64_t>(nc))))
+    throw InputError("RestrictedVoronoi: element range [" + std::to_string(options.ElementBegin) +
+      ", " + std::to_string(options.ElementEnd) + ") is not inside [0, " + std::to_string(nc) + ")");
+  const std::size_t first = static_cast<std::size_t>(options.ElementBegin);
+  const std::size_t last = options.ElementEnd < 0 ? nc : static_cast<std::size_t>(options.ElementEnd);
   const std::size_t blockSize = 256;
-  std::vector<Chunk> chunks((nc + blockSize - 1) / blockSize);
+  std::vector<Chunk> chunks((last - first + blockSize - 1) / blockSize);
   if (K == 2)
-    RunDim<2>(embedding.Dim, mesh, embedding, sites, options, tree, adj, nbr, nbrd2, nbrk, chunks, blockSize);
+    RunDim<2>(embedding.Dim, mesh, embedding, sites, options, tree, adj, nbr, nbrd2, nbrk, chunks, blockSize, first, last);
   else
-    RunDim<3>(embedding.Dim, mesh, embedding, sites, options, tree, adj, nbr, nbrd2, nbrk, chunks, blockSize);
+    RunDim<3>(embedding.Dim, mesh, embedding, sites, options, tree, adj, nbr, nbrd2, nbrk, chunks, blockSize, first, last);
 
   // Concatenate the chunks in order (deterministic).
   RestrictedVoronoiDiagram out;

@@ -33,6 +33,12 @@ struct RestrictedVoronoiOptions
   bool MergeBySite = false;
   /// Nearest neighbours prefetched per site (0: automatic). More are fetched on demand.
   int NumNeighbors = 0;
+  /// Clip only elements [ElementBegin, ElementEnd) (ElementEnd < 0: up to the last element)
+  /// against all sites: one process's share of a distributed run. The pieces of the range are
+  /// exactly those of a full run (same order); SiteMeasure then sums the range only, and
+  /// MergeBySite merges only inside the range.
+  std::int64_t ElementBegin = 0;
+  std::int64_t ElementEnd = -1;
 };
 
 /**

@@ -466,6 +466,53 @@ int Bench()
   return 0;
 }
 
+/// Element ranges (one block per process in a distributed run): the blocks' pieces, in order,
+/// are exactly those of the full run.
+void TestElementRange()
+{
+  const double lo[3] = { 0, 0, 0 }, hi[3] = { 1, 1, 1 };
+  const av::SimplexMesh m = KuhnGrid(6, 6, 6, lo, hi);
+  const av::Embedding e = MakeEmbedding(m, 3, nullptr);
+  const av::SiteSet s = RandomSites(m, e, 40, 7);
+  const auto full = av::ComputeRestrictedVoronoi(m, e, s);
+  const std::int64_t nc = static_cast<std::int64_t>(m.NumCells());
+  const std::int64_t cuts[4] = { 0, 300, 301, nc }; // uneven, one single-element block
+  std::size_t p = 0;
+  double total = 0.0;
+  for (int b = 0; b < 3; ++b)
+  {
+    av::RestrictedVoronoiOptions o;
+    o.ElementBegin = cuts[b];
+    o.ElementEnd = cuts[b + 1];
+    const auto r = av::ComputeRestrictedVoronoi(m, e, s, o);
+    AV_CHECK(r.NumPieces() > 0);
+    for (std::size_t q = 0; q < r.NumPieces(); ++q, ++p)
+    {
+      AV_CHECK(r.PieceElement[q] >= cuts[b] && r.PieceElement[q] < cuts[b + 1]);
+      if (p < full.NumPieces())
+      {
+        AV_CHECK(r.PieceElement[q] == full.PieceElement[p] && r.PieceSite[q] == full.PieceSite[p]);
+        AV_CHECK(r.PieceMeasure[q] == full.PieceMeasure[p]);
+        AV_CHECK(r.PieceVertexOffsets[q + 1] - r.PieceVertexOffsets[q] ==
+          full.PieceVertexOffsets[p + 1] - full.PieceVertexOffsets[p]);
+      }
+      total += r.PieceMeasure[q];
+    }
+  }
+  AV_CHECK(p == full.NumPieces());
+  AV_CHECK_NEAR(total, 1.0, 1e-9);
+  av::RestrictedVoronoiOptions bad;
+  bad.ElementBegin = 5;
+  bad.ElementEnd = 4;
+  AV_CHECK_THROWS(av::ComputeRestrictedVoronoi(m, e, s, bad));
+  bad.ElementBegin = 0;
+  bad.ElementEnd = nc + 1;
+  AV_CHECK_THROWS(av::ComputeRestrictedVoronoi(m, e, s, bad));
+  av::RestrictedVoronoiOptions none; // empty range: no pieces, no error
+  none.ElementBegin = none.ElementEnd = 10;
+  AV_CHECK(av::ComputeRestrictedVoronoi(m, e, s, none).NumPieces() == 0);
+}
+
 } // namespace
 
 int main(int argc, char* argv[])
@@ -476,6 +523,7 @@ int main(int argc, char* argv[])
   TestHeightField();
   TestCube();
   TestFewSites();
+  TestElementRange();
   TestBadInput();
   return AV_TEST_RESULT();
 }
