@@ -1,0 +1,43 @@
+/**
+ * @class vtkAnisoAnisotropicMesh
+ * @brief One-click anisotropic mesh of a tensor field ("Aniso Anisotropic Mesh" in ParaView):
+ * the paper's pipeline up to the dual of the restricted Voronoi diagram, with its quality.
+ *
+ * Input and front part as vtkAnisoTensorPipeline (tensor or metric array chosen with
+ * SetInputArrayToProcess; simplex split, tensor-to-metric, embedding, particle sampling with
+ * NumberOfCells sites = mesh vertices), then vtkAnisoRestrictedDelaunay and
+ * vtkAnisoMeshQuality.
+ * Output 0 (vtkUnstructuredGrid): the triangles / tetrahedra, point data of the sites
+ * ("Metric", "Embedding", ...), cell data "G", "MinAngle", "Inverted"; field data of the
+ * quality (G_min, G_avg, theta_min, theta_avg, pct_bad, inverted, edges_in_unit_range,
+ * NumberOfCells), of the dual (NumInverted, NumNonManifoldFaces, NumOpenInteriorFaces,
+ * NumUnusedSites) and "L_avg", "L_max", "MetricScale".
+ * Output 1 (vtkTable): histogram of the per-cell min angles ("MinAngle" bin centre, "Count").
+ * Nothing is repaired: inverted elements are counted, not fixed.
+ */
+#ifndef vtkAnisoAnisotropicMesh_h
+#define vtkAnisoAnisotropicMesh_h
+
+#include "AnisoVoronoiFiltersModule.h" // export macro
+#include "vtkAnisoTensorPipeline.h"
+
+class ANISOVORONOIFILTERS_EXPORT vtkAnisoAnisotropicMesh : public vtkAnisoTensorPipeline
+{
+public:
+  static vtkAnisoAnisotropicMesh* New();
+  vtkTypeMacro(vtkAnisoAnisotropicMesh, vtkAnisoTensorPipeline);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+protected:
+  vtkAnisoAnisotropicMesh();
+  ~vtkAnisoAnisotropicMesh() override;
+  int FillOutputPortInformation(int port, vtkInformation* info) override;
+  int RequestBackEnd(vtkUnstructuredGrid* embedded, vtkPolyData* sites, vtkTable* energy,
+    vtkInformationVector* outputVector) override;
+
+private:
+  vtkAnisoAnisotropicMesh(const vtkAnisoAnisotropicMesh&) = delete;
+  void operator=(const vtkAnisoAnisotropicMesh&) = delete;
+};
+
+#endif

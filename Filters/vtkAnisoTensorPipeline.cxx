@@ -1,0 +1,297 @@
+#include "vtkAnisoTensorPipeline.h"
+
+#include "vtkAnisoDataConversion.h"
+#include "vtkAnisoEmbedding.h"
+#include "vtkAnisoParticleSampler.h"
+#include "vtkAnisoSimplexMesh.h"
+#include "vtkAnisoTensorToMetric.h"
+
+#include <vtkCellData.h>
+#include <vtkCommand.h>
+#include <vtkDataArray.h>
+#include <vtkDataSet.h>
+#include <vtkDataSetAttributes.h>
+#include <vtkDoubleArray.h>
+#include <vtkExecutive.h>
+#include <vtkFieldData.h>
+#include <vtkInformation.h>
+#include <vtkInformationVector.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkPolyData.h>
+#include <vtkSmartPointer.h>
+#include <vtkTable.h>
+#include <vtkUnstructuredGrid.h>
+
+namespace
+{
+/// Maps a stage's progress into the owner's range, forwards abort, records errors (an observed
+/// ErrorEvent is not printed by VTK, so the owner reports it once, as its own).
+class StageObserver : public vtkCommand
+{
+public:
+  static StageObserver* New() { return new StageObserver; }
+  void Execute(vtkObject* caller, unsigned long event, void* callData) override
+  {
+    if (event == vtkCommand::ProgressEvent && this->Owner)
+    {
+      const double p = callData ? *static_cast<double*>(callData) : 0.0;
+      this->Owner->UpdateProgress(this->Begin + (this->End - this->Begin) * p);
+      if (this->Owner->GetAbortExecute())
+      {
+        if (auto* alg = vtkAlgorithm::SafeDownCast(caller))
+          alg->SetAbortExecute(1);
+      }
+    }
+    else if (event == vtkCommand::ErrorEvent)
+    {
+      if (this->Error.empty() && callData)
+        this->Error = static_cast<const char*>(callData);
+    }
+  }
+  vtkAlgorithm* Owner = nullptr;
+  double Begin = 0.0, End = 1.0;
+  std::string Error;
+};
+
+void AddFieldValue(vtkFieldData* fd, const char* name, double value)
+{
+  vtkNew<vtkDoubleArray> a;
+  a->SetName(name);
+  a->InsertNextValue(value);
+  fd->AddArray(a);
+}
+
+// VTK error text looks like "ERROR: In file, line N\nvtkX (0x..): message": keep the message.
+std::string StripLocation(const std::string& text)
+{
+  const auto pos = text.find("): ");
+  std::string m = pos == std::string::npos ? text : text.substr(pos + 3);
+  while (!m.empty() && (m.back() == '\n' || m.back() == ' '))
+    m.pop_back();
+  return m;
+}
+}
+
+vtkAnisoTensorPipeline::vtkAnisoTensorPipeline()
+{
+  this->SetInputArrayToProcess(
+    0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, vtkDataSetAttributes::TENSORS);
+}
+
+vtkAnisoTensorPipeline::~vtkAnisoTensorPipeline() = default;
+
+int vtkAnisoTensorPipeline::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkDataSet");
+  return 1;
+}
+
+int vtkAnisoTensorPipeline::RequestUpdateExtent(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
+{
+  // The embedding is global: always the whole input.
+  vtkAnisoDataConversion::RequestWholeInputs(inputVector, this->GetNumberOfInputPorts());
+  return 1;
+}
+
+bool vtkAnisoTensorPipeline::RunStage(
+  vtkAlgorithm* stage, const char* what, double begin, double end, std::string& error)
+{
+  vtkNew<StageObserver> observer;
+  observer->Owner = this;
+  observer->Begin = begin;
+  observer->End = end;
+  const unsigned long progressTag = stage->AddObserver(vtkCommand::ProgressEvent, observer);
+  const unsigned long errorTag = stage->AddObserver(vtkCommand::ErrorEvent, observer);
+  // The executive's "returned failure for request" follow-up is swallowed the same way.
+  vtkNew<StageObserver> executiveObserver;
+  vtkExecutive* executive = stage->GetExecutive();
+  const unsigned long execTag = executive->AddObserver(vtkCommand::ErrorEvent, executiveObserver);
+  stage->Update();
+  stage->RemoveObserver(progressTag);
+  stage->RemoveObserver(errorTag);
+  executive->RemoveObserver(execTag);
+  if (!observer->Error.empty() || !executiveObserver->Error.empty())
+  {
+    error = std::string(what) + ": " +
+      StripLocation(observer->Error.empty() ? executiveObserver->Error : observer->Error);
+    return false;
+  }
+  if (this->GetAbortExecute())
+  {
+    error = std::string(what) + ": aborted";
+    return false;
+  }
+  return true;
+}
+
+void vtkAnisoTensorPipeline::AddFrontFieldData(vtkFieldData* fd) const
+{
+  AddFieldValue(fd, "L_avg", this->AverageEdgeLengthError);
+  AddFieldValue(fd, "L_max", this->MaximumEdgeLengthError);
+  AddFieldValue(fd, "MetricScale", this->MetricScale);
+}
+
+int vtkAnisoTensorPipeline::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkDataSet* input = vtkDataSet::GetData(inputVector[0]);
+  if (!input || input->GetNumberOfPoints() == 0 || input->GetNumberOfCells() == 0)
+  {
+    return 1; // empty in, empty out
+  }
+  this->AverageEdgeLengthError = this->MaximumEdgeLengthError = 0.0;
+  this->MetricScale = 1.0;
+
+  // The chosen array, by name on a shallow copy (an unnamed one gets a name there).
+  int association = -1;
+  vtkDataArray* chosen = this->GetInputArrayToProcess(0, inputVector, association);
+  vtkInformation* arrayInfo = this->GetInputArrayInformation(0);
+  if (!chosen && arrayInfo && arrayInfo->Has(vtkDataObject::FIELD_NAME()) &&
+    arrayInfo->Get(vtkDataObject::FIELD_NAME()) && *arrayInfo->Get(vtkDataObject::FIELD_NAME()))
+  {
+    vtkErrorMacro(
+      "the input has no array named '" << arrayInfo->Get(vtkDataObject::FIELD_NAME()) << "'");
+    return 0;
+  }
+  vtkSmartPointer<vtkDataSet> copy = vtk::TakeSmartPointer(input->NewInstance());
+  copy->ShallowCopy(input);
+  std::string arrayName;
+  if (chosen)
+  {
+    if (association != vtkDataObject::FIELD_ASSOCIATION_POINTS &&
+      association != vtkDataObject::FIELD_ASSOCIATION_CELLS)
+    {
+      vtkErrorMacro("the tensor array must be a point or a cell array");
+      return 0;
+    }
+    arrayName = chosen->GetName() && *chosen->GetName() ? chosen->GetName() : "AnisoTensor";
+    if (!chosen->GetName() || !*chosen->GetName())
+    {
+      vtkSmartPointer<vtkDataArray> named = vtk::TakeSmartPointer(chosen->NewInstance());
+      named->ShallowCopy(chosen);
+      named->SetName(arrayName.c_str());
+      (association == vtkDataObject::FIELD_ASSOCIATION_POINTS
+          ? static_cast<vtkDataSetAttributes*>(copy->GetPointData())
+          : static_cast<vtkDataSetAttributes*>(copy->GetCellData()))
+        ->AddArray(named);
+    }
+  }
+  if (this->FieldMode == METRIC_FIELD)
+  {
+    vtkDataArray* metric = vtkAnisoDataConversion::FindPointTensorArray(chosen, association, input);
+    if (!metric || (chosen && association != vtkDataObject::FIELD_ASSOCIATION_POINTS))
+    {
+      vtkErrorMacro("FieldMode MetricField needs a point metric array (6 or 9 components); "
+                    "use TensorField for cell tensors");
+      return 0;
+    }
+    arrayName = metric->GetName() && *metric->GetName() ? metric->GetName() : arrayName;
+    association = vtkDataObject::FIELD_ASSOCIATION_POINTS;
+  }
+
+  std::string error;
+  vtkNew<vtkAnisoSimplexMesh> simplexMesh;
+  simplexMesh->SetInputData(copy);
+  simplexMesh->ReportSplitOff();
+  if (!this->RunStage(simplexMesh, "simplex mesh", 0.0, 0.02, error))
+  {
+    vtkErrorMacro(<< error);
+    return 0;
+  }
+  vtkSmartPointer<vtkDataSet> withMetric = simplexMesh->GetOutput();
+  std::string metricName = arrayName;
+  double tensorScale = 1.0;
+  vtkNew<vtkAnisoTensorToMetric> tensorToMetric;
+  if (this->FieldMode == TENSOR_FIELD)
+  {
+    tensorToMetric->SetInputData(withMetric);
+    if (!arrayName.empty())
+      tensorToMetric->SetInputArrayToProcess(0, 0, 0, association, arrayName.c_str());
+    tensorToMetric->SetMinimumEigenvalue(this->MinimumEigenvalue);
+    tensorToMetric->SetMaximumAnisotropy(this->MaximumAnisotropy);
+    tensorToMetric->SetSmoothingIterations(this->SmoothingIterations);
+    tensorToMetric->SetMetricArrayName("Metric");
+    if (!this->RunStage(tensorToMetric, "tensor to metric", 0.02, 0.05, error))
+    {
+      vtkErrorMacro(<< error);
+      return 0;
+    }
+    withMetric = tensorToMetric->GetOutputDataObject(0) ? vtkDataSet::SafeDownCast(
+                                                            tensorToMetric->GetOutputDataObject(0))
+                                                        : nullptr;
+    tensorScale = tensorToMetric->GetMetricScale();
+    metricName = "Metric";
+  }
+  else
+  {
+    // The sampler interpolates the active point tensors: make the metric active (on a copy).
+    vtkSmartPointer<vtkDataSet> active = vtk::TakeSmartPointer(withMetric->NewInstance());
+    active->ShallowCopy(withMetric);
+    if (!metricName.empty())
+      active->GetPointData()->SetActiveTensors(metricName.c_str());
+    withMetric = active;
+  }
+  if (!withMetric || (!metricName.empty() && !withMetric->GetPointData()->GetArray(metricName.c_str())))
+  {
+    vtkErrorMacro("the metric point array is missing after the simplex split");
+    return 0;
+  }
+
+  vtkNew<vtkAnisoEmbedding> embedding;
+  embedding->SetInputData(withMetric);
+  if (!metricName.empty())
+    embedding->SetInputArrayToProcess(
+      0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, metricName.c_str());
+  embedding->SetTargetDimension(this->TargetDimension);
+  embedding->SetIterations(this->Iterations);
+  embedding->SetSeed(this->Seed);
+  if (!this->RunStage(embedding, "embedding", 0.05, 0.6, error))
+  {
+    vtkErrorMacro(<< error);
+    return 0;
+  }
+  vtkUnstructuredGrid* embedded = embedding->GetOutput();
+  this->AverageEdgeLengthError = embedding->GetAverageEdgeLengthError();
+  this->MaximumEdgeLengthError = embedding->GetMaximumEdgeLengthError();
+  this->MetricScale = tensorScale * embedding->GetMetricScale();
+
+  vtkNew<vtkAnisoParticleSampler> sampler;
+  sampler->SetInputData(embedded);
+  sampler->SetNumberOfSites(this->NumberOfCells);
+  sampler->SetIterations(this->SamplingIterations);
+  sampler->SetSeed(this->Seed);
+  if (!this->RunStage(sampler, "particle sampler", 0.6, 0.85, error))
+  {
+    vtkErrorMacro(<< error);
+    return 0;
+  }
+  vtkPolyData* sites = vtkPolyData::SafeDownCast(sampler->GetOutputDataObject(0));
+  vtkTable* energy = vtkTable::SafeDownCast(embedding->GetOutputDataObject(1));
+  if (!sites || sites->GetNumberOfPoints() == 0)
+  {
+    vtkErrorMacro("particle sampler: no site was produced");
+    return 0;
+  }
+  const int ok = this->RequestBackEnd(embedded, sites, energy, outputVector);
+  if (ok)
+    this->UpdateProgress(1.0);
+  return ok;
+}
+
+void vtkAnisoTensorPipeline::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent
+     << "FieldMode: " << (this->FieldMode == METRIC_FIELD ? "MetricField" : "TensorField")
+     << "\n";
+  os << indent << "NumberOfCells: " << this->NumberOfCells << "\n";
+  os << indent << "TargetDimension: " << this->TargetDimension << "\n";
+  os << indent << "Iterations: " << this->Iterations << "\n";
+  os << indent << "SamplingIterations: " << this->SamplingIterations << "\n";
+  os << indent << "MaximumAnisotropy: " << this->MaximumAnisotropy << "\n";
+  os << indent << "MinimumEigenvalue: " << this->MinimumEigenvalue << "\n";
+  os << indent << "SmoothingIterations: " << this->SmoothingIterations << "\n";
+  os << indent << "Seed: " << this->Seed << "\n";
+}
