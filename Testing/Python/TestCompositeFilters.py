@@ -1,0 +1,126 @@
+"""The one-click C++ filters vtkAnisoVoronoiCells / vtkAnisoAnisotropicMesh used directly.
+
+Cube1 (6^3 Kuhn grid, M = diag(S^2, 1, 1), S = 1 + 9x): 100 shrunken cells filling 0.8^3 of
+the box, Stretch following S (correlated with the cell centroid's x), tensor mode on a cell
+tensor array, input untouched, and the error path: a NaN in the tensor array is a filter error
+(no crash, no output cells).
+"""
+import numpy as np
+from vtkmodules.vtkCommonCore import vtkCommand, vtkDoubleArray
+from vtkmodules.vtkCommonDataModel import vtkDataObject
+from vtkmodules.vtkFiltersCore import vtkPointDataToCellData
+from vtkmodules.util.misc import calldata_type
+from vtkmodules.util.numpy_support import vtk_to_numpy
+from vtkmodules.util.vtkConstants import VTK_STRING
+from anisovoronoi import (vtkAnisoAnalyticMetricSource, vtkAnisoAnisotropicMesh,
+                          vtkAnisoVoronoiCells)
+
+POINTS = vtkDataObject.FIELD_ASSOCIATION_POINTS
+CELLS = vtkDataObject.FIELD_ASSOCIATION_CELLS
+
+source = vtkAnisoAnalyticMetricSource()
+source.SetPreset(1)
+source.SetResolution(6)
+source.Update()
+cube = source.GetOutput()
+arrays_before = cube.GetPointData().GetNumberOfArrays()
+
+
+def configure(f, data, association, name):
+    f.SetInputData(data)
+    f.SetInputArrayToProcess(0, 0, 0, association, name)
+    f.SetNumberOfCells(100)
+    f.SetTargetDimension(5)
+    f.SetIterations(10)
+    f.SetSamplingIterations(10)
+    return f
+
+
+def Errors(obj):
+    """Collects the error messages of obj (an observed ErrorEvent is not printed)."""
+    messages = []
+
+    @calldata_type(VTK_STRING)
+    def on_error(caller, event, data):
+        messages.append(str(data))
+
+    obj.AddObserver(vtkCommand.ErrorEvent, on_error)
+    return messages
+
+
+# Metric mode: the analytic metric used as is.
+f = configure(vtkAnisoVoronoiCells(), cube, POINTS, "Metric")
+f.SetFieldModeToMetricField()
+f.Update()
+cells = f.GetOutput()
+n = cells.GetNumberOfCells()
+measure = vtk_to_numpy(cells.GetCellData().GetArray("Measure"))
+stretch = vtk_to_numpy(cells.GetCellData().GetArray("Stretch"))
+centroid_x = np.array([np.mean([cells.GetPoint(p)[0] for p in
+                                [cells.GetCell(c).GetPointId(k)
+                                 for k in range(cells.GetCell(c).GetNumberOfPoints())]])
+                       for c in range(n)])
+r = np.corrcoef(centroid_x, stretch)[0, 1]
+print("metric mode: %d cells, volume %.12g, stretch %.3f..%.3f, corr(x, stretch) %.3f"
+      % (n, measure.sum(), stretch.min(), stretch.max(), r))
+assert n == 100
+assert abs(measure.sum() - 0.8 ** 3) < 1e-9
+assert stretch.min() >= 1.0 - 1e-9 and stretch.max() <= 10.0 + 1e-9
+# S = 1 + 9x at the site, the centroid is within a cell width of it: strong correlation and
+# the slope dS/dx about 9.
+assert r > 0.95, r
+slope = np.polyfit(centroid_x, stretch, 1)[0]
+assert 7.0 < slope < 11.0, slope
+assert cube.GetPointData().GetNumberOfArrays() == arrays_before  # input untouched
+assert f.GetOutputDataObject(2).GetNumberOfRows() == 11
+
+# Tensor mode on a cell tensor array (the metric averaged to the cells).
+p2c = vtkPointDataToCellData()
+p2c.SetInputData(cube)
+p2c.Update()
+t = configure(vtkAnisoVoronoiCells(), p2c.GetOutput(), CELLS, "Metric")
+t.Update()
+tc = t.GetOutput()
+ts = vtk_to_numpy(tc.GetCellData().GetArray("Stretch"))
+print("tensor mode (cell tensors): %d cells, stretch %.3f..%.3f, MetricScale %g"
+      % (tc.GetNumberOfCells(), ts.min(), ts.max(), t.GetMetricScale()))
+assert tc.GetNumberOfCells() == 100
+# Eq. 20 squares the eigenvalues: stretch S^2 capped at MaximumAnisotropy 10, then smoothed.
+assert ts.max() <= 10.0 + 1e-6 and ts.max() > 4.0
+
+# The mesh companion.
+m = configure(vtkAnisoAnisotropicMesh(), cube, POINTS, "Metric")
+m.SetFieldModeToMetricField()
+m.Update()
+mesh = m.GetOutput()
+fd = mesh.GetFieldData()
+print("mesh: %d tets, inverted %g, G_avg %.3f" % (
+    mesh.GetNumberOfCells(), fd.GetArray("inverted").GetTuple1(0), fd.GetArray("G_avg").GetTuple1(0)))
+assert mesh.GetNumberOfPoints() == 100 and mesh.GetNumberOfCells() > 100
+assert fd.GetArray("inverted").GetTuple1(0) == 0
+assert fd.GetArray("L_avg") is not None and fd.GetArray("MetricScale") is not None
+assert m.GetOutputDataObject(1).GetNumberOfRows() > 0
+
+# Error path: a NaN in the tensor field -> this filter's error, empty output, no crash.
+bad = cube.NewInstance()
+bad.DeepCopy(cube)
+tensor = vtkDoubleArray()
+tensor.DeepCopy(cube.GetPointData().GetArray("Metric"))
+tensor.SetName("Bad")
+tensor.SetComponent(7, 0, float("nan"))
+bad.GetPointData().AddArray(tensor)
+for cls, mode in ((vtkAnisoVoronoiCells, 0), (vtkAnisoVoronoiCells, 1), (vtkAnisoAnisotropicMesh, 0)):
+    e = configure(cls(), bad, POINTS, "Bad")
+    e.SetFieldMode(mode)
+    errors = Errors(e)
+    e.Update()
+    print("%s mode %d error: %s" % (cls.__name__, mode, errors[:1]))
+    assert errors, "a NaN tensor must be an error"
+    assert "nan" in errors[0].lower() or "finite" in errors[0].lower(), errors
+    assert e.GetOutput().GetNumberOfCells() == 0
+# A missing array name is an error that names it.
+e = configure(vtkAnisoVoronoiCells(), cube, POINTS, "NoSuchArray")
+errors = Errors(e)
+e.Update()
+assert errors and "NoSuchArray" in errors[0], errors
+print("TestCompositeFilters: OK")
