@@ -9,9 +9,13 @@
 #include <vtkDataSet.h>
 #include <vtkDoubleArray.h>
 #include <vtkGenericCell.h>
+#include <vtkExecutive.h>
 #include <vtkIdList.h>
+#include <vtkInformation.h>
+#include <vtkInformationVector.h>
 #include <vtkNew.h>
 #include <vtkPoints.h>
+#include <vtkStreamingDemandDrivenPipeline.h>
 #include <vtkUnstructuredGrid.h>
 
 #include <algorithm>
@@ -440,4 +444,43 @@ vtkSmartPointer<vtkDataArray> MakeArray(
   return array;
 }
 
+
+void RequestWholeInputs(vtkInformationVector** inputVector, int numberOfInputPorts)
+{
+  using SDDP = vtkStreamingDemandDrivenPipeline;
+  for (int port = 0; port < numberOfInputPorts; ++port)
+    for (int i = 0; i < inputVector[port]->GetNumberOfInformationObjects(); ++i)
+    {
+      vtkInformation* info = inputVector[port]->GetInformationObject(i);
+      info->Set(SDDP::UPDATE_PIECE_NUMBER(), 0);
+      info->Set(SDDP::UPDATE_NUMBER_OF_PIECES(), 1);
+      info->Set(SDDP::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
+    }
+}
+
+void RequestedPiece(
+  vtkInformation* request, vtkInformationVector* outputVector, int& piece, int& numberOfPieces)
+{
+  using SDDP = vtkStreamingDemandDrivenPipeline;
+  piece = 0;
+  numberOfPieces = 1;
+  int port = request && request->Has(vtkExecutive::FROM_OUTPUT_PORT())
+    ? request->Get(vtkExecutive::FROM_OUTPUT_PORT())
+    : 0;
+  if (port < 0 || port >= outputVector->GetNumberOfInformationObjects())
+    port = 0;
+  vtkInformation* info = outputVector->GetInformationObject(port);
+  if (!info || !info->Has(SDDP::UPDATE_PIECE_NUMBER()) ||
+    !info->Has(SDDP::UPDATE_NUMBER_OF_PIECES()))
+    return;
+  numberOfPieces = std::max(1, info->Get(SDDP::UPDATE_NUMBER_OF_PIECES()));
+  piece = std::min(std::max(0, info->Get(SDDP::UPDATE_PIECE_NUMBER())), numberOfPieces - 1);
+}
+
+bool IsSecondaryPiece(vtkInformation* request, vtkInformationVector* outputVector)
+{
+  int piece = 0, pieces = 1;
+  RequestedPiece(request, outputVector, piece, pieces);
+  return piece > 0;
+}
 }

@@ -15,6 +15,8 @@
 #include <string>
 
 class vtkAlgorithm;
+class vtkInformation;
+class vtkInformationVector;
 class vtkDataArray;
 class vtkDataSet;
 class vtkPointSet;
@@ -66,6 +68,22 @@ vtkSmartPointer<vtkUnstructuredGrid> FromSimplexMesh(const av::SimplexMesh& mesh
 /// A vtkDoubleArray holding `values` (row-major, `components` per tuple).
 vtkSmartPointer<vtkDataArray> MakeArray(
   const char* name, const double* values, std::size_t tuples, int components);
+
+/**
+ * Distributed runs (mpiexec pvbatch, pvserver): asks every connection of every input port for
+ * the whole dataset (piece 0 of 1, no ghost levels). For RequestUpdateExtent of filters that
+ * need the whole mesh; each process then computes the same deterministic result.
+ */
+void RequestWholeInputs(vtkInformationVector** inputVector, int numberOfInputPorts);
+
+/// Piece and number of pieces requested on the output port that `request` came from (port 0
+/// when unknown); 0 and 1 when no piece was requested.
+void RequestedPiece(vtkInformation* request, vtkInformationVector* outputVector, int& piece,
+  int& numberOfPieces);
+
+/// True when a piece other than 0 of a split request is asked for: whole-mesh filters then
+/// leave that output empty, so that gathering all pieces gives exactly one copy.
+bool IsSecondaryPiece(vtkInformation* request, vtkInformationVector* outputVector);
 }
 
 #endif

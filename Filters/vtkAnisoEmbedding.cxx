@@ -61,12 +61,23 @@ int vtkAnisoEmbedding::FillOutputPortInformation(int port, vtkInformation* info)
   return 1;
 }
 
+int vtkAnisoEmbedding::RequestUpdateExtent(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
+{
+  vtkAnisoDataConversion::RequestWholeInputs(inputVector, this->GetNumberOfInputPorts());
+  return 1;
+}
+
 int vtkAnisoEmbedding::RequestData(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   vtkDataSet* input = vtkDataSet::GetData(inputVector[0]);
   vtkUnstructuredGrid* output = vtkUnstructuredGrid::GetData(outputVector, 0);
   vtkTable* energyTable = vtkTable::GetData(outputVector, 1);
+  if (vtkAnisoDataConversion::IsSecondaryPiece(request, outputVector))
+  {
+    return 1; // whole result on piece 0 only
+  }
   if (!input || input->GetNumberOfPoints() == 0 || input->GetNumberOfCells() == 0)
   {
     return 1; // empty in, empty out

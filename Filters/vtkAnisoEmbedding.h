@@ -22,6 +22,11 @@
  * one sparse Cholesky factorisation (CHOLMOD) and one multi-right-hand-side solve per
  * iteration; a smooth random start and energy-safeguarded Anderson acceleration (the energy
  * never increases). Documentation/embedding.md gives the details and measured figures.
+ *
+ * Distributed runs (mpiexec pvbatch, pvserver): needs the whole mesh, so it asks its inputs
+ * for the whole dataset and runs redundantly on every process that needs its output (the cost
+ * is not divided); the whole result goes to piece 0 and the other pieces are empty, so that
+ * gathering the pieces gives one copy. See Documentation/parallel.md.
  */
 #ifndef vtkAnisoEmbedding_h
 #define vtkAnisoEmbedding_h
@@ -117,6 +122,7 @@ protected:
   ~vtkAnisoEmbedding() override;
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int FillOutputPortInformation(int port, vtkInformation* info) override;
+  int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   int TargetDimension = 8;

@@ -19,6 +19,11 @@
  * [1/sqrt2, sqrt2]), "NumberOfCells".
  * Output 1 (vtkTable): histogram of the per-cell min angles, columns "MinAngle" (bin centre,
  * degrees) and "Count", 5-degree bins over [0, 90) — shown as a bar chart in ParaView.
+ *
+ * Distributed runs (mpiexec pvbatch, pvserver): needs the whole mesh, so it asks its inputs
+ * for the whole dataset and runs redundantly on every process that needs its output (the cost
+ * is not divided); the whole result goes to piece 0 and the other pieces are empty, so that
+ * gathering the pieces gives one copy. See Documentation/parallel.md.
  */
 #ifndef vtkAnisoMeshQuality_h
 #define vtkAnisoMeshQuality_h
@@ -47,6 +52,7 @@ protected:
   ~vtkAnisoMeshQuality() override = default;
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int FillOutputPortInformation(int port, vtkInformation* info) override;
+  int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   double GMin = 0.0;

@@ -50,13 +50,24 @@ int vtkAnisoParticleSampler::FillOutputPortInformation(int port, vtkInformation*
   return 1;
 }
 
-int vtkAnisoParticleSampler::RequestData(vtkInformation*,
+int vtkAnisoParticleSampler::RequestUpdateExtent(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
+{
+  vtkAnisoDataConversion::RequestWholeInputs(inputVector, this->GetNumberOfInputPorts());
+  return 1;
+}
+
+int vtkAnisoParticleSampler::RequestData(vtkInformation* request,
   vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
   vtkDataSet* input = vtkDataSet::GetData(inputVector[0]);
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
   vtkTable* energyTable = vtkTable::GetData(outputVector, 1);
+  if (vtkAnisoDataConversion::IsSecondaryPiece(request, outputVector))
+  {
+    return 1; // whole result on piece 0 only
+  }
   if (!input || input->GetNumberOfPoints() == 0 || input->GetNumberOfCells() == 0)
   {
     return 1; // empty in, empty out

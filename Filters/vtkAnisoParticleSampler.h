@@ -29,6 +29,11 @@
  *
  * Parameters: NumberOfSites (default 2000; between 1 and 8 x the input's point count),
  * Iterations (50), Seed (1), KernelWidthFactor (0.3), NeighbourCutoff (5).
+ *
+ * Distributed runs (mpiexec pvbatch, pvserver): needs the whole mesh, so it asks its inputs
+ * for the whole dataset and runs redundantly on every process that needs its output (the cost
+ * is not divided); the whole result goes to piece 0 and the other pieces are empty, so that
+ * gathering the pieces gives one copy. See Documentation/parallel.md.
  */
 #ifndef vtkAnisoParticleSampler_h
 #define vtkAnisoParticleSampler_h
@@ -81,6 +86,7 @@ protected:
   ~vtkAnisoParticleSampler() override = default;
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int FillOutputPortInformation(int port, vtkInformation* info) override;
+  int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   int NumberOfSites = 2000;

@@ -49,13 +49,24 @@ int vtkAnisoRestrictedDelaunay::FillInputPortInformation(int, vtkInformation* in
   return 1;
 }
 
-int vtkAnisoRestrictedDelaunay::RequestData(vtkInformation*,
+int vtkAnisoRestrictedDelaunay::RequestUpdateExtent(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
+{
+  vtkAnisoDataConversion::RequestWholeInputs(inputVector, this->GetNumberOfInputPorts());
+  return 1;
+}
+
+int vtkAnisoRestrictedDelaunay::RequestData(vtkInformation* request,
   vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
   vtkDataSet* input = vtkDataSet::GetData(inputVector[0]);
   vtkDataSet* sitesInput = vtkDataSet::GetData(inputVector[1]);
   vtkUnstructuredGrid* output = vtkUnstructuredGrid::GetData(outputVector, 0);
+  if (vtkAnisoDataConversion::IsSecondaryPiece(request, outputVector))
+  {
+    return 1; // whole result on piece 0 only
+  }
   if (!input || input->GetNumberOfPoints() == 0 || input->GetNumberOfCells() == 0 || !sitesInput ||
     sitesInput->GetNumberOfPoints() == 0)
   {

@@ -16,6 +16,11 @@
  *
  * Nothing is repaired (the paper inserts points to fix inverted elements): the counts are
  * reported, with a warning when an element is inverted or a face non-manifold.
+ *
+ * Distributed runs (mpiexec pvbatch, pvserver): needs the whole mesh, so it asks its inputs
+ * for the whole dataset and runs redundantly on every process that needs its output (the cost
+ * is not divided); the whole result goes to piece 0 and the other pieces are empty, so that
+ * gathering the pieces gives one copy. See Documentation/parallel.md.
  */
 #ifndef vtkAnisoRestrictedDelaunay_h
 #define vtkAnisoRestrictedDelaunay_h
@@ -41,6 +46,7 @@ protected:
   vtkAnisoRestrictedDelaunay();
   ~vtkAnisoRestrictedDelaunay() override = default;
   int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   vtkIdType NumberOfInverted = 0;

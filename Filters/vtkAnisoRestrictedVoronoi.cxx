@@ -269,7 +269,15 @@ int vtkAnisoRestrictedVoronoi::FillOutputPortInformation(int port, vtkInformatio
   return 1;
 }
 
-int vtkAnisoRestrictedVoronoi::RequestData(vtkInformation*,
+int vtkAnisoRestrictedVoronoi::RequestUpdateExtent(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
+{
+  // Every process needs the whole mesh and all sites; only the clipping work is split.
+  vtkAnisoDataConversion::RequestWholeInputs(inputVector, this->GetNumberOfInputPorts());
+  return 1;
+}
+
+int vtkAnisoRestrictedVoronoi::RequestData(vtkInformation* request,
   vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
@@ -310,6 +318,12 @@ int vtkAnisoRestrictedVoronoi::RequestData(vtkInformation*,
   options.ComputeGeometry = true;
   options.KeepEmbeddedPoints = false;
   options.MergeBySite = this->MergeBySite;
+  // Distributed run: this piece clips one contiguous block of elements.
+  int piece = 0, numberOfPieces = 1;
+  vtkAnisoDataConversion::RequestedPiece(request, outputVector, piece, numberOfPieces);
+  const std::int64_t numberOfElements = static_cast<std::int64_t>(mesh.NumCells());
+  options.ElementBegin = numberOfElements * piece / numberOfPieces;
+  options.ElementEnd = numberOfElements * (piece + 1) / numberOfPieces;
   av::RestrictedVoronoiDiagram rvd;
   double kernelSeconds = 0.0;
   try
@@ -536,6 +550,8 @@ int vtkAnisoRestrictedVoronoi::RequestData(vtkInformation*,
     AddFieldValue(fd, "NumberOfEmptySites", static_cast<double>(sites.NumSites() - nonEmpty));
     AddFieldValue(fd, "VoronoiKernelSeconds", kernelSeconds);
     AddFieldValue(fd, "VoronoiSeconds", seconds);
+    AddFieldValue(fd, "PieceNumber", piece);
+    AddFieldValue(fd, "NumberOfPieces", numberOfPieces);
   }
   this->UpdateProgress(1.0);
   return 1;

@@ -35,7 +35,15 @@
  * Field data of both outputs: "TotalMeasure" (sum of the unshrunk cells), "DomainMeasure"
  * (measure of the input mesh), "RelativeVolumeError" (|Total - Domain| / Domain),
  * "NumberOfVoronoiCells" (non-empty sites), "NumberOfEmptySites", "VoronoiKernelSeconds" (the
- * clipping alone), "VoronoiSeconds" (the whole filter).
+ * clipping alone), "VoronoiSeconds" (the whole filter), "PieceNumber", "NumberOfPieces".
+ *
+ * Distributed runs (mpiexec pvbatch, pvserver): both inputs are requested whole (every
+ * process gets the whole mesh and all sites); output piece p of n clips only the elements
+ * [p*N/n, (p+1)*N/n) of the N mesh elements (TBB threads inside each process). With
+ * MergeBySite off the pieces of all processes together are exactly the serial output. With
+ * MergeBySite on, a Voronoi cell that straddles two element blocks comes out as one cell per
+ * block. TotalMeasure, RelativeVolumeError and NumberOfVoronoiCells then describe this piece
+ * only (DomainMeasure is always the whole mesh's). See Documentation/parallel.md.
  */
 #ifndef vtkAnisoRestrictedVoronoi_h
 #define vtkAnisoRestrictedVoronoi_h
@@ -75,6 +83,7 @@ protected:
   ~vtkAnisoRestrictedVoronoi() override = default;
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int FillOutputPortInformation(int port, vtkInformation* info) override;
+  int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   bool MergeBySite = true;
