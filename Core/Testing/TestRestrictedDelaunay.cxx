@@ -59,33 +59,8 @@ std::set<Key> BruteRestrictedDelaunay(const av::SiteSet& s, int k)
         }
       }
       double c[3];
-      if (k == 2)
-      {
-        const double det = A[0][0] * A[1][1] - A[0][1] * A[1][0];
-        if (std::abs(det) < 1e-14)
-          return;
-        c[0] = (b[0] * A[1][1] - A[0][1] * b[1]) / det;
-        c[1] = (A[0][0] * b[1] - b[0] * A[1][0]) / det;
-      }
-      else
-      {
-        auto det3 = [](double M[3][3]) {
-          return M[0][0] * (M[1][1] * M[2][2] - M[1][2] * M[2][1]) -
-            M[0][1] * (M[1][0] * M[2][2] - M[1][2] * M[2][0]) +
-            M[0][2] * (M[1][0] * M[2][1] - M[1][1] * M[2][0]);
-        };
-        const double det = det3(A);
-        if (std::abs(det) < 1e-14)
-          return;
-        for (int a = 0; a < 3; ++a)
-        {
-          double B[3][3];
-          for (int i = 0; i < 3; ++i)
-            for (int j = 0; j < 3; ++j)
-              B[i][j] = j == a ? b[i] : A[i][j];
-          c[a] = det3(B) / det;
-        }
-      }
+      if (std::abs(av_test::SolveCramer(k, A, b, c)) < 1e-14)
+        return;
       for (int d = 0; d < k; ++d)
         if (!(c[d] > 0.0 && c[d] < 1.0))
           return;

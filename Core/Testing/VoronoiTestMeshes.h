@@ -3,6 +3,7 @@
 #define av_VoronoiTestMeshes_h
 
 #include "SimplexMesh.h"
+#include "StructuredMeshes.h"
 
 #include <algorithm>
 #include <array>
@@ -18,22 +19,39 @@ namespace av_test
 /// nx x ny vertices on [x0,x1]x[y0,y1], two triangles per quad, counter-clockwise.
 inline av::SimplexMesh TriGrid(int nx, int ny, double x0, double y0, double x1, double y1)
 {
-  av::SimplexMesh m;
-  m.AmbientDim = 2;
-  m.SimplexDim = 2;
-  for (int j = 0; j < ny; ++j)
-    for (int i = 0; i < nx; ++i)
-    {
-      m.Points.push_back(x0 + (x1 - x0) * i / (nx - 1));
-      m.Points.push_back(y0 + (y1 - y0) * j / (ny - 1));
-    }
-  for (int j = 0; j + 1 < ny; ++j)
-    for (int i = 0; i + 1 < nx; ++i)
-    {
-      const int a = j * nx + i, b = a + 1, c = a + nx, d = c + 1;
-      m.Cells.insert(m.Cells.end(), { a, b, d, a, d, c });
-    }
-  return m;
+  const double lo[2] = { x0, y0 }, hi[2] = { x1, y1 };
+  return av::MakeTriangleGrid(nx, ny, lo, hi);
+}
+
+/// Determinant of a 3x3 matrix.
+inline double Det3(const double M[3][3])
+{
+  return M[0][0] * (M[1][1] * M[2][2] - M[1][2] * M[2][1]) -
+    M[0][1] * (M[1][0] * M[2][2] - M[1][2] * M[2][0]) +
+    M[0][2] * (M[1][0] * M[2][1] - M[1][1] * M[2][0]);
+}
+
+/// Solves the k x k system M x = r (k = 2 or 3) by Cramer's rule and returns det M (x is
+/// inf / NaN when it is 0: callers check it).
+inline double SolveCramer(int k, const double M[3][3], const double r[3], double x[3])
+{
+  if (k == 2)
+  {
+    const double det = M[0][0] * M[1][1] - M[0][1] * M[1][0];
+    x[0] = (r[0] * M[1][1] - M[0][1] * r[1]) / det;
+    x[1] = (M[0][0] * r[1] - r[0] * M[1][0]) / det;
+    return det;
+  }
+  const double det = Det3(M);
+  for (int a = 0; a < 3; ++a)
+  {
+    double B[3][3];
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        B[i][j] = j == a ? r[i] : M[i][j];
+    x[a] = Det3(B) / det;
+  }
+  return det;
 }
 
 /// nx x ny x nz vertices on the box, 6 Kuhn tets per cube, positively oriented.
@@ -71,10 +89,7 @@ inline av::SimplexMesh KuhnGrid(int nx, int ny, int nz, const double lo[3], cons
           for (int s = 0; s < 3; ++s)
             for (int d = 0; d < 3; ++d)
               e[s][d] = m.Point(t[s + 1])[d] - a[d];
-          const double det = e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) -
-            e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) +
-            e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0]);
-          if (det < 0)
+          if (Det3(e) < 0)
             std::swap(t[2], t[3]);
           m.Cells.insert(m.Cells.end(), t.begin(), t.end());
         }
@@ -179,29 +194,7 @@ inline bool SiteAt(av::SiteSet& s, const av::SimplexMesh& m, const av::Embedding
       r[d] = x[d] - m.Point(cell[0])[d];
     }
     double b[4] = { 0, 0, 0, 0 };
-    if (k == 2)
-    {
-      const double det = A[0][0] * A[1][1] - A[0][1] * A[1][0];
-      b[1] = (r[0] * A[1][1] - A[0][1] * r[1]) / det;
-      b[2] = (A[0][0] * r[1] - r[0] * A[1][0]) / det;
-    }
-    else
-    {
-      auto det3 = [](double M[3][3]) {
-        return M[0][0] * (M[1][1] * M[2][2] - M[1][2] * M[2][1]) -
-          M[0][1] * (M[1][0] * M[2][2] - M[1][2] * M[2][0]) +
-          M[0][2] * (M[1][0] * M[2][1] - M[1][1] * M[2][0]);
-      };
-      const double det = det3(A);
-      for (int a = 0; a < 3; ++a)
-      {
-        double B[3][3];
-        for (int i = 0; i < 3; ++i)
-          for (int j = 0; j < 3; ++j)
-            B[i][j] = (j == a) ? r[i] : A[i][j];
-        b[a + 1] = det3(B) / det;
-      }
-    }
+    SolveCramer(k, A, r, b + 1);
     b[0] = 1.0;
     for (int a = 1; a < nv; ++a)
       b[0] -= b[a];

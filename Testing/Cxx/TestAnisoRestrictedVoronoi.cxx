@@ -8,6 +8,7 @@
 #include "vtkAnisoEmbedding.h"
 #include "vtkAnisoParticleSampler.h"
 #include "vtkAnisoRestrictedVoronoi.h"
+#include "vtkAnisoTestUtilities.h"
 
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
@@ -32,45 +33,9 @@
 
 namespace
 {
-int failures = 0;
-#define CHECK(cond)                                                                                \
-  do                                                                                               \
-  {                                                                                                \
-    if (!(cond))                                                                                   \
-    {                                                                                              \
-      std::printf("FAILED line %d: %s\n", __LINE__, #cond);                                        \
-      ++failures;                                                                                  \
-    }                                                                                              \
-  } while (0)
-#define CHECK_NEAR(a, b, tol)                                                                      \
-  do                                                                                               \
-  {                                                                                                \
-    const double va_ = (a), vb_ = (b);                                                             \
-    if (!(std::abs(va_ - vb_) <= (tol)))                                                           \
-    {                                                                                              \
-      std::printf("FAILED line %d: %s = %.17g, expected %.17g\n", __LINE__, #a, va_, vb_);         \
-      ++failures;                                                                                  \
-    }                                                                                              \
-  } while (0)
-
-class ErrorCounter : public vtkCommand
-{
-public:
-  static ErrorCounter* New() { return new ErrorCounter; }
-  void Execute(vtkObject*, unsigned long, void* data) override
-  {
-    ++this->Count;
-    this->Last = data ? static_cast<const char*>(data) : "";
-  }
-  int Count = 0;
-  std::string Last;
-};
-
-double FieldValue(vtkDataObject* o, const char* name)
-{
-  vtkDataArray* a = o->GetFieldData()->GetArray(name);
-  return a ? a->GetTuple1(0) : std::nan("");
-}
+using av_vtk_test::EventCounter;
+using av_vtk_test::FieldValue;
+using av_vtk_test::Seconds;
 
 /// Area vector of a polygon (Newell): half the sum of cross products.
 void AreaVector(vtkPoints* pts, const vtkIdType* ids, vtkIdType n, double a[3])
@@ -190,8 +155,7 @@ int main(int, char*[])
   rvd->SetInputConnection(1, sampler->GetOutputPort());
   auto t0 = std::chrono::steady_clock::now();
   rvd->Update();
-  std::printf("pipeline: %.3f s\n",
-    std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+  std::printf("pipeline: %.3f s\n", Seconds(t0));
 
   double bounds[6];
   source->GetOutput()->GetBounds(bounds);
@@ -317,14 +281,12 @@ int main(int, char*[])
   // A site outside the mesh: an error, no output, no crash.
   plain->GetPoints()->SetPoint(3, bounds[1] + 1.0, 0.5, 0.5);
   plain->Modified();
-  vtkNew<ErrorCounter> errors;
+  vtkNew<EventCounter> errors;
   located->AddObserver(vtkCommand::ErrorEvent, errors);
   located->Update();
-  CHECK(errors->Count > 0);
+  CHECK(errors->Errors > 0);
   CHECK(errors->Last.find("outside the mesh") != std::string::npos);
   std::printf("outside site -> \"%s\"\n", errors->Last.c_str());
 
-  if (failures)
-    std::printf("%d check(s) failed\n", failures);
-  return failures ? 1 : 0;
+  return av_vtk_test::Result("TestAnisoRestrictedVoronoi");
 }

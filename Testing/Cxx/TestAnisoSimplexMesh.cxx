@@ -4,6 +4,7 @@
 // conforming (interior faces shared by exactly two tets), simplicial input passes through
 // unchanged, a quad mesh becomes triangles of the same area, unsupported types are named.
 #include "vtkAnisoSimplexMesh.h"
+#include "vtkAnisoTestUtilities.h"
 
 #include <vtkCellData.h>
 #include <vtkCellType.h>
@@ -30,51 +31,8 @@
 
 namespace
 {
-int failures = 0;
-#define CHECK(cond)                                                                                \
-  do                                                                                               \
-  {                                                                                                \
-    if (!(cond))                                                                                   \
-    {                                                                                              \
-      std::printf("FAILED line %d: %s\n", __LINE__, #cond);                                        \
-      ++failures;                                                                                  \
-    }                                                                                              \
-  } while (0)
-#define CHECK_NEAR(a, b, tol)                                                                      \
-  do                                                                                               \
-  {                                                                                                \
-    const double va_ = (a), vb_ = (b);                                                             \
-    if (!(std::abs(va_ - vb_) <= (tol)))                                                           \
-    {                                                                                              \
-      std::printf("FAILED line %d: %s = %.17g, expected %.17g\n", __LINE__, #a, va_, vb_);         \
-      ++failures;                                                                                  \
-    }                                                                                              \
-  } while (0)
-
-class EventCounter : public vtkCommand
-{
-public:
-  static EventCounter* New() { return new EventCounter; }
-  void Execute(vtkObject*, unsigned long event, void* data) override
-  {
-    (event == vtkCommand::ErrorEvent ? this->Errors : this->Warnings)++;
-    if (data)
-    {
-      this->Last = static_cast<const char*>(data);
-      this->All += this->Last;
-    }
-  }
-  void Reset()
-  {
-    this->Errors = this->Warnings = 0;
-    this->Last.clear();
-    this->All.clear();
-  }
-  std::string All;
-  int Errors = 0;
-  int Warnings = 0;
-  std::string Last;
-};
+using av_vtk_test::EventCounter;
+using av_vtk_test::Watch;
 
 // The shear x' = A x (planar faces stay planar, so the volume is det(A) x the box volume).
 const double A[3][3] = { { 1.0, 0.3, 0.1 }, { 0.0, 1.2, -0.2 }, { 0.1, 0.0, 0.9 } };
@@ -206,9 +164,7 @@ void TestHexBlock(EventCounter* events)
   const vtkIdType inCells = block->GetNumberOfCells();
 
   vtkNew<vtkAnisoSimplexMesh> filter;
-  filter->AddObserver(vtkCommand::ErrorEvent, events);
-  filter->AddObserver(vtkCommand::WarningEvent, events);
-  filter->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, events);
+  Watch(filter, events);
   events->Reset();
   filter->SetInputData(block);
   CHECK(filter->GetExecutive()->Update() == 1);
@@ -380,9 +336,7 @@ void TestQuadsAndErrors(EventCounter* events)
       quads->InsertNextCell(VTK_QUAD, 4, q);
     }
   vtkNew<vtkAnisoSimplexMesh> filter;
-  filter->AddObserver(vtkCommand::WarningEvent, events);
-  filter->AddObserver(vtkCommand::ErrorEvent, events);
-  filter->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, events);
+  Watch(filter, events);
   filter->SetInputData(quads);
   events->Reset();
   CHECK(filter->GetExecutive()->Update() == 1);
@@ -427,11 +381,5 @@ int main(int, char*[])
   vtkNew<EventCounter> events;
   TestHexBlock(events);
   TestQuadsAndErrors(events);
-  if (failures)
-  {
-    std::printf("%d check(s) failed\n", failures);
-    return 1;
-  }
-  std::printf("TestAnisoSimplexMesh passed\n");
-  return 0;
+  return av_vtk_test::Result("TestAnisoSimplexMesh");
 }

@@ -2,6 +2,7 @@
 // the global scale, symmetrisation of 9-component input, cell tensors averaged to points,
 // smoothing along cell edges, 2D detection, errors, and that the input is left unmodified.
 #include "vtkAnisoTensorToMetric.h"
+#include "vtkAnisoTestUtilities.h"
 
 #include <vtkCellData.h>
 #include <vtkCommand.h>
@@ -21,54 +22,9 @@
 
 namespace
 {
-int failures = 0;
-#define CHECK(cond)                                                                                \
-  do                                                                                               \
-  {                                                                                                \
-    if (!(cond))                                                                                   \
-    {                                                                                              \
-      std::printf("FAILED line %d: %s\n", __LINE__, #cond);                                        \
-      ++failures;                                                                                  \
-    }                                                                                              \
-  } while (0)
-#define CHECK_NEAR(a, b, tol)                                                                      \
-  do                                                                                               \
-  {                                                                                                \
-    const double va_ = (a), vb_ = (b);                                                             \
-    if (!(std::abs(va_ - vb_) <= (tol)))                                                           \
-    {                                                                                              \
-      std::printf("FAILED line %d: %s = %.17g, expected %.17g\n", __LINE__, #a, va_, vb_);         \
-      ++failures;                                                                                  \
-    }                                                                                              \
-  } while (0)
-
-/// Counts error/warning events (keeps the test output clean) and keeps the last message.
-class EventCounter : public vtkCommand
-{
-public:
-  static EventCounter* New() { return new EventCounter; }
-  void Execute(vtkObject*, unsigned long event, void* data) override
-  {
-    (event == vtkCommand::ErrorEvent ? this->Errors : this->Warnings)++;
-    if (data)
-      this->Last = static_cast<const char*>(data);
-  }
-  void Reset()
-  {
-    this->Errors = this->Warnings = 0;
-    this->Last.clear();
-  }
-  int Errors = 0;
-  int Warnings = 0;
-  std::string Last;
-};
-
-void Watch(vtkAlgorithm* alg, EventCounter* counter)
-{
-  alg->AddObserver(vtkCommand::ErrorEvent, counter);
-  alg->AddObserver(vtkCommand::WarningEvent, counter);
-  alg->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, counter);
-}
+using av_vtk_test::EventCounter;
+using av_vtk_test::FieldValue;
+using av_vtk_test::Watch;
 
 /// Rotation about the unit axis (1, 2, 3) / |.| by 0.7 rad.
 void Rotation(double r[3][3])
@@ -151,12 +107,6 @@ void Eigen6(const double* v, double w[3], double vec[3][3])
   }
   for (int k = 0; k < 3; ++k)
     w[k] = ws[k];
-}
-
-double FieldValue(vtkDataSet* ds, const char* name)
-{
-  vtkDataArray* a = ds->GetFieldData()->GetArray(name);
-  return a ? a->GetTuple1(0) : std::nan("");
 }
 
 // A rotated anisotropic tensor, scaled per point: the metric must have eigenvalues
@@ -485,11 +435,5 @@ int main(int, char*[])
   TestSmoothingEdges(events);
   TestFlat(events);
   TestErrors(events);
-  if (failures)
-  {
-    std::printf("%d check(s) failed\n", failures);
-    return 1;
-  }
-  std::printf("TestAnisoTensorToMetric passed\n");
-  return 0;
+  return av_vtk_test::Result("TestAnisoTensorToMetric");
 }

@@ -9,6 +9,7 @@
 #include "vtkAnisoParticleSampler.h"
 #include "vtkAnisoRestrictedDelaunay.h"
 #include "vtkAnisoRestrictedVoronoi.h"
+#include "vtkAnisoTestUtilities.h"
 
 #include <vtkCellData.h>
 #include <vtkCommand.h>
@@ -29,43 +30,9 @@
 #include <string>
 #include <utility>
 
-namespace
-{
-int failures = 0;
-#define CHECK(cond)                                                                                \
-  do                                                                                               \
-  {                                                                                                \
-    if (!(cond))                                                                                   \
-    {                                                                                              \
-      std::printf("FAILED line %d: %s\n", __LINE__, #cond);                                        \
-      ++failures;                                                                                  \
-    }                                                                                              \
-  } while (0)
-
-class ErrorCounter : public vtkCommand
-{
-public:
-  static ErrorCounter* New() { return new ErrorCounter; }
-  void Execute(vtkObject*, unsigned long, void* data) override
-  {
-    ++this->Count;
-    this->Last = data ? static_cast<const char*>(data) : "";
-  }
-  int Count = 0;
-  std::string Last;
-};
-
-double FieldValue(vtkDataObject* o, const char* name)
-{
-  vtkDataArray* a = o->GetFieldData()->GetArray(name);
-  return a ? a->GetTuple1(0) : std::nan("");
-}
-
-double Seconds(std::chrono::steady_clock::time_point t0)
-{
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-} // namespace
+using av_vtk_test::EventCounter;
+using av_vtk_test::FieldValue;
+using av_vtk_test::Seconds;
 
 int main(int, char*[])
 {
@@ -226,24 +193,24 @@ int main(int, char*[])
 
   // Bad inputs: errors, no crash.
   {
-    vtkNew<ErrorCounter> errors;
+    vtkNew<EventCounter> errors;
     vtkNew<vtkAnisoParticleSampler> zero;
     zero->AddObserver(vtkCommand::ErrorEvent, errors);
     zero->SetInputConnection(embedding->GetOutputPort());
     zero->SetNumberOfSites(0);
     zero->Update();
-    CHECK(errors->Count == 1);
+    CHECK(errors->Errors == 1);
     std::printf("0 sites -> \"%s\"\n", errors->Last.c_str());
     zero->SetNumberOfSites(100000000); // more than 8 x the mesh's points
     zero->Update();
-    CHECK(errors->Count == 2);
+    CHECK(errors->Errors == 2);
     std::printf("too many sites -> \"%s\"\n", errors->Last.c_str());
 
     vtkNew<vtkAnisoParticleSampler> noEmbedding;
     noEmbedding->AddObserver(vtkCommand::ErrorEvent, errors);
     noEmbedding->SetInputConnection(source->GetOutputPort());
     noEmbedding->Update();
-    CHECK(errors->Count == 3);
+    CHECK(errors->Errors == 3);
     CHECK(errors->Last.find("embedding") != std::string::npos);
     CHECK(noEmbedding->GetOutput()->GetNumberOfPoints() == 0);
     std::printf("no embedding -> \"%s\"\n", errors->Last.c_str());
@@ -258,7 +225,7 @@ int main(int, char*[])
     badSites->SetInputConnection(0, embedding->GetOutputPort());
     badSites->SetInputData(1, outside);
     badSites->Update();
-    CHECK(errors->Count == 4);
+    CHECK(errors->Errors == 4);
     CHECK(errors->Last.find("outside") != std::string::npos);
     CHECK(badSites->GetOutput()->GetNumberOfCells() == 0);
     std::printf("site outside -> \"%s\"\n", errors->Last.c_str());
@@ -269,11 +236,9 @@ int main(int, char*[])
     bare->CopyStructure(mesh);
     noMetric->SetInputData(bare);
     noMetric->Update();
-    CHECK(errors->Count == 5);
+    CHECK(errors->Errors == 5);
     std::printf("no metric -> \"%s\"\n", errors->Last.c_str());
   }
 
-  if (failures)
-    std::printf("%d check(s) failed\n", failures);
-  return failures ? 1 : 0;
+  return av_vtk_test::Result("TestAnisoVoronoiPipeline");
 }
