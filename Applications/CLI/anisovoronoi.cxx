@@ -31,6 +31,7 @@
 #include <vtkStaticPointLocator.h>
 #include <vtkTrivialProducer.h>
 #include <vtkFieldData.h>
+#include <vtkLogger.h>
 #include <vtkNew.h>
 #include <vtkOBJReader.h>
 #include <vtkOutputWindow.h>
@@ -134,6 +135,38 @@ public:
     }
   }
   std::string Message;
+};
+
+/**
+ * Receives every VTK error/warning: errors raised inside helper objects (e.g. the legacy
+ * reader's internal reader) reach no algorithm observer, so they are collected here.
+ */
+class CapturingOutputWindow : public vtkOutputWindow
+{
+public:
+  static CapturingOutputWindow* New() { return new CapturingOutputWindow; }
+  void DisplayErrorText(const char* text) override
+  {
+    if (this->FirstError.empty() && text)
+    {
+      std::string t = text;
+      const std::size_t colon = t.find("): ");
+      t = colon == std::string::npos ? t : t.substr(colon + 3);
+      while (!t.empty() && (t.back() == '\n' || t.back() == ' '))
+        t.pop_back();
+      this->FirstError = t;
+    }
+  }
+  void DisplayWarningText(const char* text) override
+  {
+    if (this->ShowWarnings && text)
+      std::cerr << "[anisovoronoi] warning: " << text << std::flush;
+  }
+  void DisplayGenericWarningText(const char* text) override { this->DisplayWarningText(text); }
+  void DisplayText(const char*) override {}
+  void DisplayDebugText(const char*) override {}
+  std::string FirstError;
+  bool ShowWarnings = true;
 };
 
 int ParseInt(const std::string& flag, const char* value)
@@ -250,7 +283,11 @@ public:
     if (!this->Quiet)
       std::cerr << "[anisovoronoi] " << stage << " ..." << std::flush;
     const auto t0 = std::chrono::steady_clock::now();
+    auto* window = static_cast<CapturingOutputWindow*>(vtkOutputWindow::GetInstance());
+    window->FirstError.clear();
     algorithm->Update();
+    if (catcher->Message.empty() && !window->FirstError.empty())
+      catcher->Message = window->FirstError;
     const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     algorithm->RemoveObserver(tag);
@@ -381,8 +418,12 @@ vtkSmartPointer<vtkAlgorithm> MakeReader(const Options& o)
 int main(int argc, char* argv[])
 {
   // VTK's own error output is replaced by our one-line messages.
-  vtkOutputWindow::GetInstance()->SetDisplayModeToNever();
+  // VTK 9 also logs errors to stderr through loguru: silence it, we print one line.
+  vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
+  vtkNew<CapturingOutputWindow> window;
+  vtkOutputWindow::SetInstance(window);
   const Options o = ParseCommandLine(argc, argv);
+  window->ShowWarnings = !o.Quiet;
   if (!vtksys::SystemTools::MakeDirectory(o.OutputDir))
     Fail("cannot create the output directory '" + o.OutputDir + "'");
   Pipeline pipeline(o.Quiet);

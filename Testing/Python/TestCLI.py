@@ -1,0 +1,124 @@
+"""The anisovoronoi command-line tool: a small run end to end (files read back, report keys,
+Voronoi partition, nothing written outside the output folder) and its error paths (one-line
+message, non-zero exit, fast)."""
+import json
+import os
+import subprocess
+import sys
+import tempfile
+import time
+
+from vtkmodules.vtkIOXML import vtkXMLPolyDataReader, vtkXMLUnstructuredGridReader
+
+CLI = os.path.join(os.environ["AV_BUILD"], "bin", "anisovoronoi")
+failures = []
+
+
+def check(cond, what):
+    if not cond:
+        failures.append(what)
+        print("FAILED:", what)
+
+
+def run(args, cwd):
+    t0 = time.time()
+    p = subprocess.run([CLI] + args, cwd=cwd, capture_output=True, text=True, timeout=300)
+    return p, time.time() - t0
+
+
+def read(path):
+    r = vtkXMLPolyDataReader() if path.endswith(".vtp") else vtkXMLUnstructuredGridReader()
+    r.SetFileName(path)
+    r.Update()
+    return r.GetOutput()
+
+
+with tempfile.TemporaryDirectory() as tmp:
+    work = os.path.join(tmp, "work")
+    os.makedirs(work)
+    out = os.path.join(work, "out")
+    p, _ = run(["--metric", "preset:cube1", "--resolution", "6", "--sites", "60", "--dim", "5",
+                "--iterations", "10", "--sample-iterations", "10", "--shrink", "1",
+                "--output-dir", "out", "--quiet"], work)
+    check(p.returncode == 0, "small run exits 0 (stderr: %s)" % p.stderr.strip())
+    check(sorted(os.listdir(work)) == ["out"], "nothing written outside the output folder")
+    names = sorted(os.listdir(out))
+    check(names == sorted(["embedded.vtu", "sites.vtp", "voronoi.vtu", "voronoi_faces.vtp",
+                           "mesh.vtu", "energy.csv", "report.json"]), "output files: %s" % names)
+    report = json.load(open(os.path.join(out, "report.json")))
+    for key in ["input_vertices", "L_avg", "L_max", "embed_seconds", "sample_seconds",
+                "rvd_seconds", "rdt_seconds", "mesh_seconds", "G_min", "G_avg", "theta_min",
+                "theta_avg", "pct_bad", "inverted", "edges_in_unit_range", "rvd_volume_error"]:
+        check(key in report and report[key] is not None, "report has " + key)
+    check(report["input_vertices"] == 216, "6^3 input vertices")
+    check(report["rvd_volume_error"] < 1e-9, "Voronoi cells partition the cube")
+    emb = read(os.path.join(out, "embedded.vtu"))
+    check(emb.GetNumberOfPoints() == 216, "embedded.vtu reads back")
+    check(emb.GetPointData().GetArray("Embedding").GetNumberOfComponents() == 5,
+          "embedding array has 5 components")
+    cells = read(os.path.join(out, "voronoi.vtu"))
+    check(cells.GetNumberOfCells() == 60, "one Voronoi cell per site (read back)")
+    vol = sum(cells.GetCellData().GetArray("Measure").GetValue(i)
+              for i in range(cells.GetNumberOfCells()))
+    check(abs(vol - 1.0) < 1e-9, "cell volumes sum to the cube volume (%r)" % vol)
+    mesh = read(os.path.join(out, "mesh.vtu"))
+    check(mesh.GetNumberOfPoints() == 60, "mesh vertices are the sites")
+    check(len(open(os.path.join(out, "energy.csv")).read().splitlines()) == 12,
+          "energy.csv has the initial state + 10 iterations")
+
+    # Error paths: exit != 0, one line on stderr naming the problem, within seconds.
+    bad_mesh = os.path.join(tmp, "bad.mesh")
+    with open(bad_mesh, "w") as f:
+        f.write("MeshVersionFormatted 2\nDimension 3\nVertices\n4\n0 0 0 0\n1 0 0 0\n")
+    nan_vtk = os.path.join(tmp, "nan.vtk")
+    with open(nan_vtk, "w") as f:
+        f.write("# vtk DataFile Version 3.0\nnan\nASCII\nDATASET UNSTRUCTURED_GRID\n"
+                "POINTS 4 double\n0 0 0\n1 0 0\n0 1 0\n0 0 1\nCELLS 1 5\n4 0 1 2 3\n"
+                "CELL_TYPES 1\n10\nPOINT_DATA 4\nTENSORS T double\n"
+                "1 0 0 0 1 0 0 0 1\nnan 0 0 0 1 0 0 0 1\n1 0 0 0 1 0 0 0 1\n"
+                "1 0 0 0 1 0 0 0 1\n")
+    # A NaN that survives reading (XML): the metric stage must reject it.
+    from vtkmodules.vtkCommonCore import vtkDoubleArray, vtkPoints
+    from vtkmodules.vtkCommonDataModel import vtkUnstructuredGrid, VTK_TETRA
+    from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridWriter
+    grid = vtkUnstructuredGrid()
+    pts = vtkPoints()
+    for x in [(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1)]:
+        pts.InsertNextPoint(*x)
+    grid.SetPoints(pts)
+    grid.InsertNextCell(VTK_TETRA, 4, [0, 1, 2, 3])
+    t = vtkDoubleArray()
+    t.SetName("T")
+    t.SetNumberOfComponents(6)
+    for i in range(4):
+        t.InsertNextTuple([float("nan") if i == 1 else 1.0, 1, 1, 0, 0, 0])
+    grid.GetPointData().AddArray(t)
+    nan_vtu = os.path.join(tmp, "nan.vtu")
+    w = vtkXMLUnstructuredGridWriter()
+    w.SetInputData(grid)
+    w.SetFileName(nan_vtu)
+    w.SetDataModeToBinary()
+    w.Write()
+    cases = [
+        (["missing.vtu", "--metric", "tensor:S", "--output-dir", "e1"], "no such file"),
+        (["--metric", "preset:nope", "--output-dir", "e2"], "unknown preset"),
+        (["--metric", "banana", "--output-dir", "e3"], "--metric"),
+        (["--metric", "preset:cube1"], "--output-dir"),
+        (["--metric", "preset:cube1", "--sites", "0", "--output-dir", "e4"], "--sites"),
+        ([bad_mesh, "--metric", "metric:Metric", "--output-dir", "e5"], "bad.mesh:4:"),
+        ([nan_vtk, "--metric", "tensor:T", "--output-dir", "e6"], "nan"),
+        ([nan_vtu, "--metric", "tensor:Missing", "--output-dir", "e7"], "Missing"),
+        ([nan_vtu, "--metric", "tensor:T", "--output-dir", "e9"], "NaN"),
+        (["--metric", "preset:cube1", "--resolution", "6", "--sites", "100000",
+          "--output-dir", "e8"], "sites"),
+    ]
+    for args, expect in cases:
+        p, seconds = run(args, work)
+        lines = [l for l in p.stderr.splitlines() if l.startswith("anisovoronoi: error:")]
+        check(p.returncode != 0, "%s: non-zero exit" % args)
+        check(len(lines) == 1 and expect.lower() in lines[0].lower(),
+              "%s: one error line mentioning %r, got %r" % (args, expect, p.stderr.strip()[-300:]))
+        check(seconds < 30, "%s: fails fast (%.1f s)" % (args, seconds))
+
+print("%d failure(s)" % len(failures))
+sys.exit(1 if failures else 0)
