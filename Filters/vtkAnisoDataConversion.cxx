@@ -433,6 +433,23 @@ vtkSmartPointer<vtkUnstructuredGrid> FromSimplexMesh(const av::SimplexMesh& mesh
   return grid;
 }
 
+bool ToVoronoiInputs(vtkDataSet* meshInput, vtkDataArray* embeddingArray, vtkDataSet* sitesInput,
+  av::SimplexMesh& mesh, av::Embedding& embedding, av::SiteSet& sites, std::string& error,
+  std::string* note)
+{
+  if (!ToSimplexMesh(meshInput, mesh, error, note) ||
+    !ToEmbedding(embeddingArray, mesh, embedding, error))
+  {
+    return false;
+  }
+  if (!ToSiteSet(sitesInput, meshInput, mesh, embedding, sites, error))
+  {
+    error = "Sites: " + error;
+    return false;
+  }
+  return true;
+}
+
 vtkSmartPointer<vtkDataArray> MakeArray(
   const char* name, const double* values, std::size_t tuples, int components)
 {

@@ -65,6 +65,15 @@ bool ToSiteSet(vtkDataSet* sites, vtkDataSet* meshData, const av::SimplexMesh& m
 /// A vtkUnstructuredGrid of the mesh's triangles/tetrahedra (z = 0 for a flat 2D domain).
 vtkSmartPointer<vtkUnstructuredGrid> FromSimplexMesh(const av::SimplexMesh& mesh);
 
+/**
+ * The three inputs of the Voronoi/Delaunay filters at once: the embedded mesh, its embedding
+ * array and the sites (ToSimplexMesh, ToEmbedding, ToSiteSet), with the error prefixed by the
+ * input it concerns. A warning text about ignored cells goes to `note`.
+ */
+bool ToVoronoiInputs(vtkDataSet* meshInput, vtkDataArray* embeddingArray, vtkDataSet* sitesInput,
+  av::SimplexMesh& mesh, av::Embedding& embedding, av::SiteSet& sites, std::string& error,
+  std::string* note = nullptr);
+
 /// A vtkDoubleArray holding `values` (row-major, `components` per tuple).
 vtkSmartPointer<vtkDataArray> MakeArray(
   const char* name, const double* values, std::size_t tuples, int components);

@@ -75,23 +75,13 @@ int vtkAnisoRestrictedDelaunay::RequestData(vtkInformation* request,
   const auto start = std::chrono::steady_clock::now();
 
   av::SimplexMesh mesh;
-  std::string error;
-  if (!vtkAnisoDataConversion::ToSimplexMesh(input, mesh, error))
-  {
-    vtkErrorMacro(<< error);
-    return 0;
-  }
   av::Embedding embedding;
-  if (!vtkAnisoDataConversion::ToEmbedding(
-        this->GetInputArrayToProcess(0, inputVector), mesh, embedding, error))
+  av::SiteSet sites;
+  std::string error;
+  if (!vtkAnisoDataConversion::ToVoronoiInputs(input, this->GetInputArrayToProcess(0, inputVector),
+        sitesInput, mesh, embedding, sites, error))
   {
     vtkErrorMacro(<< error);
-    return 0;
-  }
-  av::SiteSet sites;
-  if (!vtkAnisoDataConversion::ToSiteSet(sitesInput, input, mesh, embedding, sites, error))
-  {
-    vtkErrorMacro("Sites: " << error);
     return 0;
   }
   this->UpdateProgress(0.1);

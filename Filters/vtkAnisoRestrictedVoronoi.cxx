@@ -293,24 +293,18 @@ int vtkAnisoRestrictedVoronoi::RequestData(vtkInformation* request,
   const auto start = std::chrono::steady_clock::now();
 
   av::SimplexMesh mesh;
-  std::string error, note;
-  if (!vtkAnisoDataConversion::ToSimplexMesh(input, mesh, error, &note))
-  {
-    vtkErrorMacro(<< error);
-    return 0;
-  }
   av::Embedding embedding;
-  if (!vtkAnisoDataConversion::ToEmbedding(
-        this->GetInputArrayToProcess(0, inputVector), mesh, embedding, error))
+  av::SiteSet sites;
+  std::string error, note;
+  if (!vtkAnisoDataConversion::ToVoronoiInputs(input, this->GetInputArrayToProcess(0, inputVector),
+        sitesInput, mesh, embedding, sites, error, &note))
   {
     vtkErrorMacro(<< error);
     return 0;
   }
-  av::SiteSet sites;
-  if (!vtkAnisoDataConversion::ToSiteSet(sitesInput, input, mesh, embedding, sites, error))
+  if (!note.empty())
   {
-    vtkErrorMacro("Sites: " << error);
-    return 0;
+    vtkWarningMacro(<< note);
   }
   this->UpdateProgress(0.1);
 
