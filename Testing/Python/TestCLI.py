@@ -66,6 +66,18 @@ with tempfile.TemporaryDirectory() as tmp:
     check(len(open(os.path.join(out, "energy.csv")).read().splitlines()) == 12,
           "energy.csv has the initial state + 10 iterations")
 
+    # A Medit mesh + .sol tensor metric (bundled) through the CLI.
+    data = os.environ["AV_DATA"]
+    p, _ = run([os.path.join(data, "gaussian2d.mesh"), "--sol", os.path.join(data, "gaussian2d.sol"),
+                "--metric", "metric:Metric", "--dim", "3", "--iterations", "20", "--sites", "150",
+                "--output-dir", "medit", "--quiet"], work)
+    check(p.returncode == 0, "Medit input runs (stderr: %s)" % p.stderr.strip()[-300:])
+    if p.returncode == 0:
+        r = json.load(open(os.path.join(work, "medit", "report.json")))
+        check(r["input_vertices"] == 441 and r["voronoi_cells"] == 150, "Medit run sizes")
+        check(r["L_avg"] < 5.0, "Medit run embeds the Gaussian metric (L_avg %r)" % r["L_avg"])
+        check(r["rvd_volume_error"] < 1e-9, "Medit run: cells partition the square")
+
     # Error paths: exit != 0, one line on stderr naming the problem, within seconds.
     bad_mesh = os.path.join(tmp, "bad.mesh")
     with open(bad_mesh, "w") as f:
