@@ -1,5 +1,6 @@
 #include "MeshStage.h"
 
+#include "LloydRelaxation.h"
 #include "MeshQuality.h"
 #include "ParticleSampler.h"
 #include "RestrictedDelaunay.h"
@@ -102,8 +103,17 @@ MeshStageResult RunMeshStage(const av::SimplexMesh& mesh, const av::MetricField&
   so.NumSites = options.Sites;
   so.Iterations = options.SampleIterations;
   so.Seed = options.Seed;
-  const av::ParticleSamplerResult sampled = av::SampleParticles(mesh, embedding, so);
+  so.KernelWidthFactor = options.KernelWidthFactor;
+  av::ParticleSamplerResult sampled = av::SampleParticles(mesh, embedding, so);
   r.SampleSeconds = Since(t0);
+  if (options.LloydIterations > 0)
+  {
+    const auto tl = Clock::now();
+    av::LloydResult lr =
+      av::RelaxSitesLloyd(mesh, embedding, sampled.Sites, options.LloydIterations);
+    sampled.Sites = std::move(lr.Sites);
+    r.LloydSeconds = Since(tl);
+  }
 
   const auto t1 = Clock::now();
   av::RestrictedVoronoiOptions vo;

@@ -29,13 +29,15 @@ struct MeshStageOptions
   std::size_t Sites = 1000;
   int SampleIterations = 50;
   std::uint64_t Seed = 1;
+  double KernelWidthFactor = 0.3; ///< sampler's sigma factor
+  int LloydIterations = 0;        ///< Lloyd (CVT) steps after sampling (av::RelaxSitesLloyd)
 };
 
 /// Timings and quality of one meshing run.
 struct MeshStageResult
 {
   std::size_t Sites = 0;
-  double SampleSeconds = 0.0, RvdSeconds = 0.0, RdtSeconds = 0.0;
+  double SampleSeconds = 0.0, LloydSeconds = 0.0, RvdSeconds = 0.0, RdtSeconds = 0.0;
   double MeshSeconds = 0.0; ///< wall of sampling + RVD + RDT
   std::size_t Cells = 0;    ///< restricted Delaunay cells
   double GMin = 0.0, GAvg = 0.0, ThetaMin = 0.0, ThetaAvg = 0.0, PercentBad = 0.0;

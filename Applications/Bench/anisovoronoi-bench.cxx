@@ -115,6 +115,8 @@ struct Args
   bool TrackError = true;
   std::size_t Sites = 0;     // 0: case default (paper Tab. 5 / Tab. 3)
   int SampleIterations = 50; // sampler L-BFGS iterations
+  double KernelWidth = 0.3;  // sampler sigma factor
+  int Lloyd = 0;             // Lloyd (CVT) steps after sampling
 };
 
 /// Paper values (Tab. 5 and Fig. 4); NaN where the paper gives none.
@@ -319,11 +321,16 @@ void StageMesh(const Args& a, const Case& c, JsonLine& out)
   o.Sites = a.Sites > 0 ? a.Sites : avbench::DefaultSitesFor(c.Preset);
   o.SampleIterations = a.SampleIterations;
   o.Seed = a.Seed;
+  o.KernelWidthFactor = a.KernelWidth;
+  o.LloydIterations = a.Lloyd;
   const avbench::MeshStageResult r = avbench::RunMeshStage(c.Mesh, c.Metric, embedded, o);
   const avbench::PaperMeshValues p = avbench::PaperMeshValuesFor(c.Preset);
   out.Set("sites", r.Sites);
   out.Set("sample_iterations", o.SampleIterations);
   out.Set("sample_seconds", r.SampleSeconds);
+  out.Set("kernel_width", o.KernelWidthFactor);
+  out.Set("lloyd_iterations", o.LloydIterations);
+  out.Set("lloyd_seconds", r.LloydSeconds);
   out.Set("rvd_seconds", r.RvdSeconds);
   out.Set("rdt_seconds", r.RdtSeconds);
   out.Set("mesh_seconds", r.MeshSeconds);
@@ -382,6 +389,8 @@ void Usage(std::ostream& os)
         "  --sites N         sites for mesh (default: cube1 2000, cube2 5000, cube3 5600,\n"
         "                    sphere-cyl 5000, sphere-cos 1000, gaussian2d 4000)\n"
         "  --sample-iterations N  sampler iterations (default 50)\n"
+        "  --kernel-width F  sampler sigma factor (default 0.3)\n"
+        "  --lloyd N         Lloyd (CVT) steps after sampling (default 0)\n"
         "Prints one JSON object per case on stdout.\n";
 }
 
@@ -433,6 +442,10 @@ bool Parse(int argc, char** argv, Args& a)
       a.Sites = static_cast<std::size_t>(std::stoll(next()));
     else if (k == "--sample-iterations")
       a.SampleIterations = std::stoi(next());
+    else if (k == "--kernel-width")
+      a.KernelWidth = std::stod(next());
+    else if (k == "--lloyd")
+      a.Lloyd = std::stoi(next());
     else if (!k.empty() && k[0] != '-' && a.CaseName.empty())
       a.CaseName = k;
     else
