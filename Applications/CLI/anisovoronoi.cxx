@@ -14,6 +14,7 @@
 #include "vtkAnisoRestrictedDelaunay.h"
 #include "vtkAnisoRestrictedVoronoi.h"
 #include "vtkAnisoSimplexMesh.h"
+#include "OffReader.h"
 #include "vtkAnisoTensorToMetric.h"
 #include "vtkAnisoTetMesher.h"
 
@@ -26,7 +27,9 @@
 #include <vtkDataSet.h>
 #include <vtkDataSetReader.h>
 #include <vtkDataSetSurfaceFilter.h>
+#include <vtkCellArray.h>
 #include <vtkExecutive.h>
+#include <vtkPoints.h>
 #include <vtkProbeFilter.h>
 #include <vtkStaticPointLocator.h>
 #include <vtkTrivialProducer.h>
@@ -64,7 +67,7 @@ const char* const Usage = R"(usage: anisovoronoi [INPUT] --metric SPEC --output-
 
 Anisotropic Voronoi cells and meshes from a Riemannian metric through a high-dimensional
 embedding (AnisoVoronoi). INPUT: VTK legacy (.vtk) or XML (.vtu/.vtp/...), Medit .mesh
-(metric from --sol), CalculiX .frd, or a surface (.stl/.ply/.obj). Non-simplex cells
+(metric from --sol), CalculiX .frd, or a surface (.stl/.ply/.obj/.off). Non-simplex cells
 (hexahedra, quadratic cells, ...) are split into simplices. INPUT may be omitted with
 --metric preset:NAME: the preset's own mesh is generated.
 
@@ -395,6 +398,35 @@ vtkSmartPointer<vtkAlgorithm> MakeReader(const Options& o)
     r->SetFileName(o.Input.c_str());
     surface = r;
   }
+  else if (ext == ".off")
+  {
+    av::SimplexMesh surfaceMesh;
+    try
+    {
+      surfaceMesh = av::ReadOff(o.Input);
+    }
+    catch (const av::InputError& e)
+    {
+      Fail(std::string("read ") + vtksys::SystemTools::GetFilenameName(o.Input) + ": " + e.what());
+    }
+    auto grid = vtkSmartPointer<vtkPolyData>::New();
+    vtkNew<vtkPoints> points;
+    points->SetDataTypeToDouble();
+    for (std::size_t i = 0; i < surfaceMesh.NumPoints(); ++i)
+      points->InsertNextPoint(surfaceMesh.Point(i));
+    vtkNew<vtkCellArray> triangles;
+    for (std::size_t c = 0; c < surfaceMesh.NumCells(); ++c)
+    {
+      const vtkIdType ids[3] = { surfaceMesh.Cell(c)[0], surfaceMesh.Cell(c)[1],
+        surfaceMesh.Cell(c)[2] };
+      triangles->InsertNextCell(3, ids);
+    }
+    grid->SetPoints(points);
+    grid->SetPolys(triangles);
+    auto producer = vtkSmartPointer<vtkTrivialProducer>::New();
+    producer->SetOutput(grid);
+    return producer;
+  }
   else if (ext == ".obj")
   {
     auto r = vtkSmartPointer<vtkOBJReader>::New();
@@ -404,7 +436,7 @@ vtkSmartPointer<vtkAlgorithm> MakeReader(const Options& o)
   else
   {
     Fail("unsupported INPUT extension '" + ext +
-      "' (use .vtk .vtu .vtp .mesh .frd .stl .ply .obj)");
+      "' (use .vtk .vtu .vtp .mesh .frd .stl .ply .obj .off)");
   }
   // Surfaces: polygons -> triangles.
   auto tri = vtkSmartPointer<vtkTriangleFilter>::New();

@@ -78,6 +78,31 @@ with tempfile.TemporaryDirectory() as tmp:
         check(r["L_avg"] < 5.0, "Medit run embeds the Gaussian metric (L_avg %r)" % r["L_avg"])
         check(r["rvd_volume_error"] < 1e-9, "Medit run: cells partition the square")
 
+    # A closed surface (OFF) with the curvature metric: the dual mesh of a sphere-like
+    # surface with V vertices must have 2V - 4 triangles (Euler).
+    from vtkmodules.vtkFiltersSources import vtkSphereSource
+    sphere = vtkSphereSource()
+    sphere.SetThetaResolution(40)
+    sphere.SetPhiResolution(30)
+    sphere.Update()
+    sp = sphere.GetOutput()
+    off = os.path.join(tmp, "sphere.off")
+    with open(off, "w") as f:
+        f.write("OFF\n%d %d 0\n" % (sp.GetNumberOfPoints(), sp.GetNumberOfCells()))
+        for i in range(sp.GetNumberOfPoints()):
+            f.write("%r %r %r\n" % sp.GetPoint(i))
+        for c in range(sp.GetNumberOfCells()):
+            ids = sp.GetCell(c).GetPointIds()
+            f.write("3 %d %d %d\n" % (ids.GetId(0), ids.GetId(1), ids.GetId(2)))
+    p, _ = run([off, "--metric", "curvature", "--sites", "120", "--iterations", "20",
+                "--output-dir", "surface", "--quiet"], work)
+    check(p.returncode == 0, "OFF surface runs (stderr: %s)" % p.stderr.strip()[-300:])
+    if p.returncode == 0:
+        r = json.load(open(os.path.join(work, "surface", "report.json")))
+        check(r["voronoi_cells"] == 120, "one cell per site on the surface")
+        check(r["mesh_elements"] == 2 * 120 - 4 and r["nonmanifold_faces"] == 0,
+              "closed dual surface mesh: %r triangles" % r["mesh_elements"])
+
     # Error paths: exit != 0, one line on stderr naming the problem, within seconds.
     bad_mesh = os.path.join(tmp, "bad.mesh")
     with open(bad_mesh, "w") as f:
