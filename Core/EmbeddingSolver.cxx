@@ -56,28 +56,39 @@ void PolarFactor(const MatB& b, MatB& v)
   }
   using MatM = Eigen::Matrix<double, M, M>;
   const MatM c = b.transpose() * b;
-  Eigen::Matrix<double, M, 1> ev;
-  MatM y;
   if constexpr (M == 3)
   {
+    // Eigenvalues only (the eigenvector extraction was 3/4 of the local step's cost); C^{-1/2}
+    // from the invariants of U = C^{1/2} by Cayley-Hamilton (U^3 - i1 U^2 + i2 U - i3 I = 0),
+    // which needs no eigenvectors and is stable for repeated eigenvalues.
     Eigen::SelfAdjointEigenSolver<MatM> es;
-    es.computeDirect(c);
-    ev = es.eigenvalues();
-    y = es.eigenvectors();
+    es.computeDirect(c, Eigen::EigenvaluesOnly);
+    const Eigen::Vector3d ev = es.eigenvalues();
+    if (ev(0) > 1e-8 * ev(2) && ev(0) > 0.0)
+    {
+      const double s0 = std::sqrt(ev(0)), s1 = std::sqrt(ev(1)), s2 = std::sqrt(ev(2));
+      const double i1 = s0 + s1 + s2, i2 = s0 * s1 + s1 * s2 + s0 * s2, i3 = s0 * s1 * s2;
+      MatM u = (i1 * i1 - i2) * c - c * c;
+      u.diagonal().array() += i1 * i3;
+      u /= i1 * i2 - i3;
+      MatM uinv = c - i1 * u;
+      uinv.diagonal().array() += i2;
+      v.noalias() = b * (uinv / i3);
+      return;
+    }
   }
   else
   {
+    // Closed-form eigenvectors are accurate enough when B is well conditioned (always the case
+    // for volumes and 2D domains: the fixed input rows make sigma_min(T) >= 1).
     const SymmetricEigen2 es = EigenDecompose(Eigen::Matrix2d(c));
-    ev = es.Values;
-    y = es.Vectors;
-  }
-  // Closed-form eigenvectors are accurate enough when B is well conditioned (always the case
-  // for volumes and 2D domains: the fixed input rows make sigma_min(T) >= 1).
-  if (ev(0) > 1e-8 * ev(M - 1) && ev(0) > 0.0)
-  {
-    const Eigen::Matrix<double, M, 1> inv = ev.cwiseSqrt().cwiseInverse();
-    v.noalias() = b * (y * inv.asDiagonal() * y.transpose());
-    return;
+    const Eigen::Matrix<double, M, 1> ev = es.Values;
+    if (ev(0) > 1e-8 * ev(M - 1) && ev(0) > 0.0)
+    {
+      const Eigen::Matrix<double, M, 1> inv = ev.cwiseSqrt().cwiseInverse();
+      v.noalias() = b * (es.Vectors * inv.asDiagonal() * es.Vectors.transpose());
+      return;
+    }
   }
   // One SVD instantiation per M (compile time): copy into a bounded dynamic-size matrix.
   Eigen::JacobiSVD<MatS> svd(MatS(b), Eigen::ComputeThinU | Eigen::ComputeThinV);

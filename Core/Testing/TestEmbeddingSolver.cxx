@@ -52,6 +52,25 @@ int main()
   const MetricField cubeMetric = EvaluateAnalyticMetric(AnalyticPreset::Cube1, cube);
   const EdgeLengthErrorEvaluator cubeError(cube, cubeMetric);
   {
+    // Identity metric, (almost) flat start: T = [I; ~0], so the optimal V = [I; ~0] and E_em
+    // vanishes; any error of the polar factor (scale, non-orthogonality) shows up here.
+    MetricField id;
+    id.Values.assign(6 * cube.NumPoints(), 0.0);
+    for (std::size_t i = 0; i < cube.NumPoints(); ++i)
+    {
+      id.Values[6 * i] = id.Values[6 * i + 1] = id.Values[6 * i + 2] = 1.0;
+    }
+    for (int dim : { 4, 8, 11 })
+    {
+      EmbeddingOptions o;
+      o.TargetDim = dim;
+      o.Iterations = 0;
+      o.InitialAmplitude = 1e-9;
+      const EmbeddingResult r = ComputeEmbedding(cube, id, o);
+      AV_CHECK(r.EnergyHistory.size() == 1u && r.EnergyHistory[0].Embedding < 1e-12);
+    }
+  }
+  {
     EmbeddingOptions o;
     o.Iterations = 30;
     const EmbeddingResult r = ComputeEmbedding(cube, cubeMetric, o);
