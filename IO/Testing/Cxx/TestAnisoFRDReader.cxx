@@ -1,6 +1,7 @@
 // vtkAnisoFRDReader on a hand-made one-element he20 file (node order, step selection,
 // tensor/vector arrays, errors) and, when installed (Debian calculix-cgx-examples), on the
 // real CalculiX compressor example, read at run time and never copied into the repository.
+#include "vtkAnisoTestUtilities.h" // CHECK, EventCounter, Result
 #include "vtkAnisoFRDReader.h"
 
 #include <vtkCell.h>
@@ -22,24 +23,6 @@
 
 namespace
 {
-int failures = 0;
-#define CHECK(c)                                                                                   \
-  do                                                                                               \
-  {                                                                                                \
-    if (!(c))                                                                                      \
-    {                                                                                              \
-      std::cerr << __FILE__ << ":" << __LINE__ << ": check failed: " #c << std::endl;              \
-      ++failures;                                                                                  \
-    }                                                                                              \
-  } while (0)
-
-class ErrorCounter : public vtkCommand
-{
-public:
-  static ErrorCounter* New() { return new ErrorCounter; }
-  void Execute(vtkObject*, unsigned long, void*) override { ++this->Count; }
-  int Count = 0;
-};
 
 /// Number of quadratic-hexahedron edges whose mid node is farther than relTol * edge
 /// length from the midpoint of its end nodes (VTK's own edge definition).
@@ -192,15 +175,15 @@ int TestAnisoFRDReader(int, char*[])
   CHECK(reader->GetOutput()->GetPointData()->GetArray("DISP_2") != nullptr);
   reader->ReadAllStepsOff();
 
-  vtkNew<ErrorCounter> errors;
+  vtkNew<av_vtk_test::EventCounter> errors;
   reader->AddObserver(vtkCommand::ErrorEvent, errors);
   reader->SetStepIndex(5);
   reader->Update();
-  CHECK(errors->Count == 1);
+  CHECK(errors->Errors == 1);
   reader->SetStepIndex(0);
   reader->SetFileName("/nonexistent/x.frd");
   reader->Update();
-  CHECK(errors->Count == 2);
+  CHECK(errors->Errors == 2);
   {
     std::ofstream out(file);
     const std::string text = OneHex();
@@ -208,7 +191,7 @@ int TestAnisoFRDReader(int, char*[])
   }
   reader->SetFileName(file.c_str());
   reader->Update();
-  CHECK(errors->Count == 3);
+  CHECK(errors->Errors == 3);
   std::remove(file.c_str());
 
   const char* example = "/usr/share/doc/calculix-cgx-examples/examples/result.frd";
@@ -231,5 +214,5 @@ int TestAnisoFRDReader(int, char*[])
   {
     std::cout << "skipping " << example << " (apt-get install calculix-cgx-examples)\n";
   }
-  return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+  return av_vtk_test::Result("TestAnisoFRDReader");
 }

@@ -1,5 +1,6 @@
 // vtkAnisoMeditWriter -> vtkAnisoMeditReader round trip: points, tets, refs and a tensor
 // metric come back bit for bit; the .sol holds Medit's tensor order; errors do not crash.
+#include "vtkAnisoTestUtilities.h" // CHECK, EventCounter, Result
 #include "vtkAnisoMeditReader.h"
 #include "vtkAnisoMeditWriter.h"
 
@@ -21,24 +22,6 @@
 
 namespace
 {
-int failures = 0;
-#define CHECK(c)                                                                                   \
-  do                                                                                               \
-  {                                                                                                \
-    if (!(c))                                                                                      \
-    {                                                                                              \
-      std::cerr << __FILE__ << ":" << __LINE__ << ": check failed: " #c << std::endl;              \
-      ++failures;                                                                                  \
-    }                                                                                              \
-  } while (0)
-
-class ErrorCounter : public vtkCommand
-{
-public:
-  static ErrorCounter* New() { return new ErrorCounter; }
-  void Execute(vtkObject*, unsigned long, void*) override { ++this->Count; }
-  int Count = 0;
-};
 
 std::string Slurp(const std::string& f)
 {
@@ -150,25 +133,25 @@ int TestAnisoMeditReaderWriter(int, char*[])
   CHECK(reader->GetOutput()->GetCellType(0) == VTK_TRIANGLE);
 
   // errors: reported, not crashed
-  vtkNew<ErrorCounter> errors;
+  vtkNew<av_vtk_test::EventCounter> errors;
   reader->AddObserver(vtkCommand::ErrorEvent, errors);
   reader->SetFileName("/nonexistent/x.mesh");
   reader->Update();
-  CHECK(errors->Count >= 1 && reader->GetOutput()->GetNumberOfPoints() == 0);
+  CHECK(errors->Errors >= 1 && reader->GetOutput()->GetNumberOfPoints() == 0);
   {
     std::ofstream bad(meshFile);
     bad << "MeshVersionFormatted 2\nDimension 3\nVertices\n1\n0 0 zz 0\nEnd\n";
   }
-  const int before = errors->Count;
+  const int before = errors->Errors;
   reader->SetFileName(meshFile.c_str());
   reader->SetSolFileName("");
   reader->Update();
-  CHECK(errors->Count > before);
+  CHECK(errors->Errors > before);
   writer->AddObserver(vtkCommand::ErrorEvent, errors);
   writer->SetFileName("/nonexistent/dir/x.mesh");
   CHECK(writer->Write() == 0);
 
   std::remove(meshFile.c_str());
   std::remove(solFile.c_str());
-  return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+  return av_vtk_test::Result("TestAnisoMeditReaderWriter");
 }
