@@ -1,5 +1,7 @@
 #include "vtkAnisoFRDReader.h"
 
+#include "AnisoIOArrays.h"
+
 #include "FrdReader.h"
 
 #include <vtkCellArray.h>
@@ -61,14 +63,6 @@ int CellTypeOfFrd(int frdType)
   }
 }
 
-vtkSmartPointer<vtkIntArray> MakeIntArray(const char* name, const std::vector<std::int32_t>& v)
-{
-  auto a = vtkSmartPointer<vtkIntArray>::New();
-  a->SetName(name);
-  a->SetNumberOfTuples(static_cast<vtkIdType>(v.size()));
-  std::copy(v.begin(), v.end(), a->GetPointer(0));
-  return a;
-}
 } // namespace
 
 int vtkAnisoFRDReader::RequestData(vtkInformation*,
@@ -134,15 +128,15 @@ int vtkAnisoFRDReader::RequestData(vtkInformation*,
   output->SetPoints(points);
   output->SetCells(types.data(), cells);
 
-  output->GetPointData()->AddArray(MakeIntArray("NodeId", d.NodeIds));
+  output->GetPointData()->AddArray(AnisoIOArrays::Int("NodeId", d.NodeIds));
   auto corner = vtkSmartPointer<vtkUnsignedCharArray>::New();
   corner->SetName("IsCornerNode");
   corner->SetNumberOfTuples(np);
   std::copy(d.IsCornerNode.begin(), d.IsCornerNode.end(), corner->GetPointer(0));
   output->GetPointData()->AddArray(corner);
-  output->GetCellData()->AddArray(MakeIntArray("ElementId", d.ElementIds));
-  output->GetCellData()->AddArray(MakeIntArray("Material", d.ElementMaterials));
-  output->GetCellData()->AddArray(MakeIntArray("Group", d.ElementGroups));
+  output->GetCellData()->AddArray(AnisoIOArrays::Int("ElementId", d.ElementIds));
+  output->GetCellData()->AddArray(AnisoIOArrays::Int("Material", d.ElementMaterials));
+  output->GetCellData()->AddArray(AnisoIOArrays::Int("Group", d.ElementGroups));
 
   for (const av::FrdResult& r : d.Results)
   {

@@ -1,5 +1,6 @@
 #include "vtkAnisoMeditReader.h"
 
+#include "AnisoIOArrays.h"
 #include "MeditIO.h"
 
 #include <vtkCellArray.h>
@@ -19,30 +20,6 @@ vtkAnisoMeditReader::vtkAnisoMeditReader()
 {
   this->SetNumberOfInputPorts(0);
 }
-
-namespace
-{
-vtkSmartPointer<vtkDoubleArray> MakeArray(const char* name,
-                                          int nc,
-                                          const std::vector<double>& values)
-{
-  auto a = vtkSmartPointer<vtkDoubleArray>::New();
-  a->SetName(name);
-  a->SetNumberOfComponents(nc);
-  a->SetNumberOfTuples(static_cast<vtkIdType>(values.size() / nc));
-  std::copy(values.begin(), values.end(), a->GetPointer(0));
-  return a;
-}
-
-vtkSmartPointer<vtkIntArray> MakeIntArray(const char* name, const std::vector<std::int32_t>& values)
-{
-  auto a = vtkSmartPointer<vtkIntArray>::New();
-  a->SetName(name);
-  a->SetNumberOfTuples(static_cast<vtkIdType>(values.size()));
-  std::copy(values.begin(), values.end(), a->GetPointer(0));
-  return a;
-}
-} // namespace
 
 int vtkAnisoMeditReader::RequestData(vtkInformation*,
                                      vtkInformationVector**,
@@ -80,8 +57,8 @@ int vtkAnisoMeditReader::RequestData(vtkInformation*,
     }
     output->SetPoints(points);
     output->SetCells(mesh.SimplexDim == 3 ? VTK_TETRA : VTK_TRIANGLE, cells);
-    output->GetPointData()->AddArray(MakeIntArray("Ref", m.PointRefs));
-    output->GetCellData()->AddArray(MakeIntArray("Ref", m.CellRefs));
+    output->GetPointData()->AddArray(AnisoIOArrays::Int("Ref", m.PointRefs));
+    output->GetCellData()->AddArray(AnisoIOArrays::Int("Ref", m.CellRefs));
 
     if (!this->SolFileName.empty())
     {
@@ -109,7 +86,7 @@ int vtkAnisoMeditReader::RequestData(vtkInformation*,
       {
         const av::MetricField metric =
           av::MetricFromMeditSol(sol, static_cast<std::size_t>(fromField));
-        output->GetPointData()->AddArray(MakeArray("Metric", 6, metric.Values));
+        output->GetPointData()->AddArray(AnisoIOArrays::Double("Metric", 6, metric.Values));
         output->GetPointData()->SetActiveTensors("Metric");
       }
       for (std::size_t f = 0; f < sol.FieldTypes.size(); ++f)
@@ -122,7 +99,7 @@ int vtkAnisoMeditReader::RequestData(vtkInformation*,
         const std::string name =
           fi == sizeField ? std::string("Size") : "SolField" + std::to_string(f);
         output->GetPointData()->AddArray(
-          MakeArray(name.c_str(), sol.FieldComponents(sol.FieldTypes[f]), sol.Fields[f]));
+          AnisoIOArrays::Double(name.c_str(), sol.FieldComponents(sol.FieldTypes[f]), sol.Fields[f]));
       }
     }
   }
