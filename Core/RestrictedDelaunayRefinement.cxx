@@ -1,0 +1,188 @@
+// Repair of the restricted Delaunay mesh by Voronoi-vertex (restricted circumcentre) insertion.
+#include "RestrictedDelaunayRefinement.h"
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace av
+{
+
+bool ComputeDualVoronoiVertex(const SimplexMesh& mesh, const Embedding& embedding,
+  const SiteSet& sites, const std::int32_t* siteIds, std::int32_t element, double bary[4],
+  double& radius2, double tolerance)
+{
+  const int k = mesh.SimplexDim, dim = embedding.Dim;
+  if (element < 0 || static_cast<std::size_t>(element) >= mesh.NumCells())
+    return false;
+  const std::int32_t* cell = mesh.Cell(element);
+  // p = v0 + B t; equidistance to s_0 and s_a: 2 (s_a - s_0) . p = |s_a|^2 - |s_0|^2.
+  Eigen::Map<const Eigen::VectorXd> v0(embedding.At(cell[0]), dim);
+  Eigen::Map<const Eigen::VectorXd> s0(sites.At(siteIds[0]), dim);
+  Eigen::MatrixXd B(dim, k);
+  for (int a = 0; a < k; ++a)
+    B.col(a) = Eigen::Map<const Eigen::VectorXd>(embedding.At(cell[a + 1]), dim) - v0;
+  Eigen::MatrixXd A(k, k);
+  Eigen::VectorXd rhs(k);
+  for (int a = 0; a < k; ++a)
+  {
+    Eigen::Map<const Eigen::VectorXd> sa(sites.At(siteIds[a + 1]), dim);
+    const Eigen::VectorXd n = 2.0 * (sa - s0);
+    A.row(a) = n.transpose() * B;
+    rhs(a) = sa.squaredNorm() - s0.squaredNorm() - n.dot(v0);
+  }
+  const Eigen::FullPivLU<Eigen::MatrixXd> lu(A);
+  if (!lu.isInvertible())
+    return false;
+  const Eigen::VectorXd t = lu.solve(rhs);
+  double b[4] = { 1.0, 0.0, 0.0, 0.0 };
+  for (int a = 0; a < k; ++a)
+  {
+    b[a + 1] = t(a);
+    b[0] -= t(a);
+  }
+  double sum = 0.0;
+  for (int a = 0; a <= k; ++a)
+  {
+    if (!std::isfinite(b[a]) || b[a] < -tolerance)
+      return false;
+    b[a] = std::max(0.0, b[a]);
+    sum += b[a];
+  }
+  for (int a = 0; a < 4; ++a)
+    bary[a] = a <= k ? b[a] / sum : 0.0;
+  Eigen::VectorXd p = Eigen::VectorXd::Zero(dim);
+  for (int a = 0; a <= k; ++a)
+    p += bary[a] * Eigen::Map<const Eigen::VectorXd>(embedding.At(cell[a]), dim);
+  radius2 = (p - s0).squaredNorm();
+  return true;
+}
+
+std::vector<std::uint8_t> NonManifoldCells(const RestrictedDelaunayMesh& rdt)
+{
+  const int nv = rdt.SimplexDim + 1;
+  const std::size_t nc = rdt.NumCells();
+  using Face = std::array<std::int32_t, 4>; // 3 sorted ids, then the cell
+  std::vector<Face> faces;
+  faces.reserve(nc * nv);
+  for (std::size_t c = 0; c < nc; ++c)
+    for (int a = 0; a < nv; ++a)
+    {
+      Face f = { -1, -1, -1, static_cast<std::int32_t>(c) };
+      int n = 0;
+      for (int b = 0; b < nv; ++b)
+        if (b != a)
+          f[n++] = rdt.Cells[c * nv + b];
+      std::sort(f.begin(), f.begin() + n);
+      faces.push_back(f);
+    }
+  std::sort(faces.begin(), faces.end());
+  std::vector<std::uint8_t> bad(nc, 0);
+  for (std::size_t i = 0; i < faces.size();)
+  {
+    std::size_t j = i + 1;
+    while (j < faces.size() && std::equal(faces[j].begin(), faces[j].begin() + 3, faces[i].begin()))
+      ++j;
+    if (j - i > 2)
+      for (std::size_t q = i; q < j; ++q)
+        bad[faces[q][3]] = 1;
+    i = j;
+  }
+  return bad;
+}
+
+DelaunayRepairResult RepairRestrictedDelaunay(const SimplexMesh& mesh, const Embedding& embedding,
+  const SiteSet& sites, const DelaunayRepairOptions& options)
+{
+  if (options.MaxRounds < 0)
+    throw InputError("RepairRestrictedDelaunay: MaxRounds must be >= 0");
+  if (!(options.MinDistanceFraction >= 0.0 && options.MinDistanceFraction < 1.0))
+    throw InputError("RepairRestrictedDelaunay: MinDistanceFraction must be in [0, 1)");
+  if (options.Voronoi.ElementBegin != 0 || options.Voronoi.ElementEnd >= 0)
+    throw InputError("RepairRestrictedDelaunay: the repair needs the whole mesh (leave "
+                     "ElementBegin / ElementEnd at their defaults)");
+  const int k = mesh.SimplexDim, nv = k + 1, dim = embedding.Dim;
+
+  DelaunayRepairResult out;
+  out.Sites = sites;
+  out.NumInputSites = sites.NumSites();
+  for (int round = 0;; ++round)
+  {
+    out.Voronoi = ComputeRestrictedVoronoi(mesh, embedding, out.Sites, options.Voronoi);
+    out.Delaunay = ComputeRestrictedDelaunay(mesh, embedding, out.Sites, out.Voronoi);
+    const RestrictedDelaunayMesh& rdt = out.Delaunay;
+    if (round == 0)
+    {
+      out.InitialInverted = rdt.NumInverted;
+      out.InitialNonManifoldFaces = rdt.NumNonManifoldFaces;
+    }
+    out.InvertedPerRound.push_back(rdt.NumInverted);
+    const bool nonManifold = options.RepairNonManifold && rdt.NumNonManifoldFaces > 0;
+    out.Converged = rdt.NumInverted == 0 && !nonManifold;
+    if (out.Converged || round >= options.MaxRounds)
+      break;
+
+    std::vector<std::uint8_t> bad = rdt.Inverted;
+    if (nonManifold)
+    {
+      const std::vector<std::uint8_t> nm = NonManifoldCells(rdt);
+      for (std::size_t c = 0; c < bad.size(); ++c)
+        bad[c] = bad[c] | nm[c];
+    }
+    // Candidates in cell order (deterministic); the number of bad cells is small, so the
+    // quadratic proximity check against this round's accepted candidates is cheap.
+    std::vector<double> accepted; // embedded positions, dim each
+    std::vector<std::int32_t> acceptedElement;
+    std::vector<double> acceptedBary; // 4 each
+    Eigen::VectorXd p(dim);
+    for (std::size_t c = 0; c < bad.size(); ++c)
+    {
+      if (!bad[c])
+        continue;
+      const std::int32_t* ids = rdt.Cells.data() + c * nv;
+      const std::int32_t e = rdt.CellElement[c];
+      double b[4], r2 = 0.0;
+      if (!ComputeDualVoronoiVertex(mesh, embedding, out.Sites, ids, e, b, r2) || !(r2 > 0.0))
+      {
+        ++out.NumSkipped;
+        continue;
+      }
+      const std::int32_t* cell = mesh.Cell(e);
+      p.setZero();
+      for (int a = 0; a < nv; ++a)
+        p += b[a] * Eigen::Map<const Eigen::VectorXd>(embedding.At(cell[a]), dim);
+      const double minD2 = options.MinDistanceFraction * options.MinDistanceFraction * r2;
+      bool nearby = false;
+      // Guard against round-off: the simplex's own sites are the nearest ones (at r).
+      for (int a = 0; a < nv && !nearby; ++a)
+        nearby = (p - Eigen::Map<const Eigen::VectorXd>(out.Sites.At(ids[a]), dim)).squaredNorm() <
+          minD2;
+      for (std::size_t q = 0; q < accepted.size() && !nearby; q += dim)
+        nearby =
+          (p - Eigen::Map<const Eigen::VectorXd>(accepted.data() + q, dim)).squaredNorm() < minD2;
+      if (nearby)
+      {
+        ++out.NumSkipped;
+        continue;
+      }
+      accepted.insert(accepted.end(), p.data(), p.data() + dim);
+      acceptedElement.push_back(e);
+      acceptedBary.insert(acceptedBary.end(), b, b + 4);
+    }
+    if (acceptedElement.empty())
+      break; // every candidate was skipped: no progress possible
+    // Appended after the scan: all candidates of a round come from the same site set.
+    out.Sites.Coords.insert(out.Sites.Coords.end(), accepted.begin(), accepted.end());
+    out.Sites.CellIds.insert(
+      out.Sites.CellIds.end(), acceptedElement.begin(), acceptedElement.end());
+    out.Sites.Bary.insert(out.Sites.Bary.end(), acceptedBary.begin(), acceptedBary.end());
+    out.InsertedPerRound.push_back(acceptedElement.size());
+    out.Rounds = round + 1;
+  }
+  out.NumInserted = out.Sites.NumSites() - out.NumInputSites;
+  return out;
+}
+
+} // namespace av
