@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <utility>
 
 namespace av
 {
@@ -93,8 +94,11 @@ std::vector<std::uint8_t> NonManifoldCells(const RestrictedDelaunayMesh& rdt)
   return bad;
 }
 
-DelaunayRepairResult RepairRestrictedDelaunay(const SimplexMesh& mesh, const Embedding& embedding,
-  const SiteSet& sites, const DelaunayRepairOptions& options)
+namespace
+{
+DelaunayRepairResult Repair(const SimplexMesh& mesh, const Embedding& embedding,
+  const SiteSet& sites, RestrictedVoronoiDiagram* voronoi, RestrictedDelaunayMesh* delaunay,
+  const DelaunayRepairOptions& options)
 {
   if (options.MaxRounds < 0)
     throw InputError("RepairRestrictedDelaunay: MaxRounds must be >= 0");
@@ -110,8 +114,23 @@ DelaunayRepairResult RepairRestrictedDelaunay(const SimplexMesh& mesh, const Emb
   out.NumInputSites = sites.NumSites();
   for (int round = 0;; ++round)
   {
-    out.Voronoi = ComputeRestrictedVoronoi(mesh, embedding, out.Sites, options.Voronoi);
-    out.Delaunay = ComputeRestrictedDelaunay(mesh, embedding, out.Sites, out.Voronoi);
+    if (round == 0 && voronoi)
+    {
+      if (voronoi->NumSites != sites.NumSites() || delaunay->SimplexDim != k ||
+        delaunay->AmbientDim != mesh.AmbientDim ||
+        delaunay->Points.size() != sites.NumSites() * std::size_t(mesh.AmbientDim) ||
+        delaunay->Inverted.size() != delaunay->NumCells() ||
+        delaunay->CellElement.size() != delaunay->NumCells())
+        throw InputError("RepairRestrictedDelaunay: the given Voronoi diagram / Delaunay mesh "
+                         "were not computed from these sites");
+      out.Voronoi = std::move(*voronoi);
+      out.Delaunay = std::move(*delaunay);
+    }
+    else
+    {
+      out.Voronoi = ComputeRestrictedVoronoi(mesh, embedding, out.Sites, options.Voronoi);
+      out.Delaunay = ComputeRestrictedDelaunay(mesh, embedding, out.Sites, out.Voronoi);
+    }
     const RestrictedDelaunayMesh& rdt = out.Delaunay;
     if (round == 0)
     {
@@ -183,6 +202,20 @@ DelaunayRepairResult RepairRestrictedDelaunay(const SimplexMesh& mesh, const Emb
   }
   out.NumInserted = out.Sites.NumSites() - out.NumInputSites;
   return out;
+}
+} // namespace
+
+DelaunayRepairResult RepairRestrictedDelaunay(const SimplexMesh& mesh, const Embedding& embedding,
+  const SiteSet& sites, const DelaunayRepairOptions& options)
+{
+  return Repair(mesh, embedding, sites, nullptr, nullptr, options);
+}
+
+DelaunayRepairResult RepairRestrictedDelaunay(const SimplexMesh& mesh, const Embedding& embedding,
+  const SiteSet& sites, RestrictedVoronoiDiagram voronoi, RestrictedDelaunayMesh delaunay,
+  const DelaunayRepairOptions& options)
+{
+  return Repair(mesh, embedding, sites, &voronoi, &delaunay, options);
 }
 
 } // namespace av

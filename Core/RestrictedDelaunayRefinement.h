@@ -79,6 +79,15 @@ bool ComputeDualVoronoiVertex(const SimplexMesh& mesh, const Embedding& embeddin
 DelaunayRepairResult RepairRestrictedDelaunay(const SimplexMesh& mesh, const Embedding& embedding,
   const SiteSet& sites, const DelaunayRepairOptions& options = DelaunayRepairOptions());
 
+/**
+ * Same, starting from the diagram and dual of `sites` that the caller already computed (with
+ * options.Voronoi; moved in, so round 0 is not recomputed). Throws InputError when they do not
+ * belong to `sites`.
+ */
+DelaunayRepairResult RepairRestrictedDelaunay(const SimplexMesh& mesh, const Embedding& embedding,
+  const SiteSet& sites, RestrictedVoronoiDiagram voronoi, RestrictedDelaunayMesh delaunay,
+  const DelaunayRepairOptions& options = DelaunayRepairOptions());
+
 /// Cells of `rdt` that have a face shared by more than two cells (1 = such a cell).
 std::vector<std::uint8_t> NonManifoldCells(const RestrictedDelaunayMesh& rdt);
 

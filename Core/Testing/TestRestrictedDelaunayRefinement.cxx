@@ -232,9 +232,16 @@ void TestRepair2D()
   // Inverted elements only.
   const av::DelaunayRepairResult r = av::RepairRestrictedDelaunay(m, e, s);
   CheckRepaired(m, e, s, r, "2D inverted");
-  // Deterministic.
+  // Deterministic, and the same when starting from the caller's round-0 diagram and dual.
   const av::DelaunayRepairResult again = av::RepairRestrictedDelaunay(m, e, s);
   AV_CHECK(again.Sites.Coords == r.Sites.Coords && again.Delaunay.Cells == r.Delaunay.Cells);
+  const av::DelaunayRepairOptions defaults;
+  auto rvd0 = av::ComputeRestrictedVoronoi(m, e, s, defaults.Voronoi);
+  auto rdt0 = av::ComputeRestrictedDelaunay(m, e, s, rvd0);
+  const av::DelaunayRepairResult given = av::RepairRestrictedDelaunay(m, e, s, rvd0, rdt0);
+  AV_CHECK(given.Sites.Coords == r.Sites.Coords && given.Delaunay.Cells == r.Delaunay.Cells);
+  AV_CHECK(given.InitialInverted == r.InitialInverted && given.Rounds == r.Rounds);
+  AV_CHECK_THROWS(av::RepairRestrictedDelaunay(m, e, r1.Sites, rvd0, rdt0)); // other sites
 
   // Inverted and non-manifold: a disc (Euler characteristic 1) whose facets are shared by at
   // most two triangles, no open interior facet, every site used.
