@@ -4,6 +4,7 @@
 #include "MeshQuality.h"
 #include "ParticleSampler.h"
 #include "RestrictedDelaunay.h"
+#include "RestrictedDelaunayRefinement.h"
 #include "RestrictedVoronoi.h"
 
 #include <Eigen/Dense>
@@ -11,6 +12,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 namespace avbench
 {
@@ -116,19 +118,33 @@ MeshStageResult RunMeshStage(const av::SimplexMesh& mesh, const av::MetricField&
   }
 
   const auto t1 = Clock::now();
-  av::RestrictedVoronoiOptions vo;
-  vo.ComputeGeometry = false; // the dual only needs the Voronoi vertex records
-  const av::RestrictedVoronoiDiagram rvd =
-    av::ComputeRestrictedVoronoi(mesh, embedding, sampled.Sites, vo);
+  av::DelaunayRepairOptions ro; // its Voronoi options: no geometry, the dual needs only records
+  ro.MaxRounds = options.Repair ? options.MaxRepairRounds : 0;
+  ro.RepairNonManifold = options.RepairNonManifold;
+  av::RestrictedVoronoiDiagram rvd0 =
+    av::ComputeRestrictedVoronoi(mesh, embedding, sampled.Sites, ro.Voronoi);
   r.RvdSeconds = Since(t1);
 
   const auto t2 = Clock::now();
-  const av::RestrictedDelaunayMesh rdt =
-    av::ComputeRestrictedDelaunay(mesh, embedding, sampled.Sites, rvd);
+  av::RestrictedDelaunayMesh rdt0 =
+    av::ComputeRestrictedDelaunay(mesh, embedding, sampled.Sites, rvd0);
   r.RdtSeconds = Since(t2);
-  r.MeshSeconds = Since(t0);
 
-  r.Sites = sampled.Sites.NumSites();
+  const auto t3 = Clock::now();
+  const std::size_t sampledSites = sampled.Sites.NumSites();
+  av::DelaunayRepairResult repaired = av::RepairRestrictedDelaunay(
+    mesh, embedding, sampled.Sites, std::move(rvd0), std::move(rdt0), ro);
+  r.RepairSeconds = Since(t3);
+  r.MeshSeconds = Since(t0);
+  const av::RestrictedVoronoiDiagram& rvd = repaired.Voronoi;
+  const av::RestrictedDelaunayMesh& rdt = repaired.Delaunay;
+  sampled.Sites = std::move(repaired.Sites);
+  r.InsertedSites = repaired.NumInserted;
+  r.RepairRounds = repaired.Rounds;
+  r.RdtInvertedBeforeRepair = repaired.InitialInverted;
+  r.NonManifoldFacesBeforeRepair = repaired.InitialNonManifoldFaces;
+
+  r.Sites = sampledSites;
   r.RvdPieces = rvd.NumPieces();
   double pieces = 0.0;
   for (double v : rvd.PieceMeasure)

@@ -31,6 +31,9 @@ struct MeshStageOptions
   std::uint64_t Seed = 1;
   double KernelWidthFactor = 0.3; ///< sampler's sigma factor
   int LloydIterations = 0;        ///< Lloyd (CVT) steps after sampling (av::RelaxSitesLloyd)
+  bool Repair = true;             ///< insert sites to repair inverted dual elements
+  int MaxRepairRounds = 10;
+  bool RepairNonManifold = false; ///< also repair non-manifold faces
 };
 
 /// Timings and quality of one meshing run.
@@ -38,11 +41,16 @@ struct MeshStageResult
 {
   std::size_t Sites = 0;
   double SampleSeconds = 0.0, LloydSeconds = 0.0, RvdSeconds = 0.0, RdtSeconds = 0.0;
-  double MeshSeconds = 0.0; ///< wall of sampling + RVD + RDT
+  double RepairSeconds = 0.0; ///< repair rounds after the first RVD + RDT
+  double MeshSeconds = 0.0; ///< wall of sampling + RVD + RDT + repair
   std::size_t Cells = 0;    ///< restricted Delaunay cells
+  std::size_t InsertedSites = 0; ///< by the repair (Sites counts the sampled ones only)
+  int RepairRounds = 0;
+  std::size_t RdtInvertedBeforeRepair = 0;
+  std::size_t NonManifoldFacesBeforeRepair = 0;
   double GMin = 0.0, GAvg = 0.0, ThetaMin = 0.0, ThetaAvg = 0.0, PercentBad = 0.0;
   std::size_t Inverted = 0;          ///< by the quality evaluator (input-space signed measure)
-  std::size_t RdtInverted = 0;       ///< by ComputeRestrictedDelaunay (back-projection)
+  std::size_t RdtInverted = 0;       ///< by ComputeRestrictedDelaunay (back-projection), after repair
   std::size_t NonManifoldFaces = 0;
   std::size_t UnusedSites = 0;
   double PercentEdgesInUnitRange = 0.0;
@@ -52,8 +60,9 @@ struct MeshStageResult
 
 /**
  * Samples `options.Sites` particles on the embedded mesh, computes the restricted Voronoi
- * diagram (measures only) and its dual, and evaluates the dual against `metric` interpolated
- * at the sites. Throws what the kernels throw.
+ * diagram (measures only) and its dual, repairs inverted dual elements by site insertion
+ * (options.Repair), and evaluates the dual against `metric` interpolated at the final sites.
+ * Throws what the kernels throw.
  */
 MeshStageResult RunMeshStage(const av::SimplexMesh& mesh, const av::MetricField& metric,
   const av::Embedding& embedding, const MeshStageOptions& options);

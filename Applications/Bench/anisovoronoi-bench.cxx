@@ -110,6 +110,7 @@ struct Args
   std::uint64_t Seed = 1;
   double Mu = 100.0;
   int Anderson = 5;
+  bool DoubleSolve = false;
   std::string Init = "smooth";
   bool Weighted = false;
   bool TrackError = true;
@@ -117,6 +118,9 @@ struct Args
   int SampleIterations = 50; // sampler L-BFGS iterations
   double KernelWidth = 0.3;  // sampler sigma factor
   int Lloyd = 0;             // Lloyd (CVT) steps after sampling
+  bool Repair = true;        // repair inverted dual elements by site insertion
+  int RepairRounds = 10;
+  bool RepairNonManifold = false;
 };
 
 /// Paper values (Tab. 5 and Fig. 4); NaN where the paper gives none.
@@ -237,6 +241,7 @@ void StageEmbed(const Args& a, const Case& c, JsonLine& out, av::Embedding* keep
   o.Mu = a.Mu;
   o.Seed = a.Seed;
   o.AndersonWindow = a.Anderson;
+  o.SinglePrecisionSolve = !a.DoubleSolve;
   o.ElementMeasureWeighting = a.Weighted;
   o.Initialisation = a.Init == "random" ? av::EmbeddingInitialisation::Random : av::EmbeddingInitialisation::Smooth;
 
@@ -282,6 +287,8 @@ void StageEmbed(const Args& a, const Case& c, JsonLine& out, av::Embedding* keep
   out.Set("energy_final", r.EnergyHistory.back().Total);
   out.Set("anderson_accepted", r.AndersonAccepted);
   out.Set("anderson_rejected", r.AndersonRejected);
+  out.Set("solve_precision", a.DoubleSolve ? "double" : "single");
+  out.Set("double_precision_retries", r.DoublePrecisionRetries);
   out.Set("paper_L_avg", c.Paper.LAvg);
   out.Set("paper_L_max", c.Paper.LMax);
   out.Set("paper_embed_seconds", c.Paper.EmbedSeconds);
@@ -323,6 +330,9 @@ void StageMesh(const Args& a, const Case& c, JsonLine& out)
   o.Seed = a.Seed;
   o.KernelWidthFactor = a.KernelWidth;
   o.LloydIterations = a.Lloyd;
+  o.Repair = a.Repair;
+  o.MaxRepairRounds = a.RepairRounds;
+  o.RepairNonManifold = a.RepairNonManifold;
   const avbench::MeshStageResult r = avbench::RunMeshStage(c.Mesh, c.Metric, embedded, o);
   const avbench::PaperMeshValues p = avbench::PaperMeshValuesFor(c.Preset);
   out.Set("sites", r.Sites);
@@ -333,6 +343,11 @@ void StageMesh(const Args& a, const Case& c, JsonLine& out)
   out.Set("lloyd_seconds", r.LloydSeconds);
   out.Set("rvd_seconds", r.RvdSeconds);
   out.Set("rdt_seconds", r.RdtSeconds);
+  out.Set("repair", o.Repair);
+  out.Set("repair_nonmanifold", o.RepairNonManifold);
+  out.Set("repair_seconds", r.RepairSeconds);
+  out.Set("repair_rounds", r.RepairRounds);
+  out.Set("inserted_sites", r.InsertedSites);
   out.Set("mesh_seconds", r.MeshSeconds);
   out.Set("output_cells", r.Cells);
   out.Set("G_min", r.GMin);
@@ -342,6 +357,8 @@ void StageMesh(const Args& a, const Case& c, JsonLine& out)
   out.Set("pct_bad", r.PercentBad);
   out.Set("inverted", r.Inverted);
   out.Set("rdt_inverted", r.RdtInverted);
+  out.Set("rdt_inverted_before_repair", r.RdtInvertedBeforeRepair);
+  out.Set("nonmanifold_faces_before_repair", r.NonManifoldFacesBeforeRepair);
   out.Set("edges_in_unit_range", r.PercentEdgesInUnitRange);
   out.Set("rvd_volume_error", r.RvdVolumeError);
   out.Set("rvd_pieces", r.RvdPieces);
@@ -383,6 +400,7 @@ void Usage(std::ostream& os)
         "  --seed S          random seed of the initial field (default 1)\n"
         "  --mu M            regulariser weight (default 100)\n"
         "  --anderson W      Anderson window, 0 = plain local/global (default 5)\n"
+        "  --double-solve    global steps with CHOLMOD's double solve (default: float factor copy)\n"
         "  --init smooth|random  initial free coordinates (default smooth)\n"
         "  --weighted        element-measure weighted energy (default: paper's unweighted)\n"
         "  --no-track        do not evaluate L_avg per iteration (iterations_to_paper_error)\n"
@@ -391,6 +409,10 @@ void Usage(std::ostream& os)
         "  --sample-iterations N  sampler iterations (default 50)\n"
         "  --kernel-width F  sampler sigma factor (default 0.3)\n"
         "  --lloyd N         Lloyd (CVT) steps after sampling (default 0)\n"
+        "  --no-repair       mesh: keep inverted dual elements (default: insert sites at their\n"
+        "                    Voronoi vertices until none is left)\n"
+        "  --repair-rounds N mesh: insertion rounds at most (default 10)\n"
+        "  --repair-nonmanifold  mesh: also repair non-manifold faces of the dual\n"
         "Prints one JSON object per case on stdout.\n";
 }
 
@@ -432,6 +454,8 @@ bool Parse(int argc, char** argv, Args& a)
       a.Mu = std::stod(next());
     else if (k == "--anderson")
       a.Anderson = std::stoi(next());
+    else if (k == "--double-solve")
+      a.DoubleSolve = true;
     else if (k == "--init")
       a.Init = next();
     else if (k == "--weighted")
@@ -446,6 +470,12 @@ bool Parse(int argc, char** argv, Args& a)
       a.KernelWidth = std::stod(next());
     else if (k == "--lloyd")
       a.Lloyd = std::stoi(next());
+    else if (k == "--no-repair")
+      a.Repair = false;
+    else if (k == "--repair-rounds")
+      a.RepairRounds = std::stoi(next());
+    else if (k == "--repair-nonmanifold")
+      a.RepairNonManifold = true;
     else if (!k.empty() && k[0] != '-' && a.CaseName.empty())
       a.CaseName = k;
     else
@@ -454,6 +484,10 @@ bool Parse(int argc, char** argv, Args& a)
   if (a.Init != "smooth" && a.Init != "random")
   {
     throw std::runtime_error("--init must be smooth or random");
+  }
+  if (a.RepairRounds < 0)
+  {
+    throw std::runtime_error("--repair-rounds must be >= 0");
   }
   if (a.Resolution != -1 && a.Resolution < 2)
   {
