@@ -35,6 +35,9 @@ int vtkAnisoAnisotropicMesh::RequestBackEnd(
   vtkNew<vtkAnisoRestrictedDelaunay> delaunay;
   delaunay->SetInputData(0, embedded);
   delaunay->SetInputData(1, sites);
+  delaunay->SetRepairInverted(this->RepairInverted);
+  delaunay->SetRepairNonManifold(this->RepairNonManifold);
+  delaunay->SetMaxRepairRounds(this->MaxRepairRounds);
   if (!this->RunStage(delaunay, "restricted Delaunay", 0.85, 0.95, error))
   {
     vtkErrorMacro(<< error);
@@ -70,4 +73,7 @@ int vtkAnisoAnisotropicMesh::RequestBackEnd(
 void vtkAnisoAnisotropicMesh::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
+  os << indent << "RepairInverted: " << (this->RepairInverted ? "On" : "Off") << "\n";
+  os << indent << "RepairNonManifold: " << (this->RepairNonManifold ? "On" : "Off") << "\n";
+  os << indent << "MaxRepairRounds: " << this->MaxRepairRounds << "\n";
 }

@@ -13,7 +13,10 @@
  * NumberOfCells), of the dual (NumInverted, NumNonManifoldFaces, NumOpenInteriorFaces,
  * NumUnusedSites) and "L_avg", "L_max", "MetricScale".
  * Output 1 (vtkTable): histogram of the per-cell min angles ("MinAngle" bin centre, "Count").
- * Nothing is repaired: inverted elements are counted, not fixed.
+ * Inverted elements are repaired by site insertion as in vtkAnisoRestrictedDelaunay
+ * (RepairInverted, default on; MaxRepairRounds, default 10; RepairNonManifold, default off),
+ * so the mesh may have more vertices than NumberOfCells; field data NumInsertedSites,
+ * RepairRounds, NumInvertedBeforeRepair.
  */
 #ifndef vtkAnisoAnisotropicMesh_h
 #define vtkAnisoAnisotropicMesh_h
@@ -28,12 +31,36 @@ public:
   vtkTypeMacro(vtkAnisoAnisotropicMesh, vtkAnisoTensorPipeline);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
+  ///@{
+  /// Insert sites to repair inverted elements (default on).
+  vtkSetMacro(RepairInverted, bool);
+  vtkGetMacro(RepairInverted, bool);
+  vtkBooleanMacro(RepairInverted, bool);
+  ///@}
+
+  ///@{
+  /// Also repair faces shared by more than two elements (default off).
+  vtkSetMacro(RepairNonManifold, bool);
+  vtkGetMacro(RepairNonManifold, bool);
+  vtkBooleanMacro(RepairNonManifold, bool);
+  ///@}
+
+  ///@{
+  /// Insertion rounds at most (default 10, range 0..1000).
+  vtkSetClampMacro(MaxRepairRounds, int, 0, 1000);
+  vtkGetMacro(MaxRepairRounds, int);
+  ///@}
+
 protected:
   vtkAnisoAnisotropicMesh();
   ~vtkAnisoAnisotropicMesh() override;
   int FillOutputPortInformation(int port, vtkInformation* info) override;
   int RequestBackEnd(vtkUnstructuredGrid* embedded, vtkPolyData* sites, vtkTable* energy,
     vtkInformationVector* outputVector) override;
+
+  bool RepairInverted = true;
+  bool RepairNonManifold = false;
+  int MaxRepairRounds = 10;
 
 private:
   vtkAnisoAnisotropicMesh(const vtkAnisoAnisotropicMesh&) = delete;

@@ -1,13 +1,16 @@
 #include "vtkAnisoRestrictedDelaunay.h"
 
 #include "RestrictedDelaunay.h"
+#include "RestrictedDelaunayRefinement.h"
 #include "RestrictedVoronoi.h"
 #include "vtkAnisoDataConversion.h"
 
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
 #include <vtkDataSet.h>
+#include <vtkDataArray.h>
 #include <vtkDoubleArray.h>
+#include <vtkIdList.h>
 #include <vtkFieldData.h>
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
@@ -18,6 +21,8 @@
 #include <vtkUnstructuredGrid.h>
 
 #include <chrono>
+#include <limits>
+#include <utility>
 
 vtkStandardNewMacro(vtkAnisoRestrictedDelaunay);
 
@@ -29,6 +34,81 @@ void AddFieldValue(vtkFieldData* fd, const char* name, double value)
   a->SetName(name);
   a->InsertNextValue(value);
   fd->AddArray(a);
+}
+
+/// Output point data: the sites' arrays extended to the inserted sites ("CellId" /
+/// "Barycentric" are theirs, arrays the mesh also has are interpolated, others 0).
+void ExtendPointData(vtkDataSet* sitesInput, vtkDataSet* meshInput,
+  const av::SimplexMesh& mesh, const av::SiteSet& sites, vtkUnstructuredGrid* output)
+{
+  vtkPointData* in = sitesInput->GetPointData();
+  vtkPointData* meshPD = meshInput->GetPointData();
+  vtkPointData* out = output->GetPointData();
+  const vtkIdType n0 = sitesInput->GetNumberOfPoints();
+  const vtkIdType n = static_cast<vtkIdType>(sites.NumSites());
+  const int nv = mesh.SimplexDim + 1;
+  vtkNew<vtkIdList> cellPoints;
+  cellPoints->SetNumberOfIds(nv);
+  double weights[4];
+  for (int a = 0; a < in->GetNumberOfArrays(); ++a)
+  {
+    vtkDataArray* src = in->GetArray(a); // null for non-numeric arrays: not carried over
+    if (!src)
+    {
+      continue;
+    }
+    vtkSmartPointer<vtkDataArray> dst = vtk::TakeSmartPointer(src->NewInstance());
+    dst->SetName(src->GetName());
+    dst->SetNumberOfComponents(src->GetNumberOfComponents());
+    dst->SetNumberOfTuples(n);
+    for (vtkIdType i = 0; i < n0; ++i)
+    {
+      dst->SetTuple(i, i, src);
+    }
+    const std::string name = src->GetName() ? src->GetName() : "";
+    vtkDataArray* meshArray = name.empty() ? nullptr : meshPD->GetArray(name.c_str());
+    if (meshArray && meshArray->GetNumberOfComponents() != src->GetNumberOfComponents())
+    {
+      meshArray = nullptr;
+    }
+    const int nc = src->GetNumberOfComponents();
+    for (vtkIdType i = n0; i < n; ++i)
+    {
+      const std::int32_t cell = sites.CellIds[i];
+      if (name == "CellId" && nc == 1)
+      {
+        dst->SetComponent(i, 0, cell);
+      }
+      else if (name == "Barycentric" && nc == 4)
+      {
+        for (int c = 0; c < 4; ++c)
+          dst->SetComponent(i, c, sites.Bary[4 * i + c]);
+      }
+      else if (meshArray)
+      {
+        for (int v = 0; v < nv; ++v)
+        {
+          cellPoints->SetId(v, mesh.Cell(cell)[v]);
+          weights[v] = sites.Bary[4 * i + v];
+        }
+        dst->InterpolateTuple(i, cellPoints, meshArray, weights);
+      }
+      else
+      {
+        for (int c = 0; c < nc; ++c)
+          dst->SetComponent(i, c, 0.0);
+      }
+    }
+    out->AddArray(dst);
+    if (in->GetTensors() == src)
+    {
+      out->SetActiveTensors(dst->GetName());
+    }
+    if (in->GetScalars() == src)
+    {
+      out->SetActiveScalars(dst->GetName());
+    }
+  }
 }
 }
 
@@ -86,20 +166,28 @@ int vtkAnisoRestrictedDelaunay::RequestData(vtkInformation* request,
   }
   this->UpdateProgress(0.1);
 
-  av::RestrictedDelaunayMesh rdt;
+  av::DelaunayRepairResult repaired;
   try
   {
     av::ValidateRestrictedVoronoiInput(mesh, embedding, sites);
-    av::RestrictedVoronoiOptions options;
-    options.ComputeGeometry = false; // the dual needs only the Voronoi vertex records
-    const av::RestrictedVoronoiDiagram rvd =
-      av::ComputeRestrictedVoronoi(mesh, embedding, sites, options);
+    av::DelaunayRepairOptions options; // its Voronoi options: no geometry, records only
+    options.MaxRounds = this->RepairInverted ? this->MaxRepairRounds : 0;
+    options.RepairNonManifold = this->RepairNonManifold;
+    av::RestrictedVoronoiDiagram rvd =
+      av::ComputeRestrictedVoronoi(mesh, embedding, sites, options.Voronoi);
     if (this->GetAbortExecute())
     {
       return 1;
     }
-    this->UpdateProgress(0.7);
-    rdt = av::ComputeRestrictedDelaunay(mesh, embedding, sites, rvd);
+    this->UpdateProgress(0.5);
+    av::RestrictedDelaunayMesh rdt = av::ComputeRestrictedDelaunay(mesh, embedding, sites, rvd);
+    if (this->GetAbortExecute())
+    {
+      return 1;
+    }
+    this->UpdateProgress(0.6);
+    repaired = av::RepairRestrictedDelaunay(
+      mesh, embedding, sites, std::move(rvd), std::move(rdt), options);
   }
   catch (const av::InputError& e)
   {
@@ -112,7 +200,8 @@ int vtkAnisoRestrictedDelaunay::RequestData(vtkInformation* request,
     return 0;
   }
 
-  const std::size_t ns = sites.NumSites();
+  const av::RestrictedDelaunayMesh& rdt = repaired.Delaunay;
+  const std::size_t ns = repaired.Sites.NumSites();
   const int adim = rdt.AmbientDim, nv = rdt.SimplexDim + 1;
   vtkNew<vtkPoints> points;
   points->SetDataTypeToDouble();
@@ -133,8 +222,24 @@ int vtkAnisoRestrictedDelaunay::RequestData(vtkInformation* request,
       ids[a] = rdt.Cells[c * nv + a];
     output->InsertNextCell(type, nv, ids);
   }
-  // Point ids are site ids: the sites' point data carries over unchanged.
-  output->GetPointData()->ShallowCopy(sitesInput->GetPointData());
+  // Point ids are site ids: the sites' point data carries over unchanged, extended for the
+  // inserted sites.
+  if (repaired.NumInserted == 0)
+  {
+    output->GetPointData()->ShallowCopy(sitesInput->GetPointData());
+  }
+  else
+  {
+    ExtendPointData(sitesInput, input, mesh, repaired.Sites, output);
+  }
+  vtkNew<vtkUnsignedCharArray> insertedFlag;
+  insertedFlag->SetName("InsertedSite");
+  insertedFlag->SetNumberOfTuples(static_cast<vtkIdType>(ns));
+  for (std::size_t i = 0; i < ns; ++i)
+  {
+    insertedFlag->SetValue(static_cast<vtkIdType>(i), i >= repaired.NumInputSites ? 1 : 0);
+  }
+  output->GetPointData()->AddArray(insertedFlag);
   vtkNew<vtkUnsignedCharArray> inverted;
   inverted->SetName("Inverted");
   inverted->SetNumberOfTuples(static_cast<vtkIdType>(nc));
@@ -143,20 +248,29 @@ int vtkAnisoRestrictedDelaunay::RequestData(vtkInformation* request,
 
   this->NumberOfInverted = static_cast<vtkIdType>(rdt.NumInverted);
   this->NumberOfNonManifoldFaces = static_cast<vtkIdType>(rdt.NumNonManifoldFaces);
+  this->NumberOfInsertedSites = static_cast<vtkIdType>(repaired.NumInserted);
+  this->NumberOfRepairRounds = repaired.Rounds;
   vtkFieldData* fd = output->GetFieldData();
   AddFieldValue(fd, "NumInverted", static_cast<double>(rdt.NumInverted));
   AddFieldValue(fd, "NumNonManifoldFaces", static_cast<double>(rdt.NumNonManifoldFaces));
   AddFieldValue(fd, "NumOpenInteriorFaces", static_cast<double>(rdt.NumOpenInteriorFaces));
   AddFieldValue(fd, "NumUnusedSites", static_cast<double>(rdt.NumUnusedSites));
+  AddFieldValue(fd, "NumInsertedSites", static_cast<double>(repaired.NumInserted));
+  AddFieldValue(fd, "RepairRounds", static_cast<double>(repaired.Rounds));
+  AddFieldValue(fd, "NumInvertedBeforeRepair", static_cast<double>(repaired.InitialInverted));
+  AddFieldValue(fd, "NumNonManifoldFacesBeforeRepair",
+    static_cast<double>(repaired.InitialNonManifoldFaces));
   AddFieldValue(fd,
     "DelaunaySeconds",
     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   if (rdt.NumInverted > 0 || rdt.NumNonManifoldFaces > 0)
   {
     vtkWarningMacro("the dual mesh has " << rdt.NumInverted << " inverted element(s) and "
-                                         << rdt.NumNonManifoldFaces
-                                         << " non-manifold face(s) (not repaired; more sites or a "
-                                            "better embedding reduce them)");
+                                         << rdt.NumNonManifoldFaces << " non-manifold face(s) "
+                                         << (this->RepairInverted
+                                                ? "left after the repair (more repair rounds, "
+                                                  "more sites or a better embedding reduce them)"
+                                                : "(RepairInverted is off)"));
   }
   this->UpdateProgress(1.0);
   return 1;
@@ -165,6 +279,11 @@ int vtkAnisoRestrictedDelaunay::RequestData(vtkInformation* request,
 void vtkAnisoRestrictedDelaunay::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
+  os << indent << "RepairInverted: " << (this->RepairInverted ? "On" : "Off") << "\n";
+  os << indent << "RepairNonManifold: " << (this->RepairNonManifold ? "On" : "Off") << "\n";
+  os << indent << "MaxRepairRounds: " << this->MaxRepairRounds << "\n";
+  os << indent << "NumberOfInsertedSites (last run): " << this->NumberOfInsertedSites << "\n";
+  os << indent << "NumberOfRepairRounds (last run): " << this->NumberOfRepairRounds << "\n";
   os << indent << "NumberOfInverted (last run): " << this->NumberOfInverted << "\n";
   os << indent << "NumberOfNonManifoldFaces (last run): " << this->NumberOfNonManifoldFaces << "\n";
 }

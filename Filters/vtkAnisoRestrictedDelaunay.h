@@ -9,13 +9,20 @@
  *
  * Output (vtkUnstructuredGrid): one triangle (tetrahedron) per Voronoi vertex where 3 (4)
  * restricted cells meet inside the domain. Its points are the sites in input space, in site
- * order, with the sites' point data (e.g. "Metric", "Embedding"); sites that no cell uses stay
- * as unreferenced points. Cell data "Inverted" (1 where the back-projected element is inverted
- * or flat in input space). Field data "NumInverted", "NumNonManifoldFaces",
- * "NumOpenInteriorFaces", "NumUnusedSites", "DelaunaySeconds".
+ * order, then the sites inserted by the repair, with the sites' point data (e.g. "Metric",
+ * "Embedding"; for inserted sites "CellId" / "Barycentric" are theirs and every other array
+ * that port 0 also has as point data is interpolated linearly from the mesh, others are 0),
+ * plus "InsertedSite" (1 for inserted sites). Sites that no cell uses stay as unreferenced
+ * points. Cell data "Inverted" (1 where the back-projected element is inverted or flat in
+ * input space). Field data "NumInverted", "NumNonManifoldFaces" (both after the repair),
+ * "NumOpenInteriorFaces", "NumUnusedSites", "NumInsertedSites", "RepairRounds",
+ * "NumInvertedBeforeRepair", "NumNonManifoldFacesBeforeRepair", "DelaunaySeconds".
  *
- * Nothing is repaired (the paper inserts points to fix inverted elements): the counts are
- * reported, with a warning when an element is inverted or a face non-manifold.
+ * Repair (paper §4.2, RepairInverted, default on): while an element is inverted, one site is
+ * inserted at the Voronoi vertex dual to each inverted element (its circumcentre in the
+ * embedding, restricted to the domain) and the diagram recomputed, at most MaxRepairRounds
+ * times (default 10). RepairNonManifold (default off) also repairs faces shared by more than
+ * two elements. What remains is reported with a warning.
  *
  * Distributed runs (mpiexec pvbatch, pvserver): needs the whole mesh, so it asks its inputs
  * for the whole dataset and runs redundantly on every process that needs its output (the cost
@@ -38,9 +45,32 @@ public:
   /// The sites (port 1); same as SetInputConnection(1, output).
   void SetSourceConnection(vtkAlgorithmOutput* output);
 
-  /// Counts of the last run (also in the output's field data).
+  ///@{
+  /// Insert sites to repair inverted elements (default on).
+  vtkSetMacro(RepairInverted, bool);
+  vtkGetMacro(RepairInverted, bool);
+  vtkBooleanMacro(RepairInverted, bool);
+  ///@}
+
+  ///@{
+  /// Also repair faces shared by more than two elements (default off; only with
+  /// RepairInverted). Inserts more sites, and on coarse input meshes may not converge.
+  vtkSetMacro(RepairNonManifold, bool);
+  vtkGetMacro(RepairNonManifold, bool);
+  vtkBooleanMacro(RepairNonManifold, bool);
+  ///@}
+
+  ///@{
+  /// Insertion rounds at most (default 10, range 0..1000); each recomputes the diagram.
+  vtkSetClampMacro(MaxRepairRounds, int, 0, 1000);
+  vtkGetMacro(MaxRepairRounds, int);
+  ///@}
+
+  /// Counts of the last run (also in the output's field data); after the repair.
   vtkGetMacro(NumberOfInverted, vtkIdType);
   vtkGetMacro(NumberOfNonManifoldFaces, vtkIdType);
+  vtkGetMacro(NumberOfInsertedSites, vtkIdType);
+  vtkGetMacro(NumberOfRepairRounds, int);
 
 protected:
   vtkAnisoRestrictedDelaunay();
@@ -49,8 +79,14 @@ protected:
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
+  bool RepairInverted = true;
+  bool RepairNonManifold = false;
+  int MaxRepairRounds = 10;
+
   vtkIdType NumberOfInverted = 0;
   vtkIdType NumberOfNonManifoldFaces = 0;
+  vtkIdType NumberOfInsertedSites = 0;
+  int NumberOfRepairRounds = 0;
 
 private:
   vtkAnisoRestrictedDelaunay(const vtkAnisoRestrictedDelaunay&) = delete;
