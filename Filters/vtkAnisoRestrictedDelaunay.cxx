@@ -167,6 +167,8 @@ int vtkAnisoRestrictedDelaunay::RequestData(vtkInformation* request,
   this->UpdateProgress(0.1);
 
   av::DelaunayRepairResult repaired;
+  auto repairStart = std::chrono::steady_clock::now();
+  double repairSeconds = 0.0;
   try
   {
     av::ValidateRestrictedVoronoiInput(mesh, embedding, sites);
@@ -186,8 +188,11 @@ int vtkAnisoRestrictedDelaunay::RequestData(vtkInformation* request,
       return 1;
     }
     this->UpdateProgress(0.6);
+    repairStart = std::chrono::steady_clock::now();
     repaired = av::RepairRestrictedDelaunay(
       mesh, embedding, sites, std::move(rvd), std::move(rdt), options);
+    repairSeconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - repairStart).count();
   }
   catch (const av::InputError& e)
   {
@@ -260,6 +265,7 @@ int vtkAnisoRestrictedDelaunay::RequestData(vtkInformation* request,
   AddFieldValue(fd, "NumInvertedBeforeRepair", static_cast<double>(repaired.InitialInverted));
   AddFieldValue(fd, "NumNonManifoldFacesBeforeRepair",
     static_cast<double>(repaired.InitialNonManifoldFaces));
+  AddFieldValue(fd, "RepairSeconds", repairSeconds);
   AddFieldValue(fd,
     "DelaunaySeconds",
     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());

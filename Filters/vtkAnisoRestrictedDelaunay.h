@@ -16,7 +16,8 @@
  * points. Cell data "Inverted" (1 where the back-projected element is inverted or flat in
  * input space). Field data "NumInverted", "NumNonManifoldFaces" (both after the repair),
  * "NumOpenInteriorFaces", "NumUnusedSites", "NumInsertedSites", "RepairRounds",
- * "NumInvertedBeforeRepair", "NumNonManifoldFacesBeforeRepair", "DelaunaySeconds".
+ * "NumInvertedBeforeRepair", "NumNonManifoldFacesBeforeRepair", "RepairSeconds" (the rounds
+ * after the first diagram), "DelaunaySeconds" (everything, repair included).
  *
  * Repair (paper §4.2, RepairInverted, default on): while an element is inverted, one site is
  * inserted at the Voronoi vertex dual to each inverted element (its circumcentre in the

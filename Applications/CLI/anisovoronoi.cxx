@@ -96,21 +96,27 @@ options:
   --refine N               volumes: remesh the domain with TetGen to about N vertices and
                            interpolate the input's point data onto it (a coarse FE mesh
                            cannot carry a fast-varying metric; default 0 = off)
+  --no-repair              keep inverted mesh elements (default: insert sites at their dual
+                           Voronoi vertices until none is left, paper §4.2)
+  --repair-rounds N        insertion rounds at most (default 10)
+  --repair-nonmanifold     also repair faces shared by more than two mesh elements
   --output-dir DIR         where the results go (created if missing)
   --quiet                  no progress on stderr
   --help                   this text
 
 writes into DIR: embedded.vtu, sites.vtp, voronoi.vtu, voronoi_faces.vtp, mesh.vtu,
-energy.csv, report.json (the benchmark's keys).
+energy.csv, report.json (the benchmark's keys). With the repair, mesh.vtu and voronoi.vtu
+use the final sites (sampled ones first, then inserted ones; sites.vtp: the sampled ones).
 )";
 
 struct Options
 {
   std::string Input, Metric, Sol, OutputDir;
   int Step = 0, Resolution = 0, Sites = 2000, Dim = 8, Iterations = 50, SampleIterations = 50;
-  int Seed = 1, Smooth = 0, Refine = 0;
+  int Seed = 1, Smooth = 0, Refine = 0, RepairRounds = 10;
   double Mu = 100.0, Shrink = 0.8, MinEigenvalue = 1e-3, MaxAnisotropy = 25.0;
-  bool TensorAsMetric = false, Clamp = false, Quiet = false;
+  bool TensorAsMetric = false, Clamp = false, Quiet = false, Repair = true;
+  bool RepairNonManifold = false;
 };
 
 [[noreturn]] void Fail(const std::string& message, int code = 1)
@@ -244,6 +250,12 @@ Options ParseCommandLine(int argc, char* argv[])
       o.Clamp = true;
     else if (a == "--quiet")
       o.Quiet = true;
+    else if (a == "--no-repair")
+      o.Repair = false;
+    else if (a == "--repair-rounds")
+      o.RepairRounds = ParseInt(a, next());
+    else if (a == "--repair-nonmanifold")
+      o.RepairNonManifold = true;
     else if (!a.empty() && a[0] == '-')
       Fail("unknown option " + a + " (see --help)", 2);
     else if (o.Input.empty())
@@ -265,6 +277,8 @@ Options ParseCommandLine(int argc, char* argv[])
     Fail("iteration counts must be >= 0", 2);
   if (!(o.Shrink > 0 && o.Shrink <= 1))
     Fail("--shrink must be in (0, 1]", 2);
+  if (o.RepairRounds < 0 || o.RepairRounds > 1000)
+    Fail("--repair-rounds must be in [0, 1000]", 2);
   return o;
 }
 
@@ -616,16 +630,20 @@ int main(int argc, char* argv[])
   sampler->SetSeed(o.Seed);
   pipeline.Run(sampler, "sampling " + std::to_string(o.Sites) + " sites");
 
-  // 6. Restricted Voronoi diagram (shrunken cells for display) and the dual mesh.
-  vtkNew<vtkAnisoRestrictedVoronoi> rvd;
-  rvd->SetInputConnection(0, embedding->GetOutputPort(0));
-  rvd->SetInputConnection(1, sampler->GetOutputPort(0));
-  rvd->SetShrinkFactor(o.Shrink);
-  pipeline.Run(rvd, "restricted Voronoi diagram");
+  // 6. The dual mesh (with the repair's inserted sites), then the restricted Voronoi diagram
+  // of its vertices = the final sites (shrunken cells for display).
   vtkNew<vtkAnisoRestrictedDelaunay> rdt;
   rdt->SetInputConnection(0, embedding->GetOutputPort(0));
   rdt->SetInputConnection(1, sampler->GetOutputPort(0));
+  rdt->SetRepairInverted(o.Repair);
+  rdt->SetMaxRepairRounds(o.RepairRounds);
+  rdt->SetRepairNonManifold(o.RepairNonManifold);
   pipeline.Run(rdt, "restricted Delaunay mesh");
+  vtkNew<vtkAnisoRestrictedVoronoi> rvd;
+  rvd->SetInputConnection(0, embedding->GetOutputPort(0));
+  rvd->SetInputConnection(1, rdt->GetOutputPort(0));
+  rvd->SetShrinkFactor(o.Shrink);
+  pipeline.Run(rvd, "restricted Voronoi diagram");
   vtkNew<vtkAnisoMeshQuality> quality;
   quality->SetInputConnection(rdt->GetOutputPort(0));
   pipeline.Run(quality, "mesh quality");
@@ -654,6 +672,8 @@ int main(int argc, char* argv[])
   double stretchRange[2] = { NAN, NAN };
   if (meshIn && meshIn->GetPointData()->GetArray("Stretch"))
     meshIn->GetPointData()->GetArray("Stretch")->GetRange(stretchRange);
+  vtkDataObject* rdtOut = rdt->GetOutputDataObject(0);
+  const double repairSeconds = FieldValue(rdtOut, "RepairSeconds");
   const double meshSeconds = pipeline.Seconds["sampling " + std::to_string(o.Sites) + " sites"] +
     pipeline.Seconds["restricted Voronoi diagram"] + pipeline.Seconds["restricted Delaunay mesh"];
   std::vector<std::pair<std::string, std::string>> report = {
@@ -673,7 +693,13 @@ int main(int argc, char* argv[])
     { "sites", std::to_string(o.Sites) },
     { "sample_seconds", JsonNumber(pipeline.Seconds["sampling " + std::to_string(o.Sites) + " sites"]) },
     { "rvd_seconds", JsonNumber(pipeline.Seconds["restricted Voronoi diagram"]) },
-    { "rdt_seconds", JsonNumber(pipeline.Seconds["restricted Delaunay mesh"]) },
+    { "rdt_seconds", JsonNumber(pipeline.Seconds["restricted Delaunay mesh"] - repairSeconds) },
+    { "repair", o.Repair ? "true" : "false" },
+    { "repair_seconds", JsonNumber(repairSeconds) },
+    { "repair_rounds", JsonNumber(FieldValue(rdtOut, "RepairRounds")) },
+    { "inserted_sites", JsonNumber(FieldValue(rdtOut, "NumInsertedSites")) },
+    { "rdt_inverted_before_repair", JsonNumber(FieldValue(rdtOut, "NumInvertedBeforeRepair")) },
+    { "rdt_inverted", JsonNumber(FieldValue(rdtOut, "NumInverted")) },
     { "mesh_seconds", JsonNumber(meshSeconds) },
     { "voronoi_cells", std::to_string(vtkDataSet::SafeDownCast(rvdOut)
           ? vtkDataSet::SafeDownCast(rvdOut)->GetNumberOfCells() : 0) },
@@ -687,7 +713,9 @@ int main(int argc, char* argv[])
     { "pct_bad", JsonNumber(FieldValue(qualityOut, "pct_bad")) },
     { "inverted", JsonNumber(FieldValue(qualityOut, "inverted")) },
     { "edges_in_unit_range", JsonNumber(FieldValue(qualityOut, "edges_in_unit_range")) },
-    { "nonmanifold_faces", JsonNumber(FieldValue(rdt->GetOutputDataObject(0), "NumNonManifoldFaces")) },
+    { "nonmanifold_faces", JsonNumber(FieldValue(rdtOut, "NumNonManifoldFaces")) },
+    { "nonmanifold_faces_before_repair",
+      JsonNumber(FieldValue(rdtOut, "NumNonManifoldFacesBeforeRepair")) },
   };
   std::ofstream json(dir + "report.json");
   json << "{\n";
