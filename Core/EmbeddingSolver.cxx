@@ -1,5 +1,7 @@
 #include "EmbeddingSolver.h"
 
+#include "FloatSupernodalSolver.h"
+
 #include "MetricAlgebra.h"
 #include "StructuredMeshes.h"
 
@@ -41,6 +43,68 @@ std::string Str(double v)
   return s.str();
 }
 
+/// tr C^{1/2} = sum of sqrt(eigenvalues) of a symmetric positive definite 3x3 matrix with
+/// invariants ic1 = tr C, ic2, ic3 = det C, without eigenvalues (no trigonometry: about half the
+/// cost of SelfAdjointEigenSolver::computeDirect). s = tr U, U = C^{1/2}, satisfies
+/// (s² − ic1)² − 8 √ic3 s − 4 ic2 = 0 (from s² = ic1 + 2 i2, i2² = ic2 + 2 s √ic3); the quartic is
+/// convex for s ≥ √ic1 with one root there, so Newton from an upper bound decreases
+/// monotonically to it. Returns false if it does not converge.
+bool TraceOfSqrtSpd3(double ic1, double ic2, double ic3, double& s)
+{
+  const double i3 = std::sqrt(ic3);
+  s = std::sqrt(ic1 + 2.0 * std::sqrt(3.0 * ic2)); // i2 <= sqrt(3 ic2) (Cauchy-Schwarz)
+  for (int it = 0; it < 60; ++it)
+  {
+    const double q = s * s - ic1;
+    const double ds = (q * q - 8.0 * i3 * s - 4.0 * ic2) / (4.0 * s * q - 8.0 * i3);
+    s -= ds;
+    if (std::abs(ds) <= 1e-9 * s) // quadratic convergence: the error left is ~ds²/s
+    {
+      return std::isfinite(s);
+    }
+  }
+  return false;
+}
+
+/// C^{-1/2} of a symmetric positive definite 3x3 matrix; false when C is (nearly) singular.
+/// From the invariants of U = C^{1/2} by Cayley-Hamilton (U^3 - i1 U^2 + i2 U - i3 I = 0), which
+/// needs no eigenvectors and is stable for repeated eigenvalues.
+bool InverseSqrtSpd3(const Eigen::Matrix3d& c, Eigen::Matrix3d& cinv)
+{
+  const double ic1 = c.trace();
+  const double ic2 = c(0, 0) * c(1, 1) + c(1, 1) * c(2, 2) + c(0, 0) * c(2, 2) -
+    c(0, 1) * c(1, 0) - c(1, 2) * c(2, 1) - c(0, 2) * c(2, 0);
+  const double ic3 = c.determinant();
+  double i1 = 0.0, i2 = 0.0, i3 = 0.0;
+  // Well conditioned (smallest eigenvalue >= ic3 / ic2 > 1e-8 ic1): the invariant route.
+  if (ic3 > 1e-8 * ic1 * ic2 && ic2 > 0.0 && TraceOfSqrtSpd3(ic1, ic2, ic3, i1))
+  {
+    i2 = 0.5 * (i1 * i1 - ic1);
+    i3 = std::sqrt(ic3);
+  }
+  else
+  {
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es;
+    es.computeDirect(c, Eigen::EigenvaluesOnly);
+    const Eigen::Vector3d ev = es.eigenvalues();
+    if (!(ev(0) > 1e-8 * ev(2) && ev(0) > 0.0))
+    {
+      return false;
+    }
+    const double s0 = std::sqrt(ev(0)), s1 = std::sqrt(ev(1)), s2 = std::sqrt(ev(2));
+    i1 = s0 + s1 + s2;
+    i2 = s0 * s1 + s1 * s2 + s0 * s2;
+    i3 = s0 * s1 * s2;
+  }
+  Eigen::Matrix3d u = (i1 * i1 - i2) * c - c * c;
+  u.diagonal().array() += i1 * i3;
+  u /= i1 * i2 - i3;
+  cinv = c - i1 * u;
+  cinv.diagonal().array() += i2;
+  cinv /= i3;
+  return true;
+}
+
 /// Polar factor V (orthonormal columns) of B (rows x M): V = B (B^T B)^{-1/2}; SVD fallback for
 /// (nearly) rank-deficient B (surfaces with rank-2 metrics).
 template <int M, bool RankDeficient, typename MatB>
@@ -58,22 +122,10 @@ void PolarFactor(const MatB& b, MatB& v)
   const MatM c = b.transpose() * b;
   if constexpr (M == 3)
   {
-    // Eigenvalues only (the eigenvector extraction was 3/4 of the local step's cost); C^{-1/2}
-    // from the invariants of U = C^{1/2} by Cayley-Hamilton (U^3 - i1 U^2 + i2 U - i3 I = 0),
-    // which needs no eigenvectors and is stable for repeated eigenvalues.
-    Eigen::SelfAdjointEigenSolver<MatM> es;
-    es.computeDirect(c, Eigen::EigenvaluesOnly);
-    const Eigen::Vector3d ev = es.eigenvalues();
-    if (ev(0) > 1e-8 * ev(2) && ev(0) > 0.0)
+    MatM cinv;
+    if (InverseSqrtSpd3(c, cinv))
     {
-      const double s0 = std::sqrt(ev(0)), s1 = std::sqrt(ev(1)), s2 = std::sqrt(ev(2));
-      const double i1 = s0 + s1 + s2, i2 = s0 * s1 + s1 * s2 + s0 * s2, i3 = s0 * s1 * s2;
-      MatM u = (i1 * i1 - i2) * c - c * c;
-      u.diagonal().array() += i1 * i3;
-      u /= i1 * i2 - i3;
-      MatM uinv = c - i1 * u;
-      uinv.diagonal().array() += i2;
-      v.noalias() = b * (uinv / i3);
+      v.noalias() = b * cinv;
       return;
     }
   }
@@ -121,8 +173,11 @@ struct EmbeddingSolver::Internals
     {
       return this->m_cholmodFactor ? static_cast<std::size_t>(this->m_cholmodFactor->xsize) : 0;
     }
+    const cholmod_factor* Factor() const { return this->m_cholmodFactor; }
   };
   Cholesky Chol;
+  std::unique_ptr<FloatSupernodalSolver> FloatSolver; // SinglePrecisionSolve
+  Eigen::MatrixXd LastRhs;                            // right-hand sides of the last global step
   EmbeddingEnergy Energy;
   double SetupSeconds = 0.0, FactorSeconds = 0.0;
   mutable double LocalSeconds = 0.0, SolveSeconds = 0.0;
@@ -139,7 +194,8 @@ struct EmbeddingSolver::Internals
   template <int MBT, int MT, int KT>
   double LocalStepT();
   double RegulariserEnergy() const;
-  Eigen::MatrixXd GlobalStep() const;
+  Eigen::MatrixXd GlobalStep();
+  Eigen::MatrixXd RedoGlobalStepInDouble();
   Eigen::MatrixXd GetFree() const;
   void SetFree(const Eigen::MatrixXd& xr);
 };
@@ -575,6 +631,12 @@ void EmbeddingSolver::Internals::AssembleAndFactor()
                      "probably not a valid manifold simplicial complex)");
   }
   this->FactorNonZeros = this->Chol.FactorSize();
+  const cholmod_factor* factor = this->Chol.Factor();
+  if (this->Options.SinglePrecisionSolve && factor && factor->is_super && this->F > 0)
+  {
+    this->FloatSolver.reset(new FloatSupernodalSolver(*factor));
+  }
+  this->FactorSeconds = Since(t0);
 }
 
 void EmbeddingSolver::Internals::Initialise(const SimplexMesh& mesh)
@@ -724,6 +786,11 @@ double EmbeddingSolver::Internals::LocalStepT()
   using MatG = Eigen::Matrix<double, NV, MT, Eigen::RowMajor>;
   using MatM = Eigen::Matrix<double, MT, MT>;
   using MatC = Eigen::Matrix<double, NV, Eigen::Dynamic, Eigen::RowMajor, NV, kMaxTargetDim>;
+  constexpr bool kFastVolume = MT == 3 && KT == 3 && MBT != Eigen::Dynamic;
+  constexpr int FT = kFastVolume ? MBT - MT : 1; // free dimensions (compile time)
+  using MatF = Eigen::Matrix<double, FT, MT>;
+  using VecF = Eigen::Matrix<double, FT, 1>;
+  using MatCF = Eigen::Matrix<double, NV, FT, FT == 1 ? Eigen::ColMajor : Eigen::RowMajor>;
   const int mb = this->MB, nf = this->F;
   const std::size_t ne = this->NE;
   const std::size_t nchunks = (ne + kChunk - 1) / kChunk;
@@ -737,6 +804,35 @@ double EmbeddingSolver::Internals::LocalStepT()
       const std::int32_t* cell = this->Cells.data() + j * NV;
       const Eigen::Map<const MatG> g(this->Gt.data() + j * NV * MT);
       const Eigen::Map<const MatM> a(this->A.data() + j * MT * MT);
+      if constexpr (kFastVolume)
+      {
+        // Tets: the first 3 rows of T are the identity (the input coordinates do not move), so
+        // B = [I; T_f] A, BᵀB = A (I + T_fᵀT_f) A and R = V A = T N with N = A (BᵀB)^{-1/2} A:
+        // only the free rows are formed.
+        MatF tf = MatF::Zero();
+        for (int l = 0; l < NV; ++l)
+        {
+          const Eigen::Map<const VecF> x(
+            this->X.data() + static_cast<std::size_t>(cell[l]) * mb + MT);
+          tf.noalias() += x * g.row(l);
+        }
+        MatM pm = tf.transpose() * tf;
+        pm.diagonal().array() += 1.0;
+        const MatM bb = a * pm * a;
+        MatM cinv;
+        if (InverseSqrtSpd3(bb, cinv))
+        {
+          const MatM n = a * cinv * a;
+          const MatF rf = tf * n;
+          MatM d = -n;
+          d.diagonal().array() += 1.0;
+          const double w = this->W[j];
+          e += w * (d.squaredNorm() + (tf - rf).squaredNorm());
+          Eigen::Map<MatCF> c(this->C.data() + j * NV * nf);
+          c.noalias() = w * g * rf.transpose();
+          continue;
+        }
+      }
       t.setZero();
       for (int l = 0; l < NV; ++l)
       {
@@ -868,11 +964,12 @@ EmbeddingEnergy EmbeddingSolver::Internals::LocalStep()
   return e;
 }
 
-Eigen::MatrixXd EmbeddingSolver::Internals::GlobalStep() const
+Eigen::MatrixXd EmbeddingSolver::Internals::GlobalStep()
 {
   // Right-hand side: gather the per-element contributions of every vertex (no races).
   const int nv = this->K + 1, nf = this->F;
-  Eigen::MatrixXd rhs(static_cast<Eigen::Index>(this->NR), nf);
+  Eigen::MatrixXd& rhs = this->LastRhs;
+  rhs.resize(static_cast<Eigen::Index>(this->NR), nf);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, this->NP, 1024),
     [&](const tbb::blocked_range<std::size_t>& range) {
       double s[kMaxTargetDim];
@@ -900,7 +997,24 @@ Eigen::MatrixXd EmbeddingSolver::Internals::GlobalStep() const
     });
   (void)nv;
   const auto t0 = Clock::now();
-  Eigen::MatrixXd sol = this->Chol.solve(rhs);
+  Eigen::MatrixXd sol;
+  if (this->FloatSolver)
+  {
+    sol.resize(rhs.rows(), rhs.cols());
+    this->FloatSolver->Solve(rhs.data(), sol.data(), static_cast<int>(rhs.cols()));
+  }
+  else
+  {
+    sol = this->Chol.solve(rhs);
+  }
+  this->SolveSeconds += Since(t0);
+  return sol;
+}
+
+Eigen::MatrixXd EmbeddingSolver::Internals::RedoGlobalStepInDouble()
+{
+  const auto t0 = Clock::now();
+  Eigen::MatrixXd sol = this->Chol.solve(this->LastRhs);
   this->SolveSeconds += Since(t0);
   return sol;
 }
@@ -1064,7 +1178,16 @@ EmbeddingResult EmbeddingSolver::Run()
     if (!accepted)
     {
       p.SetFree(g);
-      cur = p.LocalStep();
+      EmbeddingEnergy eg = p.LocalStep();
+      if (p.FloatSolver && eg.Total > cur.Total)
+      {
+        // The exact global step cannot raise the energy; the float one did: redo it in double.
+        g = p.RedoGlobalStepInDouble();
+        p.SetFree(g);
+        eg = p.LocalStep();
+        ++res.DoublePrecisionRetries;
+      }
+      cur = eg;
       x = std::move(g);
     }
     res.EnergyHistory.push_back(cur);

@@ -60,6 +60,11 @@ struct EmbeddingOptions
   /// Anderson acceleration window (previous iterates used, 0 = plain local/global). The
   /// accelerated iterate is kept only when it lowers the energy, so the energy never increases.
   int AndersonWindow = 5;
+  /// Global-step solves with a single-precision copy of the Cholesky factor, tree-parallel
+  /// (FloatSupernodalSolver): the solves are memory-bound, so this halves their traffic and
+  /// uses every core. A plain step whose energy would rise because of the float rounding is
+  /// redone with the double factor, so the energy still never increases.
+  bool SinglePrecisionSolve = true;
   /// Called after every iteration; return false to stop early (the result then has Aborted set).
   std::function<bool(const EmbeddingProgress&)> Progress;
 };
@@ -79,6 +84,7 @@ struct EmbeddingResult
   double IterationSeconds = 0.0; ///< all iterations
   double LocalStepSeconds = 0.0; ///< part of IterationSeconds in local steps (incl. energies)
   double SolveSeconds = 0.0;     ///< part of IterationSeconds in the Cholesky back-substitutions
+  int DoublePrecisionRetries = 0; ///< plain steps redone in double (SinglePrecisionSolve)
   std::size_t FactorNonZeros = 0; ///< non-zeros of the Cholesky factor
 };
 
