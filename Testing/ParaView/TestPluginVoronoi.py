@@ -57,6 +57,10 @@ quality.UpdatePipeline()
 mesh = servermanager.Fetch(delaunay)
 print("RDT: %d tets, inverted %g, non-manifold %g" % (
     mesh.GetNumberOfCells(), field(delaunay, "NumInverted"), field(delaunay, "NumNonManifoldFaces")))
+# Repair properties (defaults): nothing to repair here, so no site is inserted.
+assert delaunay.RepairInverted == 1 and delaunay.MaxRepairRounds == 10
+assert delaunay.RepairNonManifold == 0
+assert field(delaunay, "NumInsertedSites") == 0 and field(delaunay, "NumInverted") == 0
 assert mesh.GetNumberOfPoints() == 80
 assert mesh.GetNumberOfCells() > 80
 q = servermanager.Fetch(quality)
