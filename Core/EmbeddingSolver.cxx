@@ -1088,6 +1088,68 @@ EmbeddingEnergy EmbeddingSolver::CurrentEnergy() const
   return this->P->Energy;
 }
 
+namespace
+{
+/// out[a] = <vs[a], u> (Frobenius) for every a, in one parallel pass over the rows with fixed
+/// chunks summed in order (deterministic).
+void FusedDots(const std::vector<Eigen::MatrixXd>& vs, const Eigen::MatrixXd& u, double* out)
+{
+  const std::size_t h = vs.size(), n = static_cast<std::size_t>(u.size());
+  constexpr std::size_t chunk = 16384;
+  const std::size_t nchunks = (n + chunk - 1) / chunk;
+  std::vector<double> partial(nchunks * h, 0.0);
+  tbb::parallel_for(std::size_t(0), nchunks, [&](std::size_t c) {
+    const std::size_t i0 = c * chunk, i1 = std::min(n, i0 + chunk);
+    const double* pu = u.data();
+    for (std::size_t a = 0; a < h; ++a)
+    {
+      const double* pv = vs[a].data();
+      double sum = 0.0;
+      for (std::size_t i = i0; i < i1; ++i)
+      {
+        sum += pv[i] * pu[i];
+      }
+      partial[c * h + a] = sum;
+    }
+  });
+  for (std::size_t a = 0; a < h; ++a)
+  {
+    double sum = 0.0;
+    for (std::size_t c = 0; c < nchunks; ++c)
+    {
+      sum += partial[c * h + a];
+    }
+    out[a] = sum;
+  }
+}
+
+/// xa = g - sum_a theta(a) dG[a], one parallel pass.
+void CombineAnderson(const Eigen::MatrixXd& g, const std::vector<Eigen::MatrixXd>& dG,
+  const Eigen::VectorXd& theta, Eigen::MatrixXd& xa)
+{
+  xa.resize(g.rows(), g.cols());
+  const std::size_t n = static_cast<std::size_t>(g.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 16384),
+    [&](const tbb::blocked_range<std::size_t>& r) {
+      double* px = xa.data();
+      const double* pg = g.data();
+      for (std::size_t i = r.begin(); i != r.end(); ++i)
+      {
+        px[i] = pg[i];
+      }
+      for (std::size_t a = 0; a < dG.size(); ++a)
+      {
+        const double t = theta(static_cast<Eigen::Index>(a));
+        const double* pd = dG[a].data();
+        for (std::size_t i = r.begin(); i != r.end(); ++i)
+        {
+          px[i] -= t * pd[i];
+        }
+      }
+    });
+}
+} // namespace
+
 EmbeddingResult EmbeddingSolver::Run()
 {
   Internals& p = *this->P;
@@ -1109,9 +1171,13 @@ EmbeddingResult EmbeddingSolver::Run()
 
   // Anderson acceleration (type II) on the fixed-point map x -> G(x) = global(local(x)), with the
   // energy safeguard of Peng et al. 2018: keep the accelerated iterate only if it lowers E_total.
+  // The Gram matrix of the residual differences is updated one row per iteration, and the dot
+  // products / combinations are fused parallel passes (they were memory-bound serial loops).
   const int window = o.AndersonWindow;
   std::vector<Eigen::MatrixXd> dG, dF;
-  Eigen::MatrixXd gPrev, fPrev;
+  Eigen::MatrixXd gPrev, fPrev, f, xa;
+  Eigen::MatrixXd gram = Eigen::MatrixXd::Zero(std::max(window, 1), std::max(window, 1));
+  std::vector<double> dots(static_cast<std::size_t>(std::max(window, 1)));
   int head = 0;
   for (int it = 1; it <= o.Iterations; ++it)
   {
@@ -1119,19 +1185,26 @@ EmbeddingResult EmbeddingSolver::Run()
     bool accepted = false;
     if (window > 0)
     {
-      Eigen::MatrixXd f = g - x;
+      f = g - x;
       if (gPrev.size() > 0)
       {
+        int slot = head;
         if (static_cast<int>(dG.size()) < window)
         {
-          dG.push_back(g - gPrev);
-          dF.push_back(f - fPrev);
+          slot = static_cast<int>(dG.size());
+          dG.emplace_back();
+          dF.emplace_back();
         }
         else
         {
-          dG[head] = g - gPrev;
-          dF[head] = f - fPrev;
           head = (head + 1) % window;
+        }
+        dG[slot] = g - gPrev;
+        dF[slot] = f - fPrev;
+        FusedDots(dF, dF[slot], dots.data());
+        for (std::size_t b = 0; b < dF.size(); ++b)
+        {
+          gram(slot, static_cast<Eigen::Index>(b)) = gram(static_cast<Eigen::Index>(b), slot) = dots[b];
         }
       }
       gPrev = g;
@@ -1139,33 +1212,22 @@ EmbeddingResult EmbeddingSolver::Run()
       const int h = static_cast<int>(dF.size());
       if (h > 0)
       {
-        Eigen::MatrixXd gram(h, h);
-        Eigen::VectorXd rhs(h);
-        for (int a = 0; a < h; ++a)
-        {
-          rhs(a) = (dF[a].array() * f.array()).sum();
-          for (int b = 0; b <= a; ++b)
-          {
-            gram(a, b) = gram(b, a) = (dF[a].array() * dF[b].array()).sum();
-          }
-        }
+        FusedDots(dF, f, dots.data());
+        const Eigen::VectorXd rhs = Eigen::Map<const Eigen::VectorXd>(dots.data(), h);
         // Tikhonov guard against (nearly) dependent differences.
-        gram.diagonal().array() += 1e-10 * gram.diagonal().maxCoeff() + 1e-300;
-        const Eigen::VectorXd theta = gram.ldlt().solve(rhs);
-        Eigen::MatrixXd xa = g;
-        for (int a = 0; a < h; ++a)
-        {
-          xa -= theta(a) * dG[a];
-        }
+        Eigen::MatrixXd gh = gram.topLeftCorner(h, h);
+        gh.diagonal().array() += 1e-10 * gh.diagonal().maxCoeff() + 1e-300;
+        const Eigen::VectorXd theta = gh.ldlt().solve(rhs);
         if (theta.allFinite())
         {
+          CombineAnderson(g, dG, theta, xa);
           p.SetFree(xa);
           const EmbeddingEnergy ea = p.LocalStep();
           if (ea.Total < cur.Total)
           {
             accepted = true;
             cur = ea;
-            x = std::move(xa);
+            std::swap(x, xa);
             ++res.AndersonAccepted;
           }
           else
