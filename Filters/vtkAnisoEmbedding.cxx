@@ -147,6 +147,7 @@ int vtkAnisoEmbedding::RequestData(
   options.Initialisation = this->Initialisation == RANDOM ? av::EmbeddingInitialisation::Random
                                                           : av::EmbeddingInitialisation::Smooth;
   options.AndersonWindow = this->AndersonWindow;
+  options.SinglePrecisionSolve = this->SinglePrecisionSolve;
   options.Progress = [this](const av::EmbeddingProgress& p) {
     this->UpdateProgress(0.05 + 0.9 * p.Iteration / std::max(1, p.Iterations));
     return !this->GetAbortExecute();
@@ -246,6 +247,7 @@ void vtkAnisoEmbedding::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Initialisation: " << (this->Initialisation == RANDOM ? "Random" : "Smooth")
      << "\n";
   os << indent << "AndersonWindow: " << this->AndersonWindow << "\n";
+  os << indent << "SinglePrecisionSolve: " << this->SinglePrecisionSolve << "\n";
   os << indent << "AutoScaleMetric: " << this->AutoScaleMetric << "\n";
   os << indent << "EmbeddingArrayName: "
      << (this->EmbeddingArrayName ? this->EmbeddingArrayName : "") << "\n";
