@@ -13,6 +13,7 @@
 #include <deque>
 #include <limits>
 #include <string>
+#include <cstdlib>
 
 namespace av
 {
@@ -109,10 +110,10 @@ public:
     , Nbrs(nbrs)
     , Dim(emb.Dim)
   {
-    // Inverse Gram matrices (E^T E)^{-1} of the embedded edge vectors, one per cell; NaN
-    // marks a degenerate cell (particles never move inside it).
+    // Degenerate cells (particles never move inside them). The Gram matrices themselves are
+    // recomputed where needed: a per-cell table (17 MB for 240k tets) misses the cache.
     const std::size_t nc = mesh.NumCells();
-    InvGram.resize(nc * K * K);
+    Degenerate.assign(nc, 0);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nc),
       [&](const tbb::blocked_range<std::size_t>& r)
       {
@@ -123,12 +124,7 @@ public:
           for (int j = 0; j < K; ++j)
             e.col(j) = Vertex(ids[j + 1]) - Vertex(ids[0]);
           const Eigen::Matrix<double, K, K> g = e.transpose() * e;
-          const double scale = std::pow(g.trace() / K, K);
-          Eigen::Map<Eigen::Matrix<double, K, K>> out(InvGram.data() + c * K * K);
-          if (g.determinant() > 1e-14 * scale)
-            out = g.inverse();
-          else
-            out.setConstant(std::numeric_limits<double>::quiet_NaN());
+          Degenerate[c] = g.determinant() > 1e-14 * std::pow(g.trace() / K, K) ? 0 : 1;
         }
       });
   }
@@ -164,38 +160,42 @@ public:
     }
     if (nf <= 1)
       return true;
-    if (nf == NV)
-    {
-      // Common case (no boundary constraint): precomputed inverse Gram matrix of the cell.
-      const double* gi = InvGram.data() + static_cast<std::size_t>(cell) * K * K;
-      if (!std::isfinite(gi[0]))
-        return false;
-      const auto base = Vertex(ids[0]);
-      Eigen::Matrix<double, K, 1> rhs;
-      for (int j = 0; j < K; ++j)
-        rhs[j] = (Vertex(ids[j + 1]) - base).dot(d);
-      const Eigen::Matrix<double, K, 1> a = Eigen::Map<const Eigen::Matrix<double, K, K>>(gi) * rhs;
-      double sum = 0.0;
-      for (int j = 0; j < K; ++j)
-      {
-        db[j + 1] = a[j];
-        sum += a[j];
-      }
-      db[0] = -sum;
-      return true;
-    }
+    if (Degenerate[static_cast<std::size_t>(cell)])
+      return false;
+    // Least squares in the free vertices: edges e_j = v_{fr[j+1]} - v_{fr[0]}, normal
+    // equations (E^T E) a = E^T d solved in closed form (m = 1, 2, 3).
     const int m = nf - 1;
-    Edges e(Dim, m);
     const auto base = Vertex(ids[fr[0]]);
+    Vec e[3];
     for (int j = 0; j < m; ++j)
-      e.col(j) = Vertex(ids[fr[j + 1]]) - base;
-    const Small g = e.transpose() * e;
-    Eigen::LLT<Small> llt(g);
-    if (llt.info() != Eigen::Success || g.diagonal().minCoeff() <= 0.0)
-      return false;
-    const SmallVec a = llt.solve(e.transpose() * d);
-    if (!a.allFinite())
-      return false;
+      e[j] = Vertex(ids[fr[j + 1]]) - base;
+    double a[3] = { 0.0, 0.0, 0.0 };
+    if (m == 1)
+    {
+      const double g = e[0].squaredNorm();
+      if (!(g > 0.0))
+        return false;
+      a[0] = e[0].dot(d) / g;
+    }
+    else
+    {
+      Eigen::Matrix<double, 3, 3> g = Eigen::Matrix<double, 3, 3>::Identity();
+      Eigen::Matrix<double, 3, 1> rhs = Eigen::Matrix<double, 3, 1>::Zero();
+      for (int i = 0; i < m; ++i)
+      {
+        rhs[i] = e[i].dot(d);
+        for (int j = 0; j <= i; ++j)
+          g(i, j) = g(j, i) = e[i].dot(e[j]);
+      }
+      const double det = g.determinant();
+      if (!(det > 0.0) || !std::isfinite(det))
+        return false;
+      const Eigen::Matrix<double, 3, 1> sol = g.inverse() * rhs;
+      for (int j = 0; j < m; ++j)
+        a[j] = sol[j];
+      if (!(std::isfinite(a[0]) && std::isfinite(a[1]) && std::isfinite(a[2])))
+        return false;
+    }
     double sum = 0.0;
     for (int j = 0; j < m; ++j)
     {
@@ -432,27 +432,70 @@ public:
   void Run(const ParticleSamplerOptions& opt, ParticleSamplerResult& res)
   {
     N = res.Sites.NumSites();
-    Sigma = res.Sigma;
-    const std::size_t nd = N * static_cast<std::size_t>(Dim);
     Lists.resize(N);
     PerParticle.assign(N, 0.0);
+    const int total = opt.WarmupIterations + opt.Iterations;
+    int done = 0;
+    // Warm-up at the narrower kernel (harder repulsion: the nearest-neighbour distances even
+    // out faster), then the paper's kernel.
+    if (opt.WarmupIterations > 0)
+    {
+      SetKernel(res.Sigma * opt.WarmupKernelWidthFactor / opt.KernelWidthFactor, opt);
+      res.WarmupIterationsDone =
+        Minimise(opt, opt.WarmupIterations, done, total, res.WarmupEnergy, res);
+      done += res.WarmupIterationsDone;
+    }
+    if (!res.Aborted)
+    {
+      SetKernel(res.Sigma, opt);
+      res.IterationsDone = Minimise(opt, opt.Iterations, done, total, res.Energy, res);
+    }
+    else
+    {
+      SetKernel(res.Sigma, opt);
+      res.Energy.push_back(Evaluate(res.Sites.Coords, res.Sites.CellIds, res.Sites.Bary, nullptr));
+    }
+    res.MeanNeighbours = MeanNeighbours(res.Sites.Coords);
+    res.EnergyEvaluations = Evaluations;
+    res.NeighbourRebuilds = Rebuilds;
+    if (opt.Progress)
+      opt.Progress(1.0);
+  }
+
+  /// Kernel width sigma, cutoff c sigma, list skin sigma; forces a list rebuild.
+  void SetKernel(double sigma, const ParticleSamplerOptions& opt)
+  {
+    Sigma = sigma;
+    Cutoff = opt.NeighbourCutoff * Sigma;
+    Skin = Sigma; // list radius Cutoff + sigma: rebuilt about every few steps
+    ListPositions.clear();
+  }
+
+  /**
+   * Projected L-BFGS on the sites in res.Sites at the current kernel: at most `iterations`
+   * iterations, energies appended to `energyOut` (the start value first). `done` / `total`
+   * scale the progress callback. Returns the iterations done.
+   */
+  int Minimise(const ParticleSamplerOptions& opt, int iterations, int done, int total,
+    std::vector<double>& energyOut, ParticleSamplerResult& res)
+  {
+    const std::size_t nd = N * static_cast<std::size_t>(Dim);
     std::vector<double>& x = res.Sites.Coords;
     std::vector<std::int32_t>& cells = res.Sites.CellIds;
     std::vector<double>& bary = res.Sites.Bary;
-    Cutoff = opt.NeighbourCutoff * Sigma;
-    Skin = Sigma; // list radius Cutoff + sigma: rebuilt about every few steps
 
     std::vector<double> g(nd), xt(nd), gt(nd), bt(bary.size());
     std::vector<std::int32_t> ct(N);
     Eigen::VectorXd dir(nd);
     std::deque<std::pair<Eigen::VectorXd, Eigen::VectorXd>> hist; // (s, y)
+    std::vector<double> alpha;
 
     double energy = Evaluate(x, cells, bary, &g);
-    res.Energy.push_back(energy);
-    int failures = 0;
-    for (int it = 0; it < opt.Iterations; ++it)
+    energyOut.push_back(energy);
+    int failures = 0, itDone = 0;
+    for (int it = 0; it < iterations; ++it)
     {
-      if (opt.Progress && !opt.Progress(static_cast<double>(it) / opt.Iterations))
+      if (opt.Progress && !opt.Progress(static_cast<double>(done + it) / total))
       {
         res.Aborted = true;
         break;
@@ -460,7 +503,7 @@ public:
       const Eigen::Map<const Eigen::VectorXd> gv(g.data(), static_cast<Eigen::Index>(nd));
       // Two-loop recursion.
       dir = -gv;
-      std::vector<double> alpha(hist.size());
+      alpha.assign(hist.size(), 0.0);
       for (std::size_t h = hist.size(); h-- > 0;)
       {
         const double rho = 1.0 / hist[h].second.dot(hist[h].first);
@@ -527,24 +570,23 @@ public:
       }
       if (!accepted)
       {
-        res.Energy.push_back(energy);
-        res.IterationsDone = it + 1;
+        energyOut.push_back(energy);
+        itDone = it + 1;
         if (hist.empty() || ++failures >= 2)
           break; // converged as far as the line search can tell
         hist.clear();
         continue;
       }
       failures = 0;
-      const double newEnergy = trialEnergy;
-      Eigen::VectorXd s(nd), y(nd);
+      Eigen::VectorXd sv(nd), yv(nd);
       for (std::size_t i = 0; i < nd; ++i)
       {
-        s[static_cast<Eigen::Index>(i)] = xt[i] - x[i];
-        y[static_cast<Eigen::Index>(i)] = gt[i] - g[i];
+        sv[static_cast<Eigen::Index>(i)] = xt[i] - x[i];
+        yv[static_cast<Eigen::Index>(i)] = gt[i] - g[i];
       }
-      if (s.dot(y) > 1e-10 * y.squaredNorm())
+      if (sv.dot(yv) > 1e-10 * yv.squaredNorm())
       {
-        hist.emplace_back(std::move(s), std::move(y));
+        hist.emplace_back(std::move(sv), std::move(yv));
         if (static_cast<int>(hist.size()) > opt.History)
           hist.pop_front();
       }
@@ -552,15 +594,11 @@ public:
       g.swap(gt);
       bary.swap(bt);
       cells.swap(ct);
-      energy = newEnergy;
-      res.Energy.push_back(energy);
-      res.IterationsDone = it + 1;
+      energy = trialEnergy;
+      energyOut.push_back(energy);
+      itDone = it + 1;
     }
-    res.MeanNeighbours = MeanNeighbours(x);
-    res.EnergyEvaluations = Evaluations;
-    res.NeighbourRebuilds = Rebuilds;
-    if (opt.Progress)
-      opt.Progress(1.0);
+    return itDone;
   }
 
 private:
@@ -574,7 +612,7 @@ private:
   double Skin = 1.0;
   int Evaluations = 0;
   int Rebuilds = 0;
-  std::vector<double> InvGram;       // per cell, K x K
+  std::vector<std::uint8_t> Degenerate; // per cell: Gram determinant ~ 0
   std::vector<double> ListPositions; // positions at the last list build
   std::vector<std::vector<std::uint32_t>> Lists;
   std::vector<double> PerParticle;
@@ -590,6 +628,135 @@ void RunDim(const SimplexMesh& mesh, const Embedding& emb, const std::vector<std
   else
     Sampler<D, 3>(mesh, emb, nb).Run(opt, res);
 }
+
+/// 30-bit Morton code of a point in the box [lo, lo + ext] (2 or 3 coordinates).
+std::uint32_t Morton(const double* p, const double* lo, const double* ext, int m)
+{
+  const int bits = m == 3 ? 10 : 15;
+  std::uint32_t code = 0;
+  std::uint32_t q[3] = { 0, 0, 0 };
+  for (int d = 0; d < m; ++d)
+  {
+    const double t = ext[d] > 0.0 ? (p[d] - lo[d]) / ext[d] : 0.0;
+    q[d] = static_cast<std::uint32_t>(std::clamp(t, 0.0, 1.0) * ((1u << bits) - 1));
+  }
+  for (int b = bits - 1; b >= 0; --b)
+    for (int d = 0; d < m; ++d)
+      code = (code << 1) | ((q[d] >> b) & 1u);
+  return code;
+}
+
+/// Uniform barycentrics on `nv` vertices (gaps of sorted uniforms).
+void UniformBary(Rng& rng, int nv, double* b)
+{
+  double cut[5] = { 0.0, 0.0, 0.0, 0.0, 0.0 };
+  for (int j = 1; j < nv; ++j)
+    cut[j] = rng.Uniform();
+  for (int a = 2; a < nv; ++a) // insertion sort of the nv - 1 uniforms
+    for (int c = a; c > 1 && cut[c] < cut[c - 1]; --c)
+      std::swap(cut[c], cut[c - 1]);
+  cut[nv] = 1.0;
+  for (int j = 0; j < nv; ++j)
+    b[j] = cut[j + 1] - cut[j];
+}
+
+/**
+ * Jittered stratified draw of `count` items with probability proportional to `weight`, in
+ * the given item order: the i-th draw falls in the i-th of `count` equal slices of the
+ * cumulative weight, so every run of consecutive items holding weight W receives W / w̄ ± 1
+ * draws (items sorted along a space-filling curve: no large-scale density fluctuations).
+ * Random mode draws i.i.d. instead. Returns item indices (into `order`'s values).
+ */
+std::vector<std::size_t> StratifiedDraw(const std::vector<std::size_t>& order,
+  const std::vector<double>& weight, std::size_t count, bool stratified, Rng& rng)
+{
+  std::vector<double> cdf(order.size());
+  double total = 0.0;
+  for (std::size_t i = 0; i < order.size(); ++i)
+    cdf[i] = (total += weight[order[i]]);
+  std::vector<std::size_t> out(count);
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    const double u = stratified
+      ? (static_cast<double>(i) + rng.Uniform()) / static_cast<double>(count) * total
+      : rng.Uniform() * total;
+    auto j = static_cast<std::size_t>(std::upper_bound(cdf.begin(), cdf.end(), u) - cdf.begin());
+    j = std::min(j, order.size() - 1);
+    while (weight[order[j]] <= 0.0 && j > 0) // never a degenerate item
+      --j;
+    out[i] = order[j];
+  }
+  return out;
+}
+
+/**
+ * Initial sites: cells drawn proportionally to their embedded measure (stratified along a
+ * Morton order of the input-space cell centroids when options.StratifiedInitialSites),
+ * uniform barycentrics inside the cell; sites ordered by cell id.
+ */
+void InitialSites(const SimplexMesh& mesh, const Embedding& emb, const std::vector<double>& meas,
+  const ParticleSamplerOptions& opt, ParticleSamplerResult& res)
+{
+  const int k = mesh.SimplexDim, nv = k + 1, dim = emb.Dim, m = mesh.AmbientDim;
+  const std::size_t nc = mesh.NumCells(), n = opt.NumSites;
+  std::vector<std::size_t> cellOrder(nc);
+  for (std::size_t c = 0; c < nc; ++c)
+    cellOrder[c] = c;
+  if (opt.StratifiedInitialSites)
+  {
+    double lo[3] = { 0, 0, 0 }, hi[3] = { 0, 0, 0 }, ext[3] = { 0, 0, 0 };
+    for (int d = 0; d < m; ++d)
+    {
+      lo[d] = std::numeric_limits<double>::infinity();
+      hi[d] = -lo[d];
+    }
+    for (std::size_t v = 0; v < mesh.NumPoints(); ++v)
+      for (int d = 0; d < m; ++d)
+      {
+        lo[d] = std::min(lo[d], mesh.Point(v)[d]);
+        hi[d] = std::max(hi[d], mesh.Point(v)[d]);
+      }
+    for (int d = 0; d < m; ++d)
+      ext[d] = hi[d] - lo[d];
+    std::vector<std::pair<std::uint32_t, std::size_t>> keys(nc);
+    for (std::size_t c = 0; c < nc; ++c)
+    {
+      const std::int32_t* ids = mesh.Cell(c);
+      double p[3] = { 0, 0, 0 };
+      for (int j = 0; j < nv; ++j)
+        for (int d = 0; d < m; ++d)
+          p[d] += mesh.Point(ids[j])[d] / nv;
+      keys[c] = { Morton(p, lo, ext, m), c };
+    }
+    std::sort(keys.begin(), keys.end());
+    for (std::size_t c = 0; c < nc; ++c)
+      cellOrder[c] = keys[c].second;
+  }
+
+  Rng rng(opt.Seed);
+  std::vector<std::pair<std::size_t, std::size_t>> draws(n); // (cell, draw index)
+  const std::vector<std::size_t> chosen =
+    StratifiedDraw(cellOrder, meas, n, opt.StratifiedInitialSites, rng);
+  for (std::size_t i = 0; i < n; ++i)
+    draws[i] = { chosen[i], i };
+  // Particles in cell order: neighbouring cells are usually close in memory, which makes the
+  // walks, tree queries and energy sums cache friendly (ties keep draw order).
+  std::sort(draws.begin(), draws.end());
+  SiteSet& s = res.Sites;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const std::size_t c = draws[i].first;
+    double* b = s.Bary.data() + 4 * i;
+    UniformBary(rng, nv, b);
+    s.CellIds[i] = static_cast<std::int32_t>(c);
+    const std::int32_t* ids = mesh.Cell(c);
+    for (int j = 0; j < nv; ++j)
+      for (int d = 0; d < dim; ++d)
+        s.Coords[i * static_cast<std::size_t>(dim) + static_cast<std::size_t>(d)] +=
+          b[j] * emb.At(static_cast<std::size_t>(ids[j]))[d];
+  }
+}
+
 } // namespace
 
 std::vector<std::int32_t> CellFaceNeighbours(const SimplexMesh& mesh)
@@ -702,19 +869,20 @@ ParticleSamplerResult SampleParticles(
     throw InputError("SampleParticles: NumSites (" + std::to_string(opt.NumSites) +
       ") exceeds 8 x the number of mesh points (" + std::to_string(8 * mesh.NumPoints()) +
       "); refine the input mesh or ask for fewer sites");
-  if (opt.Iterations < 0 || !(opt.KernelWidthFactor > 0.0) ||
-    !std::isfinite(opt.KernelWidthFactor) || !(opt.NeighbourCutoff > 0.0) ||
+  if (opt.Iterations < 0 || opt.WarmupIterations < 0 || !(opt.KernelWidthFactor > 0.0) ||
+    !std::isfinite(opt.KernelWidthFactor) || !(opt.WarmupKernelWidthFactor > 0.0) ||
+    !std::isfinite(opt.WarmupKernelWidthFactor) || !(opt.NeighbourCutoff > 0.0) ||
     !std::isfinite(opt.NeighbourCutoff) || opt.History < 1 || opt.MaxThreads < 0)
-    throw InputError("SampleParticles: Iterations >= 0, History >= 1, MaxThreads >= 0 and a "
-                     "positive, finite KernelWidthFactor and NeighbourCutoff are required");
+    throw InputError("SampleParticles: Iterations >= 0, WarmupIterations >= 0, History >= 1, "
+                     "MaxThreads >= 0 and a positive, finite KernelWidthFactor, "
+                     "WarmupKernelWidthFactor and NeighbourCutoff are required");
 
   const int k = mesh.SimplexDim, dim = embedding.Dim;
   const std::size_t nc = mesh.NumCells(), n = opt.NumSites;
   const std::vector<double> meas = EmbeddedCellMeasures(mesh, embedding);
-  std::vector<double> cdf(nc);
   double total = 0.0;
   for (std::size_t c = 0; c < nc; ++c)
-    cdf[c] = (total += meas[c]);
+    total += meas[c];
   if (!(total > 0.0) || !std::isfinite(total))
     throw InputError("SampleParticles: the embedded mesh has zero (or non-finite) measure");
 
@@ -727,42 +895,7 @@ ParticleSamplerResult SampleParticles(
   s.Bary.assign(4 * n, 0.0);
   s.Coords.assign(n * static_cast<std::size_t>(dim), 0.0);
 
-  // Initial sites: cell ~ embedded measure, uniform barycentrics (sorted uniforms' gaps).
-  Rng rng(opt.Seed);
-  std::vector<std::pair<std::size_t, double>> draws(n); // (cell, second uniform seed)
-  for (std::size_t i = 0; i < n; ++i)
-  {
-    const double u = rng.Uniform() * total;
-    auto c = static_cast<std::size_t>(std::upper_bound(cdf.begin(), cdf.end(), u) - cdf.begin());
-    c = std::min(c, nc - 1);
-    while (meas[c] <= 0.0 && c > 0) // never start in a degenerate cell
-      --c;
-    draws[i] = { c, u };
-  }
-  // Particles in cell order: neighbouring cells are usually close in memory, which makes the
-  // walks, tree queries and energy sums cache friendly. (Deterministic: ties keep draw order.)
-  std::stable_sort(draws.begin(), draws.end(),
-    [](const auto& a, const auto& b) { return a.first < b.first; });
-  for (std::size_t i = 0; i < n; ++i)
-  {
-    const std::size_t c = draws[i].first;
-    double cut[5] = { 0.0, 0.0, 0.0, 0.0, 0.0 };
-    for (int j = 0; j < k; ++j)
-      cut[j + 1] = rng.Uniform();
-    for (int a = 2; a <= k; ++a) // insertion sort of the k uniforms
-      for (int b = a; b > 1 && cut[b] < cut[b - 1]; --b)
-        std::swap(cut[b], cut[b - 1]);
-    cut[k + 1] = 1.0;
-    double* b = s.Bary.data() + 4 * i;
-    for (int j = 0; j <= k; ++j)
-      b[j] = cut[j + 1] - cut[j];
-    s.CellIds[i] = static_cast<std::int32_t>(c);
-    const std::int32_t* ids = mesh.Cell(c);
-    for (int j = 0; j <= k; ++j)
-      for (int d = 0; d < dim; ++d)
-        s.Coords[i * static_cast<std::size_t>(dim) + static_cast<std::size_t>(d)] +=
-          b[j] * embedding.At(static_cast<std::size_t>(ids[j]))[d];
-  }
+  InitialSites(mesh, embedding, meas, opt, res);
 
   auto run = [&]()
   {

@@ -23,16 +23,27 @@ struct ParticleSamplerOptions
   double NeighbourCutoff = 5.0;  ///< pairs farther than this many sigma are ignored
   int History = 7;               ///< L-BFGS memory (pairs of vectors)
   int MaxThreads = 0;            ///< 0: all cores; the result does not depend on it
+  /// Iterations at WarmupKernelWidthFactor before the Iterations at KernelWidthFactor (not
+  /// in the paper: the narrower kernel evens out the spacing faster; see sampling.md), >= 0.
+  int WarmupIterations = 50;
+  double WarmupKernelWidthFactor = 0.25; ///< sigma factor of the warm-up iterations
+  /// Initial sites drawn by jittered stratification along a Morton order of the cells
+  /// (false: i.i.d. draws, the paper's random start).
+  bool StratifiedInitialSites = true;
   /// Called once per iteration with the fraction done in [0,1]; return false to abort.
-  std::function<bool(double)> Progress;
+  std::function<bool(double)> Progress; ///< fraction of WarmupIterations + Iterations
 };
 
 /// Output of SampleParticles.
 struct ParticleSamplerResult
 {
   SiteSet Sites;               ///< embedded coords (Dim each), containing cell, barycentrics
-  std::vector<double> Energy;  ///< Energy[0] at the start, Energy[i] after iteration i
-  double Sigma = 0.0;          ///< the kernel width used
+  /// Energy at KernelWidthFactor: Energy[0] at the start of those iterations (after the
+  /// warm-up), Energy[i] after iteration i.
+  std::vector<double> Energy;
+  std::vector<double> WarmupEnergy; ///< the same for the warm-up (its own, narrower kernel)
+  int WarmupIterationsDone = 0;
+  double Sigma = 0.0;          ///< the kernel width of the (final) Iterations
   double EmbeddedMeasure = 0.0; ///< |embedded mesh|: area (triangles) or volume (tets)
   double MeanNeighbours = 0.0; ///< average neighbour count within the cutoff at the end
   int EnergyEvaluations = 0;   ///< energy evaluations (line-search trials included)

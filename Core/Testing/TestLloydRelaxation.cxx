@@ -193,6 +193,8 @@ int main()
       av::ParticleSamplerOptions so;
       so.NumSites = vol ? 60 : 50;
       so.Iterations = 0; // random sites
+      so.WarmupIterations = 0;
+      so.StratifiedInitialSites = false;
       so.Seed = 7;
       const av::SiteSet start = av::SampleParticles(mesh, e, so).Sites;
       const av::LloydResult r = av::RelaxSitesLloyd(mesh, e, start, 15);

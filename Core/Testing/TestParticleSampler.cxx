@@ -102,18 +102,29 @@ void CheckOnMesh(const av::SimplexMesh& mesh, const av::Embedding& emb, const av
   AV_CHECK_MSG(bad == 0, bad << " site values are off the mesh");
 }
 
+/// Rises in an energy history (each accepted step must lower it).
+int Rises(const std::vector<double>& e)
+{
+  int rises = 0;
+  for (std::size_t i = 1; i < e.size(); ++i)
+    if (e[i] > e[i - 1])
+      ++rises;
+  return rises;
+}
+
+/// Both stages' histories: sizes, no rises (the shifted, continuous energy is a function of
+/// the positions), and the first stage that ran cut its energy by minReduction.
 void CheckEnergy(const av::ParticleSamplerResult& r, double minReduction)
 {
   AV_CHECK(r.Energy.size() == static_cast<std::size_t>(r.IterationsDone) + 1);
-  // The (shifted, continuous) energy is a function of the positions: every accepted step
-  // must decrease it.
-  int rises = 0;
-  for (std::size_t i = 1; i < r.Energy.size(); ++i)
-    if (r.Energy[i] > r.Energy[i - 1])
-      ++rises;
-  AV_CHECK_MSG(rises == 0, rises << " iterations increased the energy");
-  AV_CHECK_MSG(r.Energy.back() < (1.0 - minReduction) * r.Energy.front(),
-    "energy " << r.Energy.front() << " -> " << r.Energy.back());
+  AV_CHECK(r.WarmupEnergy.size() ==
+    (r.WarmupIterationsDone > 0 ? static_cast<std::size_t>(r.WarmupIterationsDone) + 1 : 0));
+  AV_CHECK_MSG(Rises(r.Energy) == 0, Rises(r.Energy) << " iterations increased the energy");
+  AV_CHECK_MSG(Rises(r.WarmupEnergy) == 0,
+    Rises(r.WarmupEnergy) << " warm-up iterations increased the energy");
+  const std::vector<double>& first = r.WarmupEnergy.empty() ? r.Energy : r.WarmupEnergy;
+  AV_CHECK_MSG(first.back() < (1.0 - minReduction) * first.front(),
+    "energy " << first.front() << " -> " << first.back());
 }
 
 bool SameBits(const av::ParticleSamplerResult& a, const av::ParticleSamplerResult& b)
@@ -211,8 +222,48 @@ int main(int argc, char* argv[])
     const double cv = CoefficientOfVariation(nn);
     av::ParticleSamplerOptions opt0 = opt;
     opt0.Iterations = 0;
+    opt0.WarmupIterations = 0;
+    opt0.StratifiedInitialSites = false;
     const double cv0 =
       CoefficientOfVariation(NearestDistances(av::SampleParticles(mesh, emb, opt0).Sites, 2));
+
+    // Without the warm-up the paper's kernel alone still halves the energy.
+    av::ParticleSamplerOptions paper = opt;
+    paper.WarmupIterations = 0;
+    const auto rp = av::SampleParticles(mesh, emb, paper);
+    AV_CHECK(rp.WarmupEnergy.empty() && rp.WarmupIterationsDone == 0);
+    CheckEnergy(rp, 0.5);
+    CheckOnMesh(mesh, emb, rp.Sites);
+    // The warm-up uses the narrower kernel: its first energy is the initial sites' energy at
+    // sigma factor 0.25 (the same initial sites as a 0.25 run without iterations).
+    av::ParticleSamplerOptions narrow = opt0;
+    narrow.StratifiedInitialSites = true;
+    narrow.KernelWidthFactor = 0.25;
+    const auto rn = av::SampleParticles(mesh, emb, narrow);
+    AV_CHECK_NEAR(res.WarmupEnergy.front(), rn.Energy.front(), 1e-9 * rn.Energy.front());
+    AV_CHECK(res.WarmupIterationsDone == 50 && res.IterationsDone > 0);
+
+    // Stratified initial sites: counts in 4 x 4 blocks stay close to the expected 300 / 16;
+    // i.i.d. draws fluctuate by about sqrt(19) ~ 4.3 per block.
+    av::ParticleSamplerOptions strat = opt0;
+    strat.StratifiedInitialSites = true;
+    auto worstBlock = [&](const av::SiteSet& sites)
+    {
+      int count[16] = {};
+      for (std::size_t i = 0; i < sites.NumSites(); ++i)
+        ++count[std::min(3, static_cast<int>(sites.At(i)[0] * 4)) * 4 +
+          std::min(3, static_cast<int>(sites.At(i)[1] * 4))];
+      double worst = 0.0;
+      for (int c : count)
+        worst = std::max(worst, std::abs(c - 300.0 / 16.0));
+      return worst;
+    };
+    const double worstStrat = worstBlock(av::SampleParticles(mesh, emb, strat).Sites);
+    const double worstRandom = worstBlock(av::SampleParticles(mesh, emb, opt0).Sites);
+    std::cout << "square: worst 4x4 block count deviation stratified " << worstStrat
+              << ", random " << worstRandom << std::endl;
+    AV_CHECK_MSG(worstStrat <= 2.5, "stratified block deviation " << worstStrat);
+    AV_CHECK(worstRandom > worstStrat);
     std::cout << "square: energy " << res.Energy.front() << " -> " << res.Energy.back()
               << " in " << res.IterationsDone << " it, NN CV " << cv0 << " -> " << cv
               << ", neighbours " << res.MeanNeighbours << ", " << res.Seconds << " s"
@@ -264,7 +315,9 @@ int main(int argc, char* argv[])
       return f < 0.1;
     };
     const auto ra = av::SampleParticles(mesh, emb, ab);
-    AV_CHECK(ra.Aborted && ra.IterationsDone == 5 && calls >= 6);
+    // 50 warm-up + 50 iterations: the callback stops the 11th warm-up iteration.
+    AV_CHECK(ra.Aborted && ra.WarmupIterationsDone == 10 && ra.IterationsDone == 0 &&
+      ra.Energy.size() == 1 && calls >= 11);
     CheckOnMesh(mesh, emb, ra.Sites);
   }
 
