@@ -58,7 +58,7 @@ bool TraceOfSqrtSpd3(double ic1, double ic2, double ic3, double& s)
     const double q = s * s - ic1;
     const double ds = (q * q - 8.0 * i3 * s - 4.0 * ic2) / (4.0 * s * q - 8.0 * i3);
     s -= ds;
-    if (std::abs(ds) <= 1e-9 * s) // quadratic convergence: the error left is ~ds²/s
+    if (std::abs(ds) <= 1e-7 * s) // quadratic convergence: the error left is ~ds²/s
     {
       return std::isfinite(s);
     }
@@ -96,12 +96,14 @@ bool InverseSqrtSpd3(const Eigen::Matrix3d& c, Eigen::Matrix3d& cinv)
     i2 = s0 * s1 + s1 * s2 + s0 * s2;
     i3 = s0 * s1 * s2;
   }
+  // U = ((i1² − i2) C − C² + i1 i3 I) / (i1 i2 − i3), U⁻¹ = (C − i1 U + i2 I) / i3; reciprocals
+  // once (Eigen divides a matrix by a scalar entry by entry).
   Eigen::Matrix3d u = (i1 * i1 - i2) * c - c * c;
   u.diagonal().array() += i1 * i3;
-  u /= i1 * i2 - i3;
+  u *= 1.0 / (i1 * i2 - i3);
   cinv = c - i1 * u;
   cinv.diagonal().array() += i2;
-  cinv /= i3;
+  cinv *= 1.0 / i3;
   return true;
 }
 
