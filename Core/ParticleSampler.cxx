@@ -343,23 +343,27 @@ public:
       });
   }
 
-  /// Rebuilds the lists when a particle moved more than Skin/2 since the last build, so
-  /// that they always hold every pair closer than Cutoff.
+  /// Rebuilds the lists when the two largest displacements since the last build add up to
+  /// more than Skin: no pair can then have closed in by more than Skin, so the lists (radius
+  /// Cutoff + Skin) still hold every pair closer than Cutoff.
   void EnsureNeighbours(const std::vector<double>& x)
   {
     if (ListPositions.size() == x.size())
     {
-      const double lim2 = 0.25 * Skin * Skin;
-      bool ok = true;
-      for (std::size_t p = 0; p < N && ok; ++p)
+      double m1 = 0.0, m2 = 0.0; // two largest squared displacements
+      for (std::size_t p = 0; p < N; ++p)
       {
         double d2 = 0.0;
         for (std::size_t i = p * static_cast<std::size_t>(Dim), e = i + static_cast<std::size_t>(Dim);
              i < e; ++i)
           d2 += (x[i] - ListPositions[i]) * (x[i] - ListPositions[i]);
-        ok = d2 <= lim2;
+        if (d2 > m2)
+        {
+          m2 = std::min(d2, m1);
+          m1 = std::max(d2, m1);
+        }
       }
-      if (ok)
+      if (std::sqrt(m1) + std::sqrt(m2) <= Skin)
         return;
     }
     BuildNeighbours(x);

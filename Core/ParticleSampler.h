@@ -24,8 +24,9 @@ struct ParticleSamplerOptions
   int History = 7;               ///< L-BFGS memory (pairs of vectors)
   int MaxThreads = 0;            ///< 0: all cores; the result does not depend on it
   /// Iterations at WarmupKernelWidthFactor before the Iterations at KernelWidthFactor (not
-  /// in the paper: the narrower kernel evens out the spacing faster; see sampling.md), >= 0.
-  int WarmupIterations = 50;
+  /// in the paper: the narrower kernel evens out the spacing faster, and these iterations
+  /// improve the mesh more than the paper-kernel ones; see sampling.md), >= 0.
+  int WarmupIterations = 100;
   double WarmupKernelWidthFactor = 0.25; ///< sigma factor of the warm-up iterations
   /// Initial sites drawn by jittered stratification along a Morton order of the cells
   /// (false: i.i.d. draws, the paper's random start).
