@@ -1,12 +1,12 @@
 // High-d embedding solver: energy monotonicity, fixed input coordinates, recovery of the exact
 // Gaussian height field, measured error bounds, abort, determinism and input validation.
-#include <algorithm>
 #include "AnalyticMetrics.h"
 #include "EdgeLengthError.h"
 #include "EmbeddingSolver.h"
 #include "StructuredMeshes.h"
 #include "TestUtilities.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
