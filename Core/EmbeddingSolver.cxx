@@ -1,6 +1,7 @@
 #include "EmbeddingSolver.h"
 
 #include "FloatSupernodalSolver.h"
+#include "TetLocalStepKernel.h"
 
 #include "MetricAlgebra.h"
 #include "StructuredMeshes.h"
@@ -826,12 +827,30 @@ double EmbeddingSolver::Internals::LocalStepT()
   const std::size_t ne = this->NE;
   const std::size_t nchunks = (ne + kChunk - 1) / kChunk;
   std::vector<double> partial(nchunks, 0.0);
+  // Tets: four elements per SIMD vector (TetLocalStepKernel); the elements it cannot take (an
+  // ill-conditioned BᵀB) come back in a list for the general path below.
+  const bool useKernel = kFastVolume && HasTetLocalStepKernel(mb);
+  TetLocalStepData kernelData;
+  kernelData.Cells = this->Cells.data();
+  kernelData.Gt = this->Gt.data();
+  kernelData.A = this->A.data();
+  kernelData.W = this->W.data();
+  kernelData.X = this->X.data();
+  kernelData.Stride = mb;
+  kernelData.C = this->C.data();
   tbb::parallel_for(std::size_t(0), nchunks, [&](std::size_t ch) {
     const std::size_t j0 = ch * kChunk, j1 = std::min(ne, j0 + kChunk);
     double e = 0.0;
-    MatB t(mb, MT), b(mb, MT), v(mb, MT), r(mb, MT);
-    for (std::size_t j = j0; j < j1; ++j)
+    std::vector<std::int32_t> failed;
+    if (useKernel)
     {
+      e = TetLocalStepRange(kernelData, j0, j1, failed);
+    }
+    MatB t(mb, MT), b(mb, MT), v(mb, MT), r(mb, MT);
+    const std::size_t count = useKernel ? failed.size() : j1 - j0;
+    for (std::size_t k = 0; k < count; ++k)
+    {
+      const std::size_t j = useKernel ? static_cast<std::size_t>(failed[k]) : j0 + k;
       const std::int32_t* cell = this->Cells.data() + j * NV;
       const Eigen::Map<const MatG> g(this->Gt.data() + j * NV * MT);
       const Eigen::Map<const MatM> a(this->A.data() + j * MT * MT);
