@@ -211,6 +211,8 @@ int vtkAnisoEmbedding::RequestData(
   AddFieldValue(fd, "EmbeddingDimension", result.Embedded.Dim);
   AddFieldValue(fd, "EmbeddingIterations", result.IterationsDone);
   AddFieldValue(fd, "FactorSeconds", result.FactorSeconds);
+  AddFieldValue(fd, "SolveSeconds", result.SolveSeconds);
+  AddFieldValue(fd, "DoublePrecisionRetries", result.DoublePrecisionRetries);
   AddFieldValue(fd, "EmbeddingSeconds", seconds);
 
   // Output 1: the energy history.

@@ -15,7 +15,8 @@
  * - "Embedding": m̄-component point array, the embedded coordinates (first m = input coords);
  * - "EdgeLengthError": per-cell largest relative edge length error (%) of the paper §5.1;
  * - field data "L_avg", "L_max" (%), "MetricScale" (c), "EmbeddingDimension",
- *   "EmbeddingIterations", "FactorSeconds", "EmbeddingSeconds".
+ *   "EmbeddingIterations", "FactorSeconds", "SolveSeconds", "DoublePrecisionRetries",
+ *   "EmbeddingSeconds".
  * Output 1 (vtkTable): per iteration (0 = initial state) E_em, E_reg, E_total — chartable.
  *
  * Solver: local step per element (polar factor of a small SVD, parallel), global step with
