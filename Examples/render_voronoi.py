@@ -3,14 +3,15 @@
 
 usage (under X, e.g. xvfb-run -a):
     python3 render_voronoi.py OUTPUT_DIR [PNG]
-OUTPUT_DIR is an `anisovoronoi --output-dir` folder (voronoi_faces.vtp, sites.vtp).
+OUTPUT_DIR is an `anisovoronoi --output-dir` folder (voronoi_faces.vtp, and mesh.vtu or
+sites.vtp for the metric at the sites).
 """
 import os
 import sys
 
 import numpy as np
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
-from vtkmodules.vtkIOXML import vtkXMLPolyDataReader
+from vtkmodules.vtkIOXML import vtkXMLPolyDataReader, vtkXMLUnstructuredGridReader
 from vtkmodules.vtkRenderingCore import (vtkActor, vtkPolyDataMapper,
                                                vtkRenderer, vtkRenderWindow,
                                                vtkWindowToImageFilter)
@@ -54,8 +55,24 @@ def main():
     if faces.GetNumberOfCells() == 0:
         print("render_voronoi: no Voronoi faces in", folder, file=sys.stderr)
         return 1
-    stretch = site_stretch(sites)
     site_id = vtk_to_numpy(faces.GetCellData().GetArray("SiteId")).astype(np.int64)
+    # The dual mesh's points are the final sites (sampled ones, then any inserted by the
+    # repair of inverted elements), numbered like the cells' SiteId; sites.vtp has the
+    # sampled ones only.
+    stretch = None
+    mesh_file = os.path.join(folder, "mesh.vtu")
+    if os.path.exists(mesh_file):
+        r = vtkXMLUnstructuredGridReader()
+        r.SetFileName(mesh_file)
+        r.Update()
+        if r.GetOutput().GetNumberOfPoints() > site_id.max():
+            stretch = site_stretch(r.GetOutput())
+    if stretch is None:
+        stretch = site_stretch(sites)
+    if stretch is not None and len(stretch) <= site_id.max():
+        print("render_voronoi: the site files do not cover every Voronoi cell; colouring by "
+              "site id", file=sys.stderr)
+        stretch = None
     values = stretch[site_id] if stretch is not None else site_id.astype(float)
     arr = numpy_to_vtk(np.ascontiguousarray(values, dtype=np.float64), deep=True)
     arr.SetName("Stretch" if stretch is not None else "SiteId")

@@ -7,7 +7,10 @@
 # Usage: scripts/run-main.sh [OUTPUT_DIR] [extra anisovoronoi options]
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/setup.sh
+# AV_SKIP_SETUP=1: use the existing build (the test suite runs this script that way).
+if [[ -z ${AV_SKIP_SETUP:-} ]]; then
+  bash scripts/setup.sh
+fi
 BUILD_DIR=${AV_BUILD_DIR:-build}
 OUT=${1:-out/compressor}
 shift || true
@@ -19,7 +22,7 @@ fi
 "$BUILD_DIR/bin/anisovoronoi" "$FRD" --metric tensor:STRESS --min-eigenvalue 0.1 \
   --max-anisotropy 10 --smooth 10 --sites 3000 --dim 8 \
   --iterations 50 --shrink 0.7 --output-dir "$OUT" "$@"
-PYTHONPATH="$PWD/$BUILD_DIR/lib/python3/dist-packages:/usr/lib/python3/dist-packages" \
+PYTHONPATH="$(cd "$BUILD_DIR" && pwd)/lib/python3/dist-packages:/usr/lib/python3/dist-packages" \
   xvfb-run -a /usr/bin/python3 Examples/render_voronoi.py "$OUT" "$OUT/voronoi.png"
 echo
 echo "Main job done. Outputs in $OUT:"
