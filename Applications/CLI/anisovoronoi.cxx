@@ -84,6 +84,7 @@ options:
   --sites N                number of Voronoi cells / mesh vertices (default 2000)
   --dim N                  embedding dimension (default 8)
   --iterations N           embedding iterations (default 50)
+  --double-solve           embedding: CHOLMOD's double-precision solves (default: float copy)
   --sample-iterations N    particle L-BFGS iterations (default 50)
   --seed S                 random seed (default 1)
   --mu X                   regularisation weight (default 100)
@@ -116,7 +117,7 @@ struct Options
   int Seed = 1, Smooth = 0, Refine = 0, RepairRounds = 10;
   double Mu = 100.0, Shrink = 0.8, MinEigenvalue = 1e-3, MaxAnisotropy = 25.0;
   bool TensorAsMetric = false, Clamp = false, Quiet = false, Repair = true;
-  bool RepairNonManifold = false;
+  bool RepairNonManifold = false, DoubleSolve = false;
 };
 
 [[noreturn]] void Fail(const std::string& message, int code = 1)
@@ -230,6 +231,8 @@ Options ParseCommandLine(int argc, char* argv[])
       o.Iterations = ParseInt(a, next());
     else if (a == "--sample-iterations")
       o.SampleIterations = ParseInt(a, next());
+    else if (a == "--double-solve")
+      o.DoubleSolve = true;
     else if (a == "--seed")
       o.Seed = ParseInt(a, next());
     else if (a == "--refine")
@@ -617,6 +620,7 @@ int main(int argc, char* argv[])
     metricName ? metricName : o.Metric.substr(7).c_str());
   embedding->SetTargetDimension(o.Dim);
   embedding->SetIterations(o.Iterations);
+  embedding->SetSinglePrecisionSolve(!o.DoubleSolve);
   embedding->SetMu(o.Mu);
   embedding->SetSeed(o.Seed);
   pipeline.Run(embedding, "embedding in " + std::to_string(o.Dim) + "D");
