@@ -24,6 +24,8 @@ typedef float Vec8 __attribute__((vector_size(32), aligned(4)));
 
 // Above this many entries the off-diagonal part of a top-of-tree supernode is split over threads.
 constexpr std::int64_t kParallelBlockEntries = 1 << 15;
+// Rows per chunk of a split off-diagonal block (a stack buffer of this many vectors).
+constexpr int kTopRows = 128;
 
 // Columns per block of the dense triangular solves: the off-block part then runs through the
 // register-blocked kernels below instead of one load/store per entry.
@@ -151,11 +153,42 @@ AV_SIMD_CLONES void ForwardPanel(const float* l, int nr, int j0, int j1, Vec8* x
     [x](int i, const Vec8& a) { x[i] -= a; });
 }
 
-/// Rows [i0, i1) of the off-diagonal block: W(row) -= L21(row, :) X.
+/// Rows [i0, i1) of the off-diagonal block: W(row) -= L21(row, :) X. Accumulated in `tmp`
+/// (i1 - i0 vectors) eight columns at a time, streaming the columns like the backward kernel
+/// (contiguous, prefetch-friendly), then scattered once.
 AV_SIMD_CLONES void ForwardBelow(const float* l, int nr, int nc, const Vec8* x,
-  const std::int32_t* dest, int i0, int i1, Vec8* w, Vec8* slots)
+  const std::int32_t* dest, int i0, int i1, Vec8* w, Vec8* slots, Vec8* tmp)
 {
-  PanelTimesX(l, nr, nc, x, i0, i1, [=](int i, const Vec8& a) { Scatter(dest[i], a, w, slots); });
+  const int nb = i1 - i0;
+  for (int i = 0; i < nb; ++i)
+  {
+    tmp[i] = Vec8{};
+  }
+  int j = 0;
+  for (; j + 8 <= nc; j += 8)
+  {
+    const float* c = l + static_cast<std::size_t>(j) * nr + i0;
+    const Vec8 x0 = x[j], x1 = x[j + 1], x2 = x[j + 2], x3 = x[j + 3];
+    const Vec8 x4 = x[j + 4], x5 = x[j + 5], x6 = x[j + 6], x7 = x[j + 7];
+    for (int i = 0; i < nb; ++i)
+    {
+      tmp[i] += ((c[i] * x0 + c[nr + i] * x1) + (c[2 * nr + i] * x2 + c[3 * nr + i] * x3)) +
+        ((c[4 * nr + i] * x4 + c[5 * nr + i] * x5) + (c[6 * nr + i] * x6 + c[7 * nr + i] * x7));
+    }
+  }
+  for (; j < nc; ++j)
+  {
+    const float* c = l + static_cast<std::size_t>(j) * nr + i0;
+    const Vec8 xj = x[j];
+    for (int i = 0; i < nb; ++i)
+    {
+      tmp[i] += c[i] * xj;
+    }
+  }
+  for (int i = 0; i < nb; ++i)
+  {
+    Scatter(dest[i0 + i], tmp[i], w, slots);
+  }
 }
 
 /// Columns [c0, c1): X(j) -= L(r0..r1, j)ᵀ G, G holding rows r0..r1 (gathered W rows for the
@@ -438,17 +471,21 @@ void FloatSupernodalSolver::SolveBlock(Vec8* w) const
   const std::size_t maxBelow = this->MaxBelow;
 
   // Forward: L y = b. Subtrees in parallel, then the top of the tree.
+  std::vector<float> gatherBuffer(8 * maxBelow);
+  Vec8* gather = reinterpret_cast<Vec8*>(gatherBuffer.data());
   Vec8* slots = reinterpret_cast<Vec8*>(this->Slots.data());
   std::fill(this->Slots.begin(), this->Slots.end(), 0.0f);
   tbb::parallel_for(std::size_t(0), this->Tasks.size(), [&](std::size_t t) {
     const Task& task = this->Tasks[t];
+    std::vector<float> buffer(8 * maxBelow);
+    Vec8* tmp = reinterpret_cast<Vec8*>(buffer.data());
     for (std::int32_t k = task.FirstSuper; k <= task.LastSuper; ++k)
     {
       const int nr = nrOf(k), nc = ncOf(k);
       const float* l = this->Lx.data() + this->Px[k];
       Vec8* x = w + this->Super[k];
       DiagForward(l, nr, nc, this->InvDiag.data() + this->Super[k], x, false);
-      ForwardBelow(l, nr, nc, x, this->Dest.data() + this->Pi[k], nc, nr, w, slots);
+      ForwardBelow(l, nr, nc, x, this->Dest.data() + this->Pi[k], nc, nr, w, slots, tmp);
     }
   });
   for (std::size_t q = 0; q < this->SlotRow.size(); ++q)
@@ -464,19 +501,20 @@ void FloatSupernodalSolver::SolveBlock(Vec8* w) const
     DiagForward(l, nr, nc, this->InvDiag.data() + this->Super[k], x, true);
     if (static_cast<std::int64_t>(nr - nc) * nc > kParallelBlockEntries)
     {
-      tbb::parallel_for(tbb::blocked_range<int>(nc, nr, 64), [&](const tbb::blocked_range<int>& r) {
-        ForwardBelow(l, nr, nc, x, dest, r.begin(), r.end(), w, nullptr);
-      });
+      tbb::parallel_for(tbb::blocked_range<int>(nc, nr, kTopRows),
+        [&](const tbb::blocked_range<int>& r) {
+          Vec8 tmp[kTopRows];
+          ForwardBelow(l, nr, nc, x, dest, r.begin(), r.end(), w, nullptr, tmp);
+        },
+        tbb::simple_partitioner());
     }
     else
     {
-      ForwardBelow(l, nr, nc, x, dest, nc, nr, w, nullptr);
+      ForwardBelow(l, nr, nc, x, dest, nc, nr, w, nullptr, gather);
     }
   }
 
   // Backward: Lᵀ x = y. The top first, then the subtrees in parallel (they only read ancestors).
-  std::vector<float> gatherBuffer(8 * maxBelow);
-  Vec8* gather = reinterpret_cast<Vec8*>(gatherBuffer.data());
   for (auto it = this->Top.rbegin(); it != this->Top.rend(); ++it)
   {
     const std::int32_t k = *it;
