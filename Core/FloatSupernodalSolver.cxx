@@ -43,50 +43,6 @@ inline void Scatter(std::int32_t d, const Vec8& a, Vec8* w, Vec8* slots)
   }
 }
 
-/// Rows [i0, i1) of a column panel (nc columns, leading dimension ld): a(row) = L(row, :) X,
-/// handed to `store(row, a)`; eight rows at a time so that the accumulators stay in registers.
-template <typename Store>
-inline __attribute__((always_inline)) void PanelTimesX(
-  const float* l, int ld, int nc, const Vec8* x, int i0, int i1, Store store)
-{
-  int i = i0;
-  for (; i + 8 <= i1; i += 8)
-  {
-    Vec8 a0 = {}, a1 = {}, a2 = {}, a3 = {}, a4 = {}, a5 = {}, a6 = {}, a7 = {};
-    const float* c = l + i;
-    for (int j = 0; j < nc; ++j, c += ld)
-    {
-      const Vec8 xj = x[j];
-      a0 += c[0] * xj;
-      a1 += c[1] * xj;
-      a2 += c[2] * xj;
-      a3 += c[3] * xj;
-      a4 += c[4] * xj;
-      a5 += c[5] * xj;
-      a6 += c[6] * xj;
-      a7 += c[7] * xj;
-    }
-    store(i, a0);
-    store(i + 1, a1);
-    store(i + 2, a2);
-    store(i + 3, a3);
-    store(i + 4, a4);
-    store(i + 5, a5);
-    store(i + 6, a6);
-    store(i + 7, a7);
-  }
-  for (; i < i1; ++i)
-  {
-    Vec8 a = {};
-    const float* c = l + i;
-    for (int j = 0; j < nc; ++j, c += ld)
-    {
-      a += c[0] * x[j];
-    }
-    store(i, a);
-  }
-}
-
 /// Columns [j0, j1) of a panel: X(j) -= L(r0..r1, j)ᵀ G, G holding rows r0..r1; eight columns at
 /// a time (eight independent accumulator chains).
 inline __attribute__((always_inline)) void PanelTransposeTimesG(
@@ -146,11 +102,31 @@ AV_SIMD_CLONES void ForwardTriangle(const float* l, int nr, int j0, int j1, cons
   }
 }
 
-/// Rows [i0, i1) of L11 below the block [j0, j1): X(i) -= L(i, j0..j1) X(j0..j1).
+/// Rows [i0, i1) of L11 below the block [j0, j1): X(i) -= L(i, j0..j1) X(j0..j1), streaming
+/// eight columns at a time.
 AV_SIMD_CLONES void ForwardPanel(const float* l, int nr, int j0, int j1, Vec8* x, int i0, int i1)
 {
-  PanelTimesX(l + static_cast<std::size_t>(j0) * nr, nr, j1 - j0, x + j0, i0, i1,
-    [x](int i, const Vec8& a) { x[i] -= a; });
+  int j = j0;
+  for (; j + 8 <= j1; j += 8)
+  {
+    const float* c = l + static_cast<std::size_t>(j) * nr;
+    const Vec8 x0 = x[j], x1 = x[j + 1], x2 = x[j + 2], x3 = x[j + 3];
+    const Vec8 x4 = x[j + 4], x5 = x[j + 5], x6 = x[j + 6], x7 = x[j + 7];
+    for (int i = i0; i < i1; ++i)
+    {
+      x[i] -= ((c[i] * x0 + c[nr + i] * x1) + (c[2 * nr + i] * x2 + c[3 * nr + i] * x3)) +
+        ((c[4 * nr + i] * x4 + c[5 * nr + i] * x5) + (c[6 * nr + i] * x6 + c[7 * nr + i] * x7));
+    }
+  }
+  for (; j < j1; ++j)
+  {
+    const float* c = l + static_cast<std::size_t>(j) * nr;
+    const Vec8 xj = x[j];
+    for (int i = i0; i < i1; ++i)
+    {
+      x[i] -= c[i] * xj;
+    }
+  }
 }
 
 /// Rows [i0, i1) of the off-diagonal block: W(row) -= L21(row, :) X. Accumulated in `tmp`
@@ -236,25 +212,26 @@ void DiagForward(const float* l, int nr, int nc, const float* invd, Vec8* x, boo
   }
 }
 
-/// X(0..nc) = L11⁻ᵀ X in column blocks from the last; each solved block is applied to all
-/// earlier columns at once (a row panel), which splits over threads by column.
+/// X(0..nc) = L11⁻ᵀ X in column blocks from the last: each block first takes the dot products
+/// of its columns below the block with the solved part (long contiguous column segments; split
+/// over threads by column when `parallel`), then its triangle.
 void DiagBackward(const float* l, int nr, int nc, const float* invd, Vec8* x, bool parallel)
 {
   const int block = parallel ? 64 : 16;
   for (int j1 = nc; j1 > 0;)
   {
     const int j0 = std::max(j1 - block, 0);
-    BackwardTriangle(l, nr, j0, j1, invd, x);
-    if (parallel && static_cast<std::int64_t>(j0) * (j1 - j0) > kParallelBlockEntries)
+    if (parallel && static_cast<std::int64_t>(nc - j1) * (j1 - j0) > kParallelBlockEntries)
     {
-      tbb::parallel_for(tbb::blocked_range<int>(0, j0, 64), [&](const tbb::blocked_range<int>& r) {
-        BackwardPanel(l, nr, j0, j1, x + j0, r.begin(), r.end(), x);
+      tbb::parallel_for(tbb::blocked_range<int>(j0, j1, 8), [&](const tbb::blocked_range<int>& r) {
+        BackwardPanel(l, nr, j1, nc, x + j1, r.begin(), r.end(), x);
       });
     }
     else
     {
-      BackwardPanel(l, nr, j0, j1, x + j0, 0, j0, x);
+      BackwardPanel(l, nr, j1, nc, x + j1, j0, j1, x);
     }
+    BackwardTriangle(l, nr, j0, j1, invd, x);
     j1 = j0;
   }
 }
