@@ -82,29 +82,52 @@ inline void SortSmall(It b, It e)
       std::iter_swap(j, j - 1);
 }
 
+// Sorting network for 4 labels (branch-free min/max).
+inline void Sort4(std::array<std::int32_t, 4>& k)
+{
+  auto cs = [&](int i, int j) {
+    const std::int32_t a = std::min(k[i], k[j]), b = std::max(k[i], k[j]);
+    k[i] = a;
+    k[j] = b;
+  };
+  cs(0, 1);
+  cs(2, 3);
+  cs(0, 2);
+  cs(1, 3);
+  cs(1, 2);
+}
+
 inline bool IsFacet(std::int32_t label) { return label < 0; }
 inline int FacetOf(std::int32_t label) { return -label - 1; }
 
-// Measure of a k-simplex with vertices given by rows (Gram determinant).
-double SimplexMeasure(const double* const* v, int k, int dim)
+// Measure of a k-simplex (k = 2 or 3) with vertices v[0..k] in R^dim: sqrt of the Gram
+// determinant of the edge vectors / k!, in closed form (no Eigen dynamic LU per element).
+template <int DIM>
+double SimplexMeasureT(const double* const* v, int k, int dim)
 {
-  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 8, 3> B(dim, k);
-  // dim may exceed 8: fall back to a heap matrix then.
-  Eigen::MatrixXd Bd;
-  if (dim > 8)
+  const int n = DIM > 0 ? DIM : dim;
+  double g[3][3] = { { 0, 0, 0 }, { 0, 0, 0 }, { 0, 0, 0 } };
+  for (int d = 0; d < n; ++d)
   {
-    Bd.resize(dim, k);
+    double e[3];
     for (int c = 0; c < k; ++c)
-      for (int d = 0; d < dim; ++d)
-        Bd(d, c) = v[c + 1][d] - v[0][d];
-    const double g = (Bd.transpose() * Bd).determinant();
-    return std::sqrt(std::max(0.0, g)) / (k == 2 ? 2.0 : 6.0);
+      e[c] = v[c + 1][d] - v[0][d];
+    for (int a = 0; a < k; ++a)
+      for (int b = a; b < k; ++b)
+        g[a][b] += e[a] * e[b];
   }
-  for (int c = 0; c < k; ++c)
-    for (int d = 0; d < dim; ++d)
-      B(d, c) = v[c + 1][d] - v[0][d];
-  const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 3, 3> G = B.transpose() * B;
-  return std::sqrt(std::max(0.0, G.determinant())) / (k == 2 ? 2.0 : 6.0);
+  double det;
+  if (k == 2)
+    det = g[0][0] * g[1][1] - g[0][1] * g[0][1];
+  else
+    det = g[0][0] * (g[1][1] * g[2][2] - g[1][2] * g[1][2]) -
+      g[0][1] * (g[0][1] * g[2][2] - g[1][2] * g[0][2]) +
+      g[0][2] * (g[0][1] * g[1][2] - g[1][1] * g[0][2]);
+  return std::sqrt(std::max(0.0, det)) / (k == 2 ? 2.0 : 6.0);
+}
+inline double SimplexMeasure(const double* const* v, int k, int dim)
+{
+  return SimplexMeasureT<-1>(v, k, dim);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -122,6 +145,20 @@ struct Vert
 template <int K>
 struct Context
 {
+  // Per-element cache of solved vertices (SolveVertex), invalidated by bumping Gen.
+  static constexpr std::uint32_t CacheSize = 256;
+  struct CacheEntry
+  {
+    std::array<std::int32_t, 4> Key;
+    std::array<double, K + 1> Lam;
+    std::uint32_t Gen = 0;
+    std::int32_t S0;
+    bool Ok;
+  };
+  std::vector<CacheEntry> Cache = std::vector<CacheEntry>(CacheSize);
+  std::uint32_t Gen = 1;
+  std::uint32_t CacheUsed = 0;
+
   // Site cache for the current element (indexed by site id, reset after each element).
   std::vector<std::int32_t> Slot;
   std::vector<std::int32_t> Touched;
@@ -136,12 +173,17 @@ struct Context
   // K = 2: one face (the polygon), EdgePlane[t] = plane of edge Loop[t] -> Loop[t+1].
   // K = 3: faces with a plane each; loops of vertex ids.
   std::vector<Vert<K>> V;
+  std::vector<std::int32_t> Alive; // ids of the live vertices of V
   std::vector<std::int32_t> FacePlane, FaceStart, FaceCount, Loops, EdgePlane;
   std::vector<std::int32_t> NFacePlane, NFaceStart, NFaceCount, NLoops, NEdgePlane;
   std::vector<std::array<std::int32_t, 3>> EdgeCache; // u, v, new vertex
   std::vector<std::array<std::int32_t, 2>> CapNext;   // from, to
   std::vector<std::int32_t> Remap;
-  std::vector<std::int32_t> Applied; // sites clipped against in the current piece
+  // Candidate sites of the current element, sorted by (distance to the centroid, id).
+  std::vector<std::int32_t> Cand;
+  std::vector<double> CandDist;
+  std::vector<std::pair<double, std::int32_t>> CandOrder;
+  std::vector<std::pair<std::uint32_t, double>> Radius; // kd-tree radius query result
 
   void Init(std::size_t nsites)
   {
@@ -168,6 +210,8 @@ struct Context
   }
   void ResetSites()
   {
+    ++Gen;
+    CacheUsed = 0;
     for (std::int32_t s : Touched)
       Slot[s] = -1;
     Touched.clear();
@@ -206,7 +250,7 @@ public:
   const RestrictedVoronoiOptions& Opt;
   const SiteTree& Tree;
   const std::vector<std::int32_t>& Adj;
-  const std::vector<std::uint32_t>& Nbr; // NumSites x NbrK
+  const std::vector<std::uint32_t>& Nbr; // NumSites x NbrK, by distance
   const std::vector<double>& NbrD2;
   int NbrK;
   int Dim;
@@ -266,18 +310,59 @@ public:
   bool SolveVertex(Context<K>& C, std::int32_t site, const std::array<std::int32_t, K>& pl,
     std::array<double, K + 1>& lam, std::int32_t& s0out) const
   {
+    // Key: site and labels sorted (facets, being negative, first); K = 2 pads with INT32_MAX.
+    std::array<std::int32_t, 4> key;
+    key[0] = site;
+    for (int a = 0; a < K; ++a)
+      key[a + 1] = pl[a];
+    if constexpr (K == 2)
+      key[3] = std::numeric_limits<std::int32_t>::max();
+    Sort4(key);
+    // Per-element cache: a vertex is shared by up to K+1 pieces and solved once.
+    std::uint32_t h = (static_cast<std::uint32_t>(key[0]) * 0x9E3779B1u) ^
+      (static_cast<std::uint32_t>(key[1]) * 0x85EBCA77u) ^
+      (static_cast<std::uint32_t>(key[2]) * 0xC2B2AE3Du) ^ (static_cast<std::uint32_t>(key[3]) * 0x27D4EB2Fu);
+    h = (h ^ (h >> 15)) & (Context<K>::CacheSize - 1);
+    for (;;)
+    {
+      auto& e = C.Cache[h];
+      if (e.Gen != C.Gen)
+        break;
+      if (e.Key == key)
+      {
+        lam = e.Lam;
+        s0out = e.S0;
+        return e.Ok;
+      }
+      h = (h + 1) & (Context<K>::CacheSize - 1);
+    }
+    const bool ok = SolveVertexKey(C, key, lam, s0out);
+    if (C.CacheUsed < Context<K>::CacheSize / 2)
+    {
+      auto& e = C.Cache[h];
+      e.Gen = C.Gen;
+      e.Key = key;
+      e.Lam = lam;
+      e.S0 = s0out;
+      e.Ok = ok;
+      ++C.CacheUsed;
+    }
+    return ok;
+  }
+
+  bool SolveVertexKey(Context<K>& C, const std::array<std::int32_t, 4>& key,
+    std::array<double, K + 1>& lam, std::int32_t& s0out) const
+  {
     std::array<std::int32_t, K + 1> S;
     int ns = 0;
-    S[ns++] = site;
     bool facet[4] = { false, false, false, false };
-    for (int a = 0; a < K; ++a)
+    for (int a = 0; a < NV; ++a)
     {
-      if (IsFacet(pl[a]))
-        facet[FacetOf(pl[a])] = true;
+      if (IsFacet(key[a]))
+        facet[FacetOf(key[a])] = true;
       else
-        S[ns++] = pl[a];
+        S[ns++] = key[a];
     }
-    SortSmall(S.begin(), S.begin() + ns);
     s0out = S[0];
     int fr[4];
     int n = 0;
@@ -383,6 +468,9 @@ public:
   void InitPolytope(Context<K>& C) const
   {
     C.V.clear();
+    C.Alive.clear();
+    for (int b = 0; b < NV; ++b)
+      C.Alive.push_back(b);
     C.FacePlane.clear();
     C.FaceStart.clear();
     C.FaceCount.clear();
@@ -434,10 +522,9 @@ public:
       double scale = 0.0, gmin = std::numeric_limits<double>::infinity();
       for (int a = 0; a < NV; ++a)
         scale = std::max(scale, std::max(dm[a], di[a]));
-      for (const auto& v : C.V)
+      for (const std::int32_t id : C.Alive)
       {
-        if (v.Dead)
-          continue;
+        const Vert<K>& v = C.V[id];
         double g = 0.0;
         for (int a = 0; a < NV; ++a)
           g += v.Lam[a] * (dm[a] - di[a]);
@@ -446,12 +533,12 @@ public:
       if (gmin > 1e-9 * scale)
         return 0;
     }
-    int nout = 0, nalive = 0;
-    for (auto& v : C.V)
+    int nout = 0;
+    const int nalive = static_cast<int>(C.Alive.size());
+    const std::size_t oldSize = C.V.size();
+    for (const std::int32_t id : C.Alive)
     {
-      if (v.Dead)
-        continue;
-      ++nalive;
+      Vert<K>& v = C.V[id];
       Classify(C, site, v, m);
       nout += v.Out;
     }
@@ -560,6 +647,13 @@ public:
       std::swap(C.FaceCount, C.NFaceCount);
       std::swap(C.Loops, C.NLoops);
     }
+    std::size_t w = 0;
+    for (const std::int32_t id : C.Alive)
+      if (!C.V[id].Out)
+        C.Alive[w++] = id;
+    C.Alive.resize(w);
+    for (std::size_t id = oldSize; id < C.V.size(); ++id)
+      C.Alive.push_back(static_cast<std::int32_t>(id));
     for (auto& v : C.V)
       if (v.Out)
         v.Dead = true;
@@ -589,10 +683,9 @@ public:
   {
     const double* di = DRow(C, site);
     double r2 = 0.0;
-    for (const auto& v : C.V)
+    for (const std::int32_t id : C.Alive)
     {
-      if (v.Dead)
-        continue;
+      const Vert<K>& v = C.V[id];
       double s = 0.0;
       for (int a = 0; a < NV; ++a)
         s += v.Lam[a] * di[a];
@@ -604,58 +697,26 @@ public:
     return r2;
   }
 
-  // Computes the piece of `site` in the current element; false if empty.
+  // Computes the piece of `site` in the current element; false if empty. Only the element's
+  // candidates can cut it (see GatherCandidates); they are sorted by distance to the centroid,
+  // so |p_m - p_site| >= dc(m) - dc(site) gives the security radius stop.
   bool ComputePiece(Context<K>& C, std::int32_t site) const
   {
     InitPolytope(C);
     double r2 = Radius2(C, site);
     const double dci = DCentroid(C, site);
-    std::size_t have = static_cast<std::size_t>(NbrK);
-    const std::uint32_t* idx = Nbr.data() + std::size_t(site) * NbrK;
-    const double* d2 = NbrD2.data() + std::size_t(site) * NbrK;
-    std::size_t t = 0;
-    bool refetched = false;
-    C.Applied.clear();
-    for (;;)
+    const std::size_t nc = C.Cand.size();
+    for (std::size_t t = 0; t < nc; ++t)
     {
-      if (t == have)
-      {
-        if (have >= NumSites - 1)
-          break; // every other site has been used
-        // Exhausted the prefetched list: fetch more (rare).
-        const std::size_t want = std::min<std::size_t>(NumSites, 4 * (have + 1));
-        C.NbrIdx.resize(want);
-        C.NbrDist.resize(want);
-        const std::size_t got = Tree.knnSearch(SiteP(site), want, C.NbrIdx.data(), C.NbrDist.data());
-        // Drop the site itself (distance 0, possibly not first when duplicated).
-        std::size_t w = 0;
-        for (std::size_t q = 0; q < got; ++q)
-          if (C.NbrIdx[q] != static_cast<std::uint32_t>(site))
-          {
-            C.NbrIdx[w] = C.NbrIdx[q];
-            C.NbrDist[w] = C.NbrDist[q];
-            ++w;
-          }
-        idx = C.NbrIdx.data();
-        d2 = C.NbrDist.data();
-        have = w;
-        t = 0; // ties may be ordered differently: restart, skipping sites already used
-        refetched = true;
-        if (t >= have)
-          break;
-      }
-      if (d2[t] > 4.0 * r2)
-        break; // security radius: no farther site can cut
-      const std::int32_t m = static_cast<std::int32_t>(idx[t]);
-      ++t;
-      if (refetched)
-      {
-        if (std::find(C.Applied.begin(), C.Applied.end(), m) != C.Applied.end())
-          continue;
-      }
-      C.Applied.push_back(m);
+      const std::int32_t m = C.Cand[t];
+      if (m == site)
+        continue;
+      const double dcm = C.CandDist[t];
+      const double gap = dcm - dci;
+      if (gap > 0.0 && gap * gap > 4.0 * r2 * (1.0 + 1e-12))
+        break; // security radius: no farther candidate can cut
       // Cheap reject: the element's bounding ball is entirely on site's side.
-      if (DCentroid(C, m) - Rho > dci + Rho)
+      if (dcm - Rho > dci + Rho)
         continue;
       const int r = Clip(C, site, m);
       if (r < 0)
@@ -665,6 +726,150 @@ public:
     }
     return true;
   }
+
+  // Squared distance centroid -> site, cached per element.
+  double DCentroid2(Context<K>& C, std::int32_t s) const
+  {
+    const double d = DCentroid(C, s);
+    return d * d;
+  }
+
+  // All sites within sqrt(r2) of the centroid (inclusive, up to round-off) from the kd-tree.
+  void RadiusQuery(Context<K>& C, double r2) const
+  {
+    C.Radius.clear();
+    Tree.radiusSearch(Centroid.data(), r2 * (1.0 + 1e-9) + 1e-300, C.Radius, nanoflann::SearchParams(32, 0.0, false));
+  }
+
+  // The site nearest to the centroid (ties: lowest id). Greedy walk on the prefetched
+  // neighbour lists from the previous element's nearest site: a site j closer to the centroid
+  // than s satisfies |p_j - p_s| <= 2 |c - p_s|, so when s's list covers that radius and holds
+  // no closer site, s is the nearest. Otherwise (list too short) a kd-tree radius query decides.
+  std::int32_t NearestSite(Context<K>& C) const
+  {
+    std::int32_t s = LastNearest;
+    if (s < 0 || static_cast<std::size_t>(s) >= NumSites)
+    {
+      std::uint32_t first = 0;
+      double fd = 0.0;
+      Tree.knnSearch(Centroid.data(), 1, &first, &fd);
+      s = static_cast<std::int32_t>(first);
+    }
+    double ds = DCentroid2(C, s);
+    for (;;)
+    {
+      const std::uint32_t* idx = Nbr.data() + std::size_t(s) * NbrK;
+      const double* d2 = NbrD2.data() + std::size_t(s) * NbrK;
+      const double lim = 4.0 * ds * (1.0 + 1e-9);
+      bool moved = false;
+      int t = 0;
+      for (; t < NbrK && d2[t] <= lim; ++t)
+      {
+        const std::int32_t j = static_cast<std::int32_t>(idx[t]);
+        const double dj = DCentroid2(C, j);
+        if (dj < ds || (dj == ds && j < s))
+        {
+          s = j;
+          ds = dj;
+          moved = true;
+          break;
+        }
+      }
+      if (moved)
+        continue;
+      if (t == NbrK && static_cast<std::size_t>(NbrK) < NumSites - 1)
+      {
+        RadiusQuery(C, ds);
+        for (const auto& r : C.Radius)
+        {
+          const std::int32_t j = static_cast<std::int32_t>(r.first);
+          const double dj = DCentroid2(C, j);
+          if (dj < ds || (dj == ds && j < s))
+          {
+            s = j;
+            ds = dj;
+          }
+        }
+      }
+      return s;
+    }
+  }
+
+  // Candidates of the current element: every site whose cell can meet it. With n the site
+  // nearest to the centroid, every x of the element has a site within U = max_a |v_a - p_n|
+  // (the distance to a fixed site is convex, so its maximum is at a vertex). A site farther
+  // than U + Rho from the centroid is farther than U from every x: it owns nothing here, and
+  // its bisector with an owner cannot cut that owner's piece. The set is taken from n's
+  // neighbour list (|p_j - p_n| <= |c - p_n| + U + Rho), or a kd-tree query when the list is
+  // too short, and sorted by (distance to the centroid, id): it is the same whatever path
+  // found it, so the output does not depend on the previous element or the thread.
+  void GatherCandidates(Context<K>& C)
+  {
+    const std::int32_t n = NearestSite(C);
+    LastNearest = n;
+    // A copy: DRow / DCentroid of new sites grow the slot arrays (pointers would dangle).
+    double dn[NV];
+    std::copy_n(DRow(C, n), NV, dn);
+    double u2 = 0.0;
+    for (int a = 0; a < NV; ++a)
+      u2 = std::max(u2, dn[a]);
+    const double bound = (std::sqrt(u2) + Rho) * (1.0 + 1e-9);
+    const double bound2 = bound * bound;
+    C.CandOrder.clear();
+    C.CandOrder.push_back({ DCentroid(C, n), n });
+    const double reach = DCentroid(C, n) + bound;
+    const double reach2 = reach * reach * (1.0 + 1e-9);
+    const std::uint32_t* idx = Nbr.data() + std::size_t(n) * NbrK;
+    const double* d2 = NbrD2.data() + std::size_t(n) * NbrK;
+    int t = 0;
+    for (; t < NbrK && d2[t] <= reach2; ++t)
+    {
+      const std::int32_t j = static_cast<std::int32_t>(idx[t]);
+      const double dj = DCentroid(C, j);
+      if (dj <= bound)
+        C.CandOrder.push_back({ dj, j });
+    }
+    if (t == NbrK && static_cast<std::size_t>(NbrK) < NumSites - 1)
+    {
+      RadiusQuery(C, bound2);
+      C.CandOrder.clear();
+      for (const auto& r : C.Radius)
+      {
+        const std::int32_t j = static_cast<std::int32_t>(r.first);
+        const double dj = DCentroid(C, j);
+        if (dj <= bound || j == n)
+          C.CandOrder.push_back({ dj, j });
+      }
+    }
+    // Keep only sites closer than n to some vertex of the element: otherwise the element lies
+    // on n's side of their bisector, they own nothing here, and (as above) cannot cut any
+    // owner's piece. The margin is that of Clip's fast path, so near-ties are kept.
+    std::size_t w = 0;
+    for (const auto& c : C.CandOrder)
+    {
+      const double* dj = DRow(C, c.second);
+      double scale = 0.0, gmin = std::numeric_limits<double>::infinity();
+      for (int a = 0; a < NV; ++a)
+      {
+        scale = std::max(scale, std::max(dj[a], dn[a]));
+        gmin = std::min(gmin, dj[a] - dn[a]);
+      }
+      if (c.second == n || !(gmin > 1e-9 * scale))
+        C.CandOrder[w++] = c;
+    }
+    C.CandOrder.resize(w);
+    std::sort(C.CandOrder.begin(), C.CandOrder.end());
+    C.CandOrder.erase(std::unique(C.CandOrder.begin(), C.CandOrder.end()), C.CandOrder.end());
+    C.Cand.clear();
+    C.CandDist.clear();
+    for (const auto& c : C.CandOrder)
+    {
+      C.Cand.push_back(c.second);
+      C.CandDist.push_back(c.first);
+    }
+  }
+
+  std::int32_t LastNearest = -1; // walk start for the next element (any site is correct)
 
   // Appends the current piece to the chunk.
   void Emit(Context<K>& C, Chunk& out, std::int32_t site) const
@@ -825,25 +1030,6 @@ public:
 
   double ElemMeasure = 0.0, ElemEmbMeasure = 0.0;
 
-  void AddStartCandidates(Context<K>& C) const
-  {
-    const std::size_t want = std::min<std::size_t>(NumSites, C.Queue.size() + 8);
-    if (want <= C.Queue.size())
-      return;
-    C.NbrIdx.resize(want);
-    C.NbrDist.resize(want);
-    const std::size_t got = Tree.knnSearch(Centroid.data(), want, C.NbrIdx.data(), C.NbrDist.data());
-    for (std::size_t q = 0; q < got; ++q)
-    {
-      const int sl = C.SlotOf(static_cast<std::int32_t>(C.NbrIdx[q]));
-      if (!C.Visited[sl])
-      {
-        C.Visited[sl] = 1;
-        C.Queue.push_back(static_cast<std::int32_t>(C.NbrIdx[q]));
-      }
-    }
-  }
-
   void ProcessElement(Context<K>& C, std::int32_t e, Chunk& out)
   {
     Elem = e;
@@ -865,22 +1051,30 @@ public:
       Rho = std::max(Rho, std::sqrt(Dist2<DIM>(EV[a], Centroid.data(), Dim)));
     Rho *= 1.0 + 1e-12;
     ElemMeasure = SimplexMeasure(XV, K, Mesh.AmbientDim);
-    ElemEmbMeasure = SimplexMeasure(EV, K, Dim);
+    ElemEmbMeasure = SimplexMeasureT<DIM>(EV, K, Dim);
 
-    std::uint32_t first = 0;
-    double fd = 0.0;
-    Tree.knnSearch(Centroid.data(), 1, &first, &fd);
+    GatherCandidates(C);
     C.Queue.clear();
-    C.Queue.push_back(static_cast<std::int32_t>(first));
-    C.Visited[C.SlotOf(static_cast<std::int32_t>(first))] = 1;
+    C.Queue.push_back(C.Cand[0]);
+    C.Visited[C.SlotOf(C.Cand[0])] = 1;
+    std::size_t nextStart = 1;
     bool any = false;
     for (std::size_t q = 0; q < C.Queue.size(); ++q)
     {
       const std::int32_t site = C.Queue[q];
       if (!ComputePiece(C, site))
       {
-        if (!any && q + 1 == C.Queue.size())
-          AddStartCandidates(C); // tie at the centroid: try the next nearest sites
+        // Tie at the centroid: try the next nearest candidates until one has a piece.
+        while (!any && q + 1 == C.Queue.size() && nextStart < C.Cand.size())
+        {
+          const std::int32_t s = C.Cand[nextStart++];
+          const int sl = C.SlotOf(s);
+          if (!C.Visited[sl])
+          {
+            C.Visited[sl] = 1;
+            C.Queue.push_back(s);
+          }
+        }
         continue;
       }
       any = true;
