@@ -22,6 +22,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -162,9 +163,13 @@ struct Context
   // Site cache for the current element (indexed by site id, reset after each element).
   std::vector<std::int32_t> Slot;
   std::vector<std::int32_t> Touched;
-  std::vector<double> Dc;          // per slot: distance centroid -> site
-  std::vector<double> D;           // per slot: K+1 squared distances vertex -> site
-  std::vector<char> HasD, Visited; // per slot
+  struct SiteSlot
+  {
+    double Dc;           // distance centroid -> site (< 0: not yet computed)
+    double D[K + 1];     // squared distances element vertex -> site
+    bool HasD, Visited;
+  };
+  std::vector<SiteSlot> Slots;
   std::vector<std::int32_t> Queue;
   std::vector<std::uint32_t> NbrIdx;
   std::vector<double> NbrDist;
@@ -200,11 +205,11 @@ struct Context
       sl = static_cast<int>(Touched.size());
       Slot[s] = sl;
       Touched.push_back(s);
-      Dc.push_back(-1.0);
-      for (int a = 0; a <= K; ++a)
-        D.push_back(0.0);
-      HasD.push_back(0);
-      Visited.push_back(0);
+      SiteSlot ss;
+      ss.Dc = -1.0;
+      ss.HasD = false;
+      ss.Visited = false;
+      Slots.push_back(ss);
     }
     return sl;
   }
@@ -215,10 +220,7 @@ struct Context
     for (std::int32_t s : Touched)
       Slot[s] = -1;
     Touched.clear();
-    Dc.clear();
-    D.clear();
-    HasD.clear();
-    Visited.clear();
+    Slots.clear();
   }
 };
 
@@ -287,22 +289,24 @@ public:
   const double* DRow(Context<K>& C, std::int32_t s) const
   {
     const int sl = C.SlotOf(s);
-    if (!C.HasD[sl])
+    auto& ss = C.Slots[sl];
+    if (!ss.HasD)
     {
       const double* p = SiteP(s);
       for (int a = 0; a < NV; ++a)
-        C.D[sl * NV + a] = Dist2<DIM>(EV[a], p, Dim);
-      C.HasD[sl] = 1;
+        ss.D[a] = Dist2<DIM>(EV[a], p, Dim);
+      ss.HasD = true;
     }
-    return C.D.data() + sl * NV;
+    return ss.D;
   }
 
   double DCentroid(Context<K>& C, std::int32_t s) const
   {
     const int sl = C.SlotOf(s);
-    if (C.Dc[sl] < 0.0)
-      C.Dc[sl] = std::sqrt(Dist2<DIM>(Centroid.data(), SiteP(s), Dim));
-    return C.Dc[sl];
+    auto& ss = C.Slots[sl];
+    if (ss.Dc < 0.0)
+      ss.Dc = std::sqrt(Dist2<DIM>(Centroid.data(), SiteP(s), Dim));
+    return ss.Dc;
   }
 
   // Barycentric coordinates of the vertex with these labels, computed from the sorted labels
@@ -927,6 +931,8 @@ public:
         else
           s[ns++] = v.Pl[a];
       }
+      if (nfac > 1 || (nfac == 1 && Adj[std::size_t(Elem) * NV + fac] >= 0))
+        return; // neither a Voronoi vertex nor on the domain boundary: nothing to record
       SortSmall(s.begin(), s.begin() + ns);
       if (nfac == 0)
       {
@@ -1056,7 +1062,7 @@ public:
     GatherCandidates(C);
     C.Queue.clear();
     C.Queue.push_back(C.Cand[0]);
-    C.Visited[C.SlotOf(C.Cand[0])] = 1;
+    C.Slots[C.SlotOf(C.Cand[0])].Visited = true;
     std::size_t nextStart = 1;
     bool any = false;
     for (std::size_t q = 0; q < C.Queue.size(); ++q)
@@ -1069,9 +1075,9 @@ public:
         {
           const std::int32_t s = C.Cand[nextStart++];
           const int sl = C.SlotOf(s);
-          if (!C.Visited[sl])
+          if (!C.Slots[sl].Visited)
           {
-            C.Visited[sl] = 1;
+            C.Slots[sl].Visited = true;
             C.Queue.push_back(s);
           }
         }
@@ -1084,9 +1090,9 @@ public:
         if (!IsFacet(pl))
         {
           const int sl = C.SlotOf(pl);
-          if (!C.Visited[sl])
+          if (!C.Slots[sl].Visited)
           {
-            C.Visited[sl] = 1;
+            C.Slots[sl].Visited = true;
             C.Queue.push_back(pl);
           }
         }
@@ -1215,49 +1221,87 @@ void ValidateRestrictedVoronoiInput(
 
 std::vector<std::int32_t> ComputeElementAdjacency(const SimplexMesh& mesh)
 {
+  // Facets bucketed by their smallest vertex id (counting sort), then matched inside each
+  // bucket (a few dozen facets): linear time, no global sort.
   const int nv = mesh.SimplexDim + 1;
   const std::size_t nc = mesh.NumCells();
+  const std::size_t np = mesh.NumPoints();
+  const std::size_t nf = nc * nv;
   struct F
   {
-    std::array<std::int32_t, 3> K;
-    std::int64_t Id; // cell * nv + facet
-    bool operator<(const F& o) const { return K < o.K || (K == o.K && Id < o.Id); }
-  };
-  std::vector<F> f(nc * nv);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nc), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t c = r.begin(); c != r.end(); ++c)
+    std::int32_t K1, K2; // the other facet vertices, sorted (K2 = -1 for triangles)
+    std::int64_t Id;     // cell * nv + facet
+    bool operator<(const F& o) const
     {
-      const std::int32_t* cell = mesh.Cell(c);
-      for (int a = 0; a < nv; ++a)
+      return K1 < o.K1 || (K1 == o.K1 && (K2 < o.K2 || (K2 == o.K2 && Id < o.Id)));
+    }
+  };
+  auto facetKey = [&](std::size_t id, std::int32_t& v0, F& f) {
+    const std::int32_t* cell = mesh.Cell(id / nv);
+    const int a = static_cast<int>(id % nv);
+    std::array<std::int32_t, 4> k = { std::numeric_limits<std::int32_t>::max(),
+      std::numeric_limits<std::int32_t>::max(), std::numeric_limits<std::int32_t>::max(),
+      std::numeric_limits<std::int32_t>::max() };
+    int n = 0;
+    for (int b = 0; b < nv; ++b)
+      if (b != a)
+        k[n++] = cell[b];
+    Sort4(k);
+    v0 = k[0];
+    f.K1 = k[1];
+    f.K2 = nv == 4 ? k[2] : -1;
+    f.Id = static_cast<std::int64_t>(id);
+  };
+  std::vector<std::int64_t> start(np + 1, 0);
+  for (std::size_t id = 0; id < nf; ++id)
+  {
+    const std::int32_t* cell = mesh.Cell(id / nv);
+    const int a = static_cast<int>(id % nv);
+    std::int32_t v0 = std::numeric_limits<std::int32_t>::max();
+    for (int b = 0; b < nv; ++b)
+      if (b != a)
+        v0 = std::min(v0, cell[b]);
+    ++start[v0 + 1];
+  }
+  for (std::size_t v = 0; v < np; ++v)
+    start[v + 1] += start[v];
+  std::vector<F> f(nf);
+  {
+    std::vector<std::int64_t> fill(start.begin(), start.end() - 1);
+    for (std::size_t id = 0; id < nf; ++id)
+    {
+      std::int32_t v0;
+      F x;
+      facetKey(id, v0, x);
+      f[fill[v0]++] = x;
+    }
+  }
+  std::vector<std::int32_t> adj(nf, -1);
+  std::atomic<bool> nonManifold{ false };
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, np), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t v = r.begin(); v != r.end(); ++v)
+    {
+      const auto b = f.begin() + start[v], e = f.begin() + start[v + 1];
+      std::sort(b, e);
+      for (auto i = b; i != e;)
       {
-        F& x = f[c * nv + a];
-        x.K = { -1, -1, -1 };
-        int n = 0;
-        for (int b = 0; b < nv; ++b)
-          if (b != a)
-            x.K[n++] = cell[b];
-        SortSmall(x.K.begin(), x.K.begin() + n);
-        x.Id = static_cast<std::int64_t>(c * nv + a);
+        auto j = i + 1;
+        while (j != e && j->K1 == i->K1 && j->K2 == i->K2)
+          ++j;
+        if (j - i > 2)
+          nonManifold = true;
+        if (j - i == 2)
+        {
+          adj[i->Id] = static_cast<std::int32_t>((i + 1)->Id / nv);
+          adj[(i + 1)->Id] = static_cast<std::int32_t>(i->Id / nv);
+        }
+        i = j;
       }
     }
   });
-  tbb::parallel_sort(f.begin(), f.end());
-  std::vector<std::int32_t> adj(nc * nv, -1);
-  for (std::size_t i = 0; i < f.size();)
-  {
-    std::size_t j = i + 1;
-    while (j < f.size() && f[j].K == f[i].K)
-      ++j;
-    if (j - i > 2)
-      throw InputError("RestrictedVoronoi: the mesh is not manifold (a facet is shared by more "
-                       "than two cells)");
-    if (j - i == 2)
-    {
-      adj[f[i].Id] = static_cast<std::int32_t>(f[i + 1].Id / nv);
-      adj[f[i + 1].Id] = static_cast<std::int32_t>(f[i].Id / nv);
-    }
-    i = j;
-  }
+  if (nonManifold)
+    throw InputError("RestrictedVoronoi: the mesh is not manifold (a facet is shared by more "
+                     "than two cells)");
   return adj;
 }
 
