@@ -6,6 +6,7 @@
 #include "RestrictedDelaunay.h"
 #include "RestrictedDelaunayRefinement.h"
 #include "RestrictedVoronoi.h"
+#include "SliverPerturbation.h"
 
 #include <Eigen/Dense>
 
@@ -129,6 +130,26 @@ MeshStageResult RunMeshStage(const av::SimplexMesh& mesh, const av::MetricField&
   av::RestrictedDelaunayMesh rdt0 =
     av::ComputeRestrictedDelaunay(mesh, embedding, sampled.Sites, rvd0);
   r.RdtSeconds = Since(t2);
+
+  // Sliver perturbation: move the sites of slivers apart, recompute the RVD and its dual.
+  const auto ts = Clock::now();
+  for (int round = 0; round < options.SliverRounds; ++round)
+  {
+    av::SliverPerturbationResult sp =
+      av::PerturbSliverSites(mesh, embedding, sampled.Sites, rdt0);
+    if (round == 0)
+    {
+      r.SliversPerturbed = sp.NumSlivers;
+    }
+    if (sp.NumMovedSites == 0)
+    {
+      break;
+    }
+    sampled.Sites = std::move(sp.Sites);
+    rvd0 = av::ComputeRestrictedVoronoi(mesh, embedding, sampled.Sites, ro.Voronoi);
+    rdt0 = av::ComputeRestrictedDelaunay(mesh, embedding, sampled.Sites, rvd0);
+  }
+  r.SliverSeconds = Since(ts);
 
   const auto t3 = Clock::now();
   const std::size_t sampledSites = sampled.Sites.NumSites();

@@ -34,6 +34,9 @@ struct MeshStageOptions
   bool Repair = true;             ///< insert sites to repair inverted dual elements
   int MaxRepairRounds = 10;
   bool RepairNonManifold = false; ///< also repair non-manifold faces
+  /// Sliver perturbation rounds before the repair (av::PerturbSliverSites, then RVD + RDT
+  /// again); 0 = the paper's pipeline.
+  int SliverRounds = 1;
 };
 
 /// Timings and quality of one meshing run.
@@ -41,6 +44,8 @@ struct MeshStageResult
 {
   std::size_t Sites = 0;
   double SampleSeconds = 0.0, LloydSeconds = 0.0, RvdSeconds = 0.0, RdtSeconds = 0.0;
+  double SliverSeconds = 0.0; ///< sliver perturbation rounds (their RVD + RDT included)
+  std::size_t SliversPerturbed = 0; ///< slivers (embedded dihedral < 15 deg) of the first round
   double RepairSeconds = 0.0; ///< repair rounds after the first RVD + RDT
   double MeshSeconds = 0.0; ///< wall of sampling + RVD + RDT + repair
   std::size_t Cells = 0;    ///< restricted Delaunay cells

@@ -1,0 +1,194 @@
+// Sliver perturbation of restricted Delaunay sites in the embedding.
+#include "SliverPerturbation.h"
+
+#include "RestrictedVoronoi.h"
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+namespace av
+{
+namespace
+{
+using VecX = Eigen::VectorXd;
+
+// Walks site s by the embedded displacement d over the mesh (tets): d is projected onto the
+// current element's tangent space (least squares in its edge frame), the barycentric step is
+// cut where a coordinate reaches 0, and the rest continues in the face neighbour.
+void WalkSite(const SimplexMesh& mesh, const Embedding& emb, const std::vector<std::int32_t>& adj,
+  SiteSet& sites, std::size_t s, VecX d)
+{
+  const int dim = emb.Dim;
+  std::int32_t c = sites.CellIds[s];
+  double* b = sites.Bary.data() + 4 * s;
+  Eigen::MatrixXd E(dim, 3);
+  for (int step = 0; step < 64 && d.squaredNorm() > 0.0; ++step)
+  {
+    const std::int32_t* cell = mesh.Cell(c);
+    const double* v0 = emb.At(cell[0]);
+    for (int j = 0; j < 3; ++j)
+      for (int k = 0; k < dim; ++k)
+        E(k, j) = emb.At(cell[j + 1])[k] - v0[k];
+    const Eigen::Vector3d x = (E.transpose() * E).ldlt().solve(E.transpose() * d);
+    if (!x.allFinite())
+      break;
+    double dl[4] = { -x.sum(), x[0], x[1], x[2] };
+    // A component that is round-off while the site is on that face (moving within the face)
+    // must not cross it: crossing back and forth would stall the walk.
+    const double big = std::max({ std::abs(dl[0]), std::abs(dl[1]), std::abs(dl[2]), std::abs(dl[3]) });
+    for (int a = 0; a < 4; ++a)
+      if (b[a] <= 0.0 && dl[a] < 0.0 && dl[a] > -1e-12 * big)
+        dl[a] = 0.0;
+    double t = 1.0;
+    int hit = -1;
+    for (int a = 0; a < 4; ++a)
+      if (dl[a] < 0.0 && b[a] + t * dl[a] < 0.0)
+      {
+        t = -b[a] / dl[a];
+        hit = a;
+      }
+    for (int a = 0; a < 4; ++a)
+      b[a] += t * dl[a];
+    if (hit < 0)
+      break;
+    b[hit] = 0.0;
+    d *= 1.0 - t;
+    const std::int32_t nb = adj[static_cast<std::size_t>(c) * 4 + hit];
+    if (nb < 0)
+      break; // domain boundary: the site stays on it
+    const std::int32_t* ncell = mesh.Cell(nb);
+    double nbary[4] = { 0.0, 0.0, 0.0, 0.0 };
+    for (int a = 0; a < 4; ++a)
+      for (int q = 0; q < 4; ++q)
+        if (ncell[q] == cell[a])
+          nbary[q] = b[a];
+    c = nb;
+    std::copy(nbary, nbary + 4, b);
+  }
+  double sum = 0.0;
+  for (int a = 0; a < 4; ++a)
+  {
+    b[a] = std::max(0.0, b[a]);
+    sum += b[a];
+  }
+  for (int a = 0; a < 4; ++a)
+    b[a] /= sum;
+  sites.CellIds[s] = c;
+  const std::int32_t* cell = mesh.Cell(c);
+  for (int k = 0; k < dim; ++k)
+  {
+    double v = 0.0;
+    for (int a = 0; a < 4; ++a)
+      v += b[a] * emb.At(cell[a])[k];
+    sites.Coords[s * dim + k] = v;
+  }
+}
+} // namespace
+
+double MinDihedralAngle(const double* p0, const double* p1, const double* p2, const double* p3, int dim)
+{
+  const double* p[4] = { p0, p1, p2, p3 };
+  double best = 180.0;
+  VecX e(dim), u(dim), w(dim);
+  for (int i = 0; i < 4; ++i)
+    for (int j = i + 1; j < 4; ++j)
+    {
+      int k = -1, l = -1;
+      for (int q = 0; q < 4; ++q)
+        if (q != i && q != j)
+          (k < 0 ? k : l) = q;
+      for (int a = 0; a < dim; ++a)
+      {
+        e[a] = p[j][a] - p[i][a];
+        u[a] = p[k][a] - p[i][a];
+        w[a] = p[l][a] - p[i][a];
+      }
+      const double ee = e.squaredNorm();
+      if (!(ee > 0.0))
+        return 0.0;
+      u -= (u.dot(e) / ee) * e;
+      w -= (w.dot(e) / ee) * e;
+      const double nu = u.norm(), nw = w.norm();
+      if (!(nu > 0.0) || !(nw > 0.0))
+        return 0.0;
+      const double cosv = std::max(-1.0, std::min(1.0, u.dot(w) / (nu * nw)));
+      best = std::min(best, std::acos(cosv) * 180.0 / 3.14159265358979323846);
+    }
+  return best;
+}
+
+SliverPerturbationResult PerturbSliverSites(const SimplexMesh& mesh, const Embedding& embedding,
+  const SiteSet& sites, const RestrictedDelaunayMesh& rdt, const SliverPerturbationOptions& options)
+{
+  auto fail = [](const std::string& m) { throw InputError("PerturbSliverSites: " + m); };
+  const std::size_t ns = sites.NumSites();
+  const int dim = embedding.Dim;
+  if (sites.Dim != dim || sites.Coords.size() != ns * static_cast<std::size_t>(dim) || sites.Bary.size() != 4 * ns)
+    fail("sites do not match the embedding dimension or have inconsistent array sizes");
+  if (embedding.Coords.size() != mesh.NumPoints() * static_cast<std::size_t>(dim))
+    fail("embedding has " + std::to_string(embedding.Coords.size()) + " values, expected NumPoints x Dim");
+  if (!(options.StepFraction >= 0.0) || !std::isfinite(options.StepFraction) ||
+    !(options.MinDihedralDegrees >= 0.0) || !(options.MinDihedralDegrees <= 90.0))
+    fail("StepFraction must be finite and >= 0, MinDihedralDegrees in [0, 90]");
+  const int nv = rdt.SimplexDim + 1;
+  if (rdt.Cells.size() % static_cast<std::size_t>(nv) != 0)
+    fail("the Delaunay cells are not a multiple of SimplexDim+1");
+  for (std::int32_t id : rdt.Cells)
+    if (id < 0 || static_cast<std::size_t>(id) >= ns)
+      fail("a Delaunay cell refers to a site id out of range (pass the sites of that mesh)");
+  for (std::int32_t c : sites.CellIds)
+    if (c < 0 || static_cast<std::size_t>(c) >= mesh.NumCells())
+      fail("a site has a cell id out of range");
+
+  SliverPerturbationResult r;
+  r.Sites = sites;
+  if (mesh.SimplexDim != 3 || rdt.SimplexDim != 3)
+    return r;
+  const std::size_t ncell = rdt.Cells.size() / 4;
+  r.MinDihedral.resize(ncell);
+  std::vector<VecX> move(ns);
+  Eigen::MatrixXd P(4, dim);
+  for (std::size_t c = 0; c < ncell; ++c)
+  {
+    const std::int32_t* id = rdt.Cells.data() + 4 * c;
+    const double ang = MinDihedralAngle(sites.At(id[0]), sites.At(id[1]), sites.At(id[2]), sites.At(id[3]), dim);
+    r.MinDihedral[c] = ang;
+    if (!(ang < options.MinDihedralDegrees))
+      continue;
+    ++r.NumSlivers;
+    for (int i = 0; i < 4; ++i)
+      for (int k = 0; k < dim; ++k)
+        P(i, k) = sites.At(id[i])[k];
+    const Eigen::RowVectorXd mean = P.colwise().mean();
+    P.rowwise() -= mean;
+    double h = 0.0;
+    for (int i = 0; i < 4; ++i)
+      for (int j = i + 1; j < 4; ++j)
+        h += (P.row(i) - P.row(j)).norm() / 6.0;
+    // Normal of the best-fit plane: third principal direction of the centred points.
+    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(P.transpose() * P);
+    const VecX n = eig.eigenvectors().col(dim - 3);
+    for (int i = 0; i < 4; ++i)
+    {
+      const double side = P.row(i).dot(n) >= 0.0 ? 1.0 : -1.0;
+      if (move[id[i]].size() == 0)
+        move[id[i]] = VecX::Zero(dim);
+      move[id[i]] += side * options.StepFraction * h * n;
+    }
+  }
+  if (r.NumSlivers == 0 || options.StepFraction == 0.0)
+    return r;
+  const std::vector<std::int32_t> adj = ComputeElementAdjacency(mesh);
+  for (std::size_t s = 0; s < ns; ++s)
+    if (move[s].size() > 0 && move[s].squaredNorm() > 0.0)
+    {
+      WalkSite(mesh, embedding, adj, r.Sites, s, move[s]);
+      ++r.NumMovedSites;
+    }
+  return r;
+}
+
+} // namespace av
