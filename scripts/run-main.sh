@@ -21,7 +21,7 @@ if [[ ! -f $FRD ]]; then
 fi
 "$BUILD_DIR/bin/anisovoronoi" "$FRD" --metric tensor:STRESS --min-eigenvalue 0.1 \
   --max-anisotropy 10 --smooth 10 --sites 3000 --dim 8 \
-  --iterations 50 --shrink 0.7 --output-dir "$OUT" "$@"
+  --iterations 50 --shrink 0.7 --repair-nonmanifold --output-dir "$OUT" "$@"
 PYTHONPATH="$(cd "$BUILD_DIR" && pwd)/lib/python3/dist-packages:/usr/lib/python3/dist-packages" \
   xvfb-run -a /usr/bin/python3 Examples/render_voronoi.py "$OUT" "$OUT/voronoi.png"
 echo
