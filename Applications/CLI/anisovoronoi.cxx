@@ -101,6 +101,8 @@ options:
                            Voronoi vertices until none is left, paper §4.2)
   --repair-rounds N        insertion rounds at most (default 10)
   --repair-nonmanifold     also repair faces shared by more than two mesh elements
+  --sliver-rounds N        sliver perturbation rounds before the repair (default 1; 0 = the
+                           paper's pipeline): sites of slivers pushed apart, diagram redone
   --output-dir DIR         where the results go (created if missing)
   --quiet                  no progress on stderr
   --help                   this text
@@ -114,7 +116,7 @@ struct Options
 {
   std::string Input, Metric, Sol, OutputDir;
   int Step = 0, Resolution = 0, Sites = 2000, Dim = 8, Iterations = 50, SampleIterations = 50;
-  int Seed = 1, Smooth = 0, Refine = 0, RepairRounds = 10;
+  int Seed = 1, Smooth = 0, Refine = 0, RepairRounds = 10, SliverRounds = 1;
   double Mu = 100.0, Shrink = 0.8, MinEigenvalue = 1e-3, MaxAnisotropy = 25.0;
   bool TensorAsMetric = false, Clamp = false, Quiet = false, Repair = true;
   bool RepairNonManifold = false, DoubleSolve = false;
@@ -257,6 +259,8 @@ Options ParseCommandLine(int argc, char* argv[])
       o.Repair = false;
     else if (a == "--repair-rounds")
       o.RepairRounds = ParseInt(a, next());
+    else if (a == "--sliver-rounds")
+      o.SliverRounds = ParseInt(a, next());
     else if (a == "--repair-nonmanifold")
       o.RepairNonManifold = true;
     else if (!a.empty() && a[0] == '-')
@@ -282,6 +286,8 @@ Options ParseCommandLine(int argc, char* argv[])
     Fail("--shrink must be in (0, 1]", 2);
   if (o.RepairRounds < 0 || o.RepairRounds > 1000)
     Fail("--repair-rounds must be in [0, 1000]", 2);
+  if (o.SliverRounds < 0 || o.SliverRounds > 10)
+    Fail("--sliver-rounds must be in [0, 10]", 2);
   return o;
 }
 
@@ -641,6 +647,7 @@ int main(int argc, char* argv[])
   rdt->SetInputConnection(1, sampler->GetOutputPort(0));
   rdt->SetRepairInverted(o.Repair);
   rdt->SetMaxRepairRounds(o.RepairRounds);
+  rdt->SetSliverPerturbationRounds(o.SliverRounds);
   rdt->SetRepairNonManifold(o.RepairNonManifold);
   pipeline.Run(rdt, "restricted Delaunay mesh");
   vtkNew<vtkAnisoRestrictedVoronoi> rvd;
@@ -702,6 +709,8 @@ int main(int argc, char* argv[])
     { "repair_seconds", JsonNumber(repairSeconds) },
     { "repair_rounds", JsonNumber(FieldValue(rdtOut, "RepairRounds")) },
     { "inserted_sites", JsonNumber(FieldValue(rdtOut, "NumInsertedSites")) },
+    { "slivers_perturbed", JsonNumber(FieldValue(rdtOut, "NumSliversPerturbed")) },
+    { "moved_sites", JsonNumber(FieldValue(rdtOut, "NumMovedSites")) },
     { "rdt_inverted_before_repair", JsonNumber(FieldValue(rdtOut, "NumInvertedBeforeRepair")) },
     { "rdt_inverted", JsonNumber(FieldValue(rdtOut, "NumInverted")) },
     { "mesh_seconds", JsonNumber(meshSeconds) },

@@ -115,6 +115,34 @@ hist = quality.GetOutputDataObject(1)
 assert hist.GetNumberOfRows() == 18
 assert sum(hist.GetValueByName(r, "Count").ToInt() for r in range(18)) == mesh.GetNumberOfCells()
 
+# Tets (Cube1): the sliver perturbation (default 1 round) moves sites; their point data must be
+# recomputed: the first 3 embedded coordinates of every output point are its position.
+cube = vtkAnisoAnalyticMetricSource()
+cube.SetPreset(1)  # Cube1
+cube.SetResolution(9)
+cube_embedding = vtkAnisoEmbedding()
+cube_embedding.SetInputConnection(cube.GetOutputPort())
+cube_sites = vtkAnisoParticleSampler()
+cube_sites.SetInputConnection(cube_embedding.GetOutputPort())
+cube_sites.SetNumberOfSites(300)
+cube_rdt = vtkAnisoRestrictedDelaunay()
+cube_rdt.SetInputConnection(0, cube_embedding.GetOutputPort())
+cube_rdt.SetInputConnection(1, cube_sites.GetOutputPort())
+cube_rdt.Update()
+tets = cube_rdt.GetOutput()
+emb = tets.GetPointData().GetArray("Embedding")
+worst = max(abs(emb.GetComponent(i, d) - tets.GetPoint(i)[d])
+            for i in range(tets.GetNumberOfPoints()) for d in range(3))
+print("cube1 RDT: %d tets, slivers perturbed %g, moved sites %g, inverted %g, worst "
+      "position/embedding mismatch %.3g" % (tets.GetNumberOfCells(), field(tets, "NumSliversPerturbed"),
+                                            field(tets, "NumMovedSites"), field(tets, "NumInverted"), worst))
+assert cube_rdt.GetSliverPerturbationRounds() == 1
+assert field(tets, "NumMovedSites") > 0 and field(tets, "NumInverted") == 0
+assert worst < 1e-9
+cube_rdt.SetSliverPerturbationRounds(0)
+cube_rdt.Update()
+assert field(cube_rdt.GetOutput(), "NumMovedSites") == 0
+
 # Bad input: no embedding array -> error event, empty output, no exception.
 errors = []
 bad = vtkAnisoParticleSampler()
