@@ -1,5 +1,6 @@
 // RestrictedDelaunay: the dual mesh of a restricted Voronoi diagram (paper §4.2), with the
-// inverted / non-manifold elements of its back-projection counted, not repaired.
+// inverted / non-manifold elements of its back-projection counted (RestrictedDelaunayRefinement
+// repairs them).
 #ifndef av_RestrictedDelaunay_h
 #define av_RestrictedDelaunay_h
 
@@ -41,7 +42,7 @@ struct RestrictedDelaunayMesh
  * oriented positively in the frame of the element that holds its Voronoi vertex (sites
  * projected onto that element's affine hull in R^Dim) and flagged inverted when, mapped back
  * to input space, its orientation in the same element's input frame is not positive.
- * No repair (the paper's point insertion) is done.
+ * No repair here: RepairRestrictedDelaunay (RestrictedDelaunayRefinement.h) inserts sites.
  */
 RestrictedDelaunayMesh ComputeRestrictedDelaunay(const SimplexMesh& mesh,
   const Embedding& embedding, const SiteSet& sites, const RestrictedVoronoiDiagram& rvd);
