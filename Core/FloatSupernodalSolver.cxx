@@ -1,5 +1,7 @@
 #include "FloatSupernodalSolver.h"
 
+#include "SimdClones.h"
+
 #include <cholmod.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -9,12 +11,6 @@
 #include <stdexcept>
 #include <utility>
 
-// The kernels get an AVX2/FMA clone chosen at load time; the build itself targets baseline x86-64.
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-#define AV_SIMD_CLONES __attribute__((target_clones("arch=x86-64-v3", "default")))
-#else
-#define AV_SIMD_CLONES
-#endif
 
 namespace av
 {

@@ -1,14 +1,13 @@
 #include "TetLocalStepKernel.h"
 
+#include "SimdClones.h"
+
 #include <algorithm>
 #include <cmath>
 
-// An AVX2/FMA clone is chosen at load time; the build itself targets baseline x86-64.
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-#define AV_SIMD_CLONES __attribute__((target_clones("arch=x86-64-v3", "default")))
-#else
-#define AV_SIMD_CLONES
-#endif
+// The 256-bit vector helpers below are always inlined into the kernels, so the ABI note GCC
+// gives for passing them by value without AVX does not apply.
+#pragma GCC diagnostic ignored "-Wpsabi"
 
 namespace av
 {
@@ -215,31 +214,19 @@ inline __attribute__((always_inline)) double Kernel(
   return energy;
 }
 
-AV_SIMD_CLONES double Kernel1(const TetLocalStepData& d, std::size_t j0, std::size_t j1,
-  std::vector<std::int32_t>& failed)
-{
-  return Kernel<1>(d, j0, j1, failed);
-}
-AV_SIMD_CLONES double Kernel2(const TetLocalStepData& d, std::size_t j0, std::size_t j1,
-  std::vector<std::int32_t>& failed)
-{
-  return Kernel<2>(d, j0, j1, failed);
-}
-AV_SIMD_CLONES double Kernel3(const TetLocalStepData& d, std::size_t j0, std::size_t j1,
-  std::vector<std::int32_t>& failed)
-{
-  return Kernel<3>(d, j0, j1, failed);
-}
-AV_SIMD_CLONES double Kernel5(const TetLocalStepData& d, std::size_t j0, std::size_t j1,
-  std::vector<std::int32_t>& failed)
-{
-  return Kernel<5>(d, j0, j1, failed);
-}
-AV_SIMD_CLONES double Kernel7(const TetLocalStepData& d, std::size_t j0, std::size_t j1,
-  std::vector<std::int32_t>& failed)
-{
-  return Kernel<7>(d, j0, j1, failed);
-}
+// One clone-dispatched entry point per free-dimension count.
+#define AV_TET_KERNEL(FT)                                                                         \
+  AV_SIMD_CLONES double Kernel##FT(const TetLocalStepData& d, std::size_t j0, std::size_t j1,    \
+    std::vector<std::int32_t>& failed)                                                            \
+  {                                                                                               \
+    return Kernel<FT>(d, j0, j1, failed);                                                         \
+  }
+AV_TET_KERNEL(1)
+AV_TET_KERNEL(2)
+AV_TET_KERNEL(3)
+AV_TET_KERNEL(5)
+AV_TET_KERNEL(7)
+#undef AV_TET_KERNEL
 } // namespace
 
 bool HasTetLocalStepKernel(int targetDim)

@@ -108,34 +108,6 @@ std::set<Key> CellSet(const av::RestrictedDelaunayMesh& d)
   return out;
 }
 
-// Input-space signed area / volume of every cell must be positive.
-int NegativeCells(const av::RestrictedDelaunayMesh& d)
-{
-  int neg = 0;
-  const int k = d.SimplexDim, ad = d.AmbientDim;
-  for (std::size_t c = 0; c < d.NumCells(); ++c)
-  {
-    const double* p[4];
-    for (int a = 0; a <= k; ++a)
-      p[a] = &d.Points[d.Cells[c * (k + 1) + a] * ad];
-    double v;
-    if (k == 2)
-      v = (p[1][0] - p[0][0]) * (p[2][1] - p[0][1]) - (p[1][1] - p[0][1]) * (p[2][0] - p[0][0]);
-    else
-    {
-      double e[3][3];
-      for (int a = 0; a < 3; ++a)
-        for (int q = 0; q < 3; ++q)
-          e[a][q] = p[a + 1][q] - p[0][q];
-      v = e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) -
-        e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) +
-        e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0]);
-    }
-    neg += v <= 0.0;
-  }
-  return neg;
-}
-
 void Test2DIdentity()
 {
   const av::SimplexMesh m = TriGrid(17, 17, 0, 0, 1, 1);

@@ -35,32 +35,6 @@ av::Embedding Wavy(const av::SimplexMesh& m, double amp, double w)
   });
 }
 
-// Input-space signed area / volume of every cell (flat domains) must be positive.
-int NegativeCells(const av::RestrictedDelaunayMesh& d)
-{
-  int neg = 0;
-  const int k = d.SimplexDim, ad = d.AmbientDim;
-  for (std::size_t c = 0; c < d.NumCells(); ++c)
-  {
-    const double* p[4];
-    for (int a = 0; a <= k; ++a)
-      p[a] = &d.Points[d.Cells[c * (k + 1) + a] * ad];
-    double v;
-    if (k == 2)
-      v = (p[1][0] - p[0][0]) * (p[2][1] - p[0][1]) - (p[1][1] - p[0][1]) * (p[2][0] - p[0][0]);
-    else
-    {
-      double e[3][3];
-      for (int a = 0; a < 3; ++a)
-        for (int q = 0; q < 3; ++q)
-          e[a][q] = p[a + 1][q] - p[0][q];
-      v = Det3(e);
-    }
-    neg += v <= 0.0;
-  }
-  return neg;
-}
-
 // Euler characteristic of the complex (V - E + F [- T]), counting only used vertices, and the
 // largest number of cells sharing a facet.
 void Topology(const av::RestrictedDelaunayMesh& d, long& euler, int& maxFacetShare)

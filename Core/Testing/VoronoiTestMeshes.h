@@ -2,6 +2,7 @@
 #ifndef av_VoronoiTestMeshes_h
 #define av_VoronoiTestMeshes_h
 
+#include "RestrictedDelaunay.h"
 #include "SimplexMesh.h"
 #include "StructuredMeshes.h"
 
@@ -215,6 +216,32 @@ inline bool SiteAt(av::SiteSet& s, const av::SimplexMesh& m, const av::Embedding
     }
   }
   return false;
+}
+
+/// Cells of a dual mesh whose input-space signed area / volume is not positive (flat domains).
+inline int NegativeCells(const av::RestrictedDelaunayMesh& d)
+{
+  int neg = 0;
+  const int k = d.SimplexDim, ad = d.AmbientDim;
+  for (std::size_t c = 0; c < d.NumCells(); ++c)
+  {
+    const double* p[4];
+    for (int a = 0; a <= k; ++a)
+      p[a] = &d.Points[d.Cells[c * (k + 1) + a] * ad];
+    double v;
+    if (k == 2)
+      v = (p[1][0] - p[0][0]) * (p[2][1] - p[0][1]) - (p[1][1] - p[0][1]) * (p[2][0] - p[0][0]);
+    else
+    {
+      double e[3][3];
+      for (int a = 0; a < 3; ++a)
+        for (int q = 0; q < 3; ++q)
+          e[a][q] = p[a + 1][q] - p[0][q];
+      v = Det3(e);
+    }
+    neg += v <= 0.0;
+  }
+  return neg;
 }
 
 } // namespace av_test
