@@ -437,96 +437,85 @@ FloatSupernodalSolver::FloatSupernodalSolver(const cholmod_factor& f, std::size_
 
 void FloatSupernodalSolver::SolveBlock(Vec8* w) const
 {
-  const auto nrOf = [this](std::int32_t k) {
-    return static_cast<int>(this->Pi[k + 1] - this->Pi[k]);
+  // One supernode of each sweep; `top`: a big separator that nothing else runs beside, whose
+  // panels split over the threads (then `scratch` is unused for the forward off-diagonal block).
+  const auto forward = [this, w](std::int32_t k, Vec8* slots, Vec8* scratch, bool top) {
+    const int nr = static_cast<int>(this->Pi[k + 1] - this->Pi[k]);
+    const int nc = this->Super[k + 1] - this->Super[k];
+    const float* l = this->Lx.data() + this->Px[k];
+    Vec8* x = w + this->Super[k];
+    const std::int32_t* dest = this->Dest.data() + this->Pi[k];
+    DiagForward(l, nr, nc, this->InvDiag.data() + this->Super[k], x, top);
+    if (top && static_cast<std::int64_t>(nr - nc) * nc > kParallelBlockEntries)
+    {
+      tbb::parallel_for(tbb::blocked_range<int>(nc, nr, kTopRows),
+        [&](const tbb::blocked_range<int>& r) {
+          Vec8 tmp[kTopRows];
+          ForwardBelow(l, nr, nc, x, dest, r.begin(), r.end(), w, slots, tmp);
+        },
+        tbb::simple_partitioner());
+    }
+    else
+    {
+      ForwardBelow(l, nr, nc, x, dest, nc, nr, w, slots, scratch);
+    }
   };
-  const auto ncOf = [this](std::int32_t k) { return this->Super[k + 1] - this->Super[k]; };
-  const std::size_t maxBelow = this->MaxBelow;
+  const auto backward = [this, w](std::int32_t k, Vec8* scratch, bool top) {
+    const int nr = static_cast<int>(this->Pi[k + 1] - this->Pi[k]);
+    const int nc = this->Super[k + 1] - this->Super[k];
+    const float* l = this->Lx.data() + this->Px[k];
+    Vec8* x = w + this->Super[k];
+    const std::int32_t* rows = this->S.data() + this->Pi[k] + nc;
+    for (int i = 0; i < nr - nc; ++i)
+    {
+      scratch[i] = w[rows[i]];
+    }
+    if (top && static_cast<std::int64_t>(nr - nc) * nc > kParallelBlockEntries)
+    {
+      tbb::parallel_for(tbb::blocked_range<int>(0, nc, 16), [&](const tbb::blocked_range<int>& r) {
+        BackwardPanel(l, nr, nc, nr, scratch, r.begin(), r.end(), x);
+      });
+    }
+    else
+    {
+      BackwardPanel(l, nr, nc, nr, scratch, 0, nc, x);
+    }
+    DiagBackward(l, nr, nc, this->InvDiag.data() + this->Super[k], x, top);
+  };
+  const std::size_t scratchFloats = 8 * this->MaxBelow;
 
-  // Forward: L y = b. Subtrees in parallel, then the top of the tree.
-  std::vector<float> gatherBuffer(8 * maxBelow);
-  Vec8* gather = reinterpret_cast<Vec8*>(gatherBuffer.data());
+  // Forward: L y = b. Subtrees in parallel (updates to shared ancestors into their slots, added
+  // in task order), then the top of the tree.
   Vec8* slots = reinterpret_cast<Vec8*>(this->Slots.data());
   std::fill(this->Slots.begin(), this->Slots.end(), 0.0f);
   tbb::parallel_for(std::size_t(0), this->Tasks.size(), [&](std::size_t t) {
-    const Task& task = this->Tasks[t];
-    std::vector<float> buffer(8 * maxBelow);
-    Vec8* tmp = reinterpret_cast<Vec8*>(buffer.data());
-    for (std::int32_t k = task.FirstSuper; k <= task.LastSuper; ++k)
+    std::vector<float> buffer(scratchFloats);
+    for (std::int32_t k = this->Tasks[t].FirstSuper; k <= this->Tasks[t].LastSuper; ++k)
     {
-      const int nr = nrOf(k), nc = ncOf(k);
-      const float* l = this->Lx.data() + this->Px[k];
-      Vec8* x = w + this->Super[k];
-      DiagForward(l, nr, nc, this->InvDiag.data() + this->Super[k], x, false);
-      ForwardBelow(l, nr, nc, x, this->Dest.data() + this->Pi[k], nc, nr, w, slots, tmp);
+      forward(k, slots, reinterpret_cast<Vec8*>(buffer.data()), false);
     }
   });
   for (std::size_t q = 0; q < this->SlotRow.size(); ++q)
   {
     w[this->SlotRow[q]] -= slots[q];
   }
+  std::vector<float> topBuffer(scratchFloats);
+  Vec8* topScratch = reinterpret_cast<Vec8*>(topBuffer.data());
   for (std::int32_t k : this->Top)
   {
-    const int nr = nrOf(k), nc = ncOf(k);
-    const float* l = this->Lx.data() + this->Px[k];
-    Vec8* x = w + this->Super[k];
-    const std::int32_t* dest = this->Dest.data() + this->Pi[k];
-    DiagForward(l, nr, nc, this->InvDiag.data() + this->Super[k], x, true);
-    if (static_cast<std::int64_t>(nr - nc) * nc > kParallelBlockEntries)
-    {
-      tbb::parallel_for(tbb::blocked_range<int>(nc, nr, kTopRows),
-        [&](const tbb::blocked_range<int>& r) {
-          Vec8 tmp[kTopRows];
-          ForwardBelow(l, nr, nc, x, dest, r.begin(), r.end(), w, nullptr, tmp);
-        },
-        tbb::simple_partitioner());
-    }
-    else
-    {
-      ForwardBelow(l, nr, nc, x, dest, nc, nr, w, nullptr, gather);
-    }
+    forward(k, nullptr, topScratch, true);
   }
 
   // Backward: Lᵀ x = y. The top first, then the subtrees in parallel (they only read ancestors).
   for (auto it = this->Top.rbegin(); it != this->Top.rend(); ++it)
   {
-    const std::int32_t k = *it;
-    const int nr = nrOf(k), nc = ncOf(k);
-    const float* l = this->Lx.data() + this->Px[k];
-    Vec8* x = w + this->Super[k];
-    const std::int32_t* rows = this->S.data() + this->Pi[k] + nc;
-    for (int i = 0; i < nr - nc; ++i)
-    {
-      gather[i] = w[rows[i]];
-    }
-    if (static_cast<std::int64_t>(nr - nc) * nc > kParallelBlockEntries)
-    {
-      tbb::parallel_for(tbb::blocked_range<int>(0, nc, 16), [&](const tbb::blocked_range<int>& r) {
-        BackwardPanel(l, nr, nc, nr, gather, r.begin(), r.end(), x);
-      });
-    }
-    else
-    {
-      BackwardPanel(l, nr, nc, nr, gather, 0, nc, x);
-    }
-    DiagBackward(l, nr, nc, this->InvDiag.data() + this->Super[k], x, true);
+    backward(*it, topScratch, true);
   }
   tbb::parallel_for(std::size_t(0), this->Tasks.size(), [&](std::size_t t) {
-    const Task& task = this->Tasks[t];
-    std::vector<float> buffer(8 * maxBelow);
-    Vec8* g = reinterpret_cast<Vec8*>(buffer.data());
-    for (std::int32_t k = task.LastSuper; k >= task.FirstSuper; --k)
+    std::vector<float> buffer(scratchFloats);
+    for (std::int32_t k = this->Tasks[t].LastSuper; k >= this->Tasks[t].FirstSuper; --k)
     {
-      const int nr = nrOf(k), nc = ncOf(k);
-      const float* l = this->Lx.data() + this->Px[k];
-      Vec8* x = w + this->Super[k];
-      const std::int32_t* rows = this->S.data() + this->Pi[k] + nc;
-      for (int i = 0; i < nr - nc; ++i)
-      {
-        g[i] = w[rows[i]];
-      }
-      BackwardPanel(l, nr, nc, nr, g, 0, nc, x);
-      DiagBackward(l, nr, nc, this->InvDiag.data() + this->Super[k], x, false);
+      backward(k, reinterpret_cast<Vec8*>(buffer.data()), false);
     }
   });
 }
