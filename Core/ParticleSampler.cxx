@@ -103,6 +103,24 @@ class Sampler
   using Tree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, Cloud>,
     Cloud, D == Eigen::Dynamic ? -1 : D, std::uint32_t>;
 
+  /**
+   * Per-particle copy of the data of one cell: the embedded vertices, face neighbours, the
+   * degeneracy flag and the inverse Gram matrix of the full cell. Every particle keeps two
+   * (its accepted cell and the trial cell of the line search): the hot loops then read this
+   * contiguous per-particle record instead of gathering cell ids, neighbours and vertices
+   * from three mesh-sized tables (L2 misses dominated the tangent projections).
+   */
+  struct CellData
+  {
+    std::int32_t Cell = -1;
+    std::int32_t Ids[NV];
+    std::int32_t Nbrs[NV];
+    bool Degenerate = false;
+    bool InverseOk = false;   ///< Gram matrix of the full cell invertible (det > 0, finite)
+    Eigen::Matrix3d GramInv; ///< of the K edges v_j - v_0 (identity-padded to 3x3)
+    double V[NV][MaxD];
+  };
+
 public:
   Sampler(const SimplexMesh& mesh, const Embedding& emb, const std::vector<std::int32_t>& nbrs)
     : Mesh(mesh)
@@ -110,36 +128,69 @@ public:
     , Nbrs(nbrs)
     , Dim(emb.Dim)
   {
-    // Degenerate cells (particles never move inside them). The Gram matrices themselves are
-    // recomputed where needed: a per-cell table (17 MB for 240k tets) misses the cache.
-    const std::size_t nc = mesh.NumCells();
-    Degenerate.assign(nc, 0);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nc),
-      [&](const tbb::blocked_range<std::size_t>& r)
-      {
-        for (std::size_t c = r.begin(); c != r.end(); ++c)
-        {
-          const std::int32_t* ids = mesh.Cell(c);
-          Eigen::Matrix<double, D, K, Eigen::ColMajor, MaxD, K> e(Dim, K);
-          for (int j = 0; j < K; ++j)
-            e.col(j) = Vertex(ids[j + 1]) - Vertex(ids[0]);
-          const Eigen::Matrix<double, K, K> g = e.transpose() * e;
-          Degenerate[c] = g.determinant() > 1e-14 * std::pow(g.trace() / K, K) ? 0 : 1;
-        }
-      });
   }
 
-  Eigen::Map<const Vec> Vertex(std::int32_t v) const
+  Eigen::Map<const Vec> Vertex(const CellData& cd, int i) const
   {
-    return Eigen::Map<const Vec>(Emb.At(static_cast<std::size_t>(v)), Dim);
+    return Eigen::Map<const Vec>(cd.V[i], Dim);
   }
 
-  Vec Position(std::int32_t cell, const double* b) const
+  /// Copies cell `cell` into `cd` (degeneracy and the full-cell inverse computed here, only
+  /// for the cells particles visit).
+  void Fill(std::int32_t cell, CellData& cd) const
   {
     const std::int32_t* ids = Mesh.Cell(static_cast<std::size_t>(cell));
-    Vec x = b[0] * Vertex(ids[0]);
+    cd.Cell = cell;
+    for (int i = 0; i < NV; ++i)
+    {
+      cd.Ids[i] = ids[i];
+      cd.Nbrs[i] = Nbrs[static_cast<std::size_t>(cell) * NV + static_cast<std::size_t>(i)];
+      std::copy_n(Emb.At(static_cast<std::size_t>(ids[i])), Dim, cd.V[i]);
+    }
+    {
+      Eigen::Matrix<double, D, K, Eigen::ColMajor, MaxD, K> e(Dim, K);
+      for (int j = 0; j < K; ++j)
+        e.col(j) = Vertex(cd, j + 1) - Vertex(cd, 0);
+      const Eigen::Matrix<double, K, K> g = e.transpose() * e;
+      cd.Degenerate = !(g.determinant() > 1e-14 * std::pow(g.trace() / K, K));
+    }
+    cd.InverseOk = false;
+    if (cd.Degenerate)
+      return;
+    Vec e[3];
+    for (int j = 0; j < K; ++j)
+      e[j] = Vertex(cd, j + 1) - Vertex(cd, 0);
+    Eigen::Matrix<double, 3, 3> g = Eigen::Matrix<double, 3, 3>::Identity();
+    for (int i = 0; i < K; ++i)
+      for (int j = 0; j <= i; ++j)
+        g(i, j) = g(j, i) = e[i].dot(e[j]);
+    const double det = g.determinant();
+    if (!(det > 0.0) || !std::isfinite(det))
+      return;
+    cd.InverseOk = true;
+    cd.GramInv = g.inverse();
+  }
+
+  /// The cached data of `cell` for particle p (slot `prefer` is refilled on a miss).
+  const CellData& Data(std::size_t p, std::int32_t cell, int prefer, int* slotOut = nullptr)
+  {
+    CellData* two = CellCache.data() + 2 * p;
+    int slot = two[0].Cell == cell ? 0 : (two[1].Cell == cell ? 1 : -1);
+    if (slot < 0)
+    {
+      slot = prefer;
+      Fill(cell, two[slot]);
+    }
+    if (slotOut)
+      *slotOut = slot;
+    return two[slot];
+  }
+
+  Vec Position(const CellData& cd, const double* b) const
+  {
+    Vec x = b[0] * Vertex(cd, 0);
     for (int i = 1; i < NV; ++i)
-      x += b[i] * Vertex(ids[i]);
+      x += b[i] * Vertex(cd, i);
     return x;
   }
 
@@ -147,9 +198,8 @@ public:
    * Least-squares barycentric change (sum 0, zero on `active` vertices) whose embedded
    * displacement best matches d in the cell; returns false for a degenerate cell.
    */
-  bool TangentBary(std::int32_t cell, const bool active[NV], const Vec& d, double db[NV]) const
+  bool TangentBary(const CellData& cd, const bool active[NV], const Vec& d, double db[NV]) const
   {
-    const std::int32_t* ids = Mesh.Cell(static_cast<std::size_t>(cell));
     int fr[NV];
     int nf = 0;
     for (int i = 0; i < NV; ++i)
@@ -160,15 +210,16 @@ public:
     }
     if (nf <= 1)
       return true;
-    if (Degenerate[static_cast<std::size_t>(cell)])
+    if (cd.Degenerate)
       return false;
     // Least squares in the free vertices: edges e_j = v_{fr[j+1]} - v_{fr[0]}, normal
-    // equations (E^T E) a = E^T d solved in closed form (m = 1, 2, 3).
+    // equations (E^T E) a = E^T d solved in closed form (m = 1, 2, 3); the full cell's
+    // inverse comes from the cache (same arithmetic as solving here).
     const int m = nf - 1;
-    const auto base = Vertex(ids[fr[0]]);
+    const auto base = Vertex(cd, fr[0]);
     Vec e[3];
     for (int j = 0; j < m; ++j)
-      e[j] = Vertex(ids[fr[j + 1]]) - base;
+      e[j] = Vertex(cd, fr[j + 1]) - base;
     double a[3] = { 0.0, 0.0, 0.0 };
     if (m == 1)
     {
@@ -179,18 +230,27 @@ public:
     }
     else
     {
-      Eigen::Matrix<double, 3, 3> g = Eigen::Matrix<double, 3, 3>::Identity();
       Eigen::Matrix<double, 3, 1> rhs = Eigen::Matrix<double, 3, 1>::Zero();
       for (int i = 0; i < m; ++i)
-      {
         rhs[i] = e[i].dot(d);
-        for (int j = 0; j <= i; ++j)
-          g(i, j) = g(j, i) = e[i].dot(e[j]);
+      Eigen::Matrix<double, 3, 1> sol;
+      if (m == K)
+      {
+        if (!cd.InverseOk)
+          return false;
+        sol = cd.GramInv * rhs;
       }
-      const double det = g.determinant();
-      if (!(det > 0.0) || !std::isfinite(det))
-        return false;
-      const Eigen::Matrix<double, 3, 1> sol = g.inverse() * rhs;
+      else
+      {
+        Eigen::Matrix<double, 3, 3> g = Eigen::Matrix<double, 3, 3>::Identity();
+        for (int i = 0; i < m; ++i)
+          for (int j = 0; j <= i; ++j)
+            g(i, j) = g(j, i) = e[i].dot(e[j]);
+        const double det = g.determinant();
+        if (!(det > 0.0) || !std::isfinite(det))
+          return false;
+        sol = g.inverse() * rhs;
+      }
       for (int j = 0; j < m; ++j)
         a[j] = sol[j];
       if (!(std::isfinite(a[0]) && std::isfinite(a[1]) && std::isfinite(a[2])))
@@ -211,19 +271,18 @@ public:
    * cell's tangent space, restricted to boundary faces it already touches when it points out.
    * Returns the projected gradient (embedded vector).
    */
-  Vec ProjectGradient(std::int32_t cell, const double* b, const Vec& g) const
+  Vec ProjectGradient(const CellData& cd, const double* b, const Vec& g) const
   {
     bool active[NV] = {};
     double db[NV];
     const Vec d = -g;
     for (int pass = 0; pass <= K; ++pass)
     {
-      if (!TangentBary(cell, active, d, db))
+      if (!TangentBary(cd, active, d, db))
         return Vec::Zero(Dim);
       bool changed = false;
       for (int i = 0; i < NV; ++i)
-        if (!active[i] && b[i] <= 1e-12 && db[i] < 0.0 &&
-          Nbrs[static_cast<std::size_t>(cell) * NV + static_cast<std::size_t>(i)] < 0)
+        if (!active[i] && b[i] <= 1e-12 && db[i] < 0.0 && cd.Nbrs[i] < 0)
         {
           active[i] = true;
           changed = true;
@@ -231,32 +290,33 @@ public:
       if (!changed)
         break;
     }
-    const std::int32_t* ids = Mesh.Cell(static_cast<std::size_t>(cell));
     Vec p = Vec::Zero(Dim);
     for (int i = 0; i < NV; ++i)
-      p -= db[i] * Vertex(ids[i]);
+      p -= db[i] * Vertex(cd, i);
     return p;
   }
 
   /**
-   * Moves a particle by the embedded displacement d: projected on the tangent space of the
+   * Moves particle p by the embedded displacement d: projected on the tangent space of the
    * current cell, walked across faces into neighbours (the rest of d is re-projected there),
-   * sliding along boundary faces.
+   * sliding along boundary faces. Returns the data of the final cell.
    */
-  void Walk(std::int32_t& cell, double* b, Vec d) const
+  const CellData& Walk(std::size_t p, std::int32_t& cell, double* b, Vec d)
   {
     bool active[NV] = {};
     double db[NV];
     std::int32_t prev = -1;
+    int home = 0;
+    const CellData* cd = &Data(p, cell, 0, &home);
     for (int step = 0; step < 256; ++step)
     {
-      if (!TangentBary(cell, active, d, db))
-        return;
+      if (!TangentBary(*cd, active, d, db))
+        return *cd;
       double scale = 0.0;
       for (int i = 0; i < NV; ++i)
         scale += std::abs(db[i]);
       if (scale <= 1e-300)
-        return;
+        return *cd;
       double t = 1.0;
       int hit = -1;
       for (int i = 0; i < NV; ++i)
@@ -280,10 +340,9 @@ public:
       for (int i = 0; i < NV; ++i)
         b[i] /= sum;
       if (hit < 0)
-        return;
+        return *cd;
       d *= (1.0 - t);
-      const std::int32_t nb =
-        Nbrs[static_cast<std::size_t>(cell) * NV + static_cast<std::size_t>(hit)];
+      const std::int32_t nb = cd->Nbrs[hit];
       if (nb < 0 || (nb == prev && t <= 1e-12))
       {
         // Boundary (or bouncing back without progress): slide on the face.
@@ -292,11 +351,15 @@ public:
         for (int i = 0; i < NV; ++i)
           nfree += active[i] ? 0 : 1;
         if (nfree <= 1)
-          return;
+          return *cd;
         continue;
       }
-      const std::int32_t* from = Mesh.Cell(static_cast<std::size_t>(cell));
-      const std::int32_t* to = Mesh.Cell(static_cast<std::size_t>(nb));
+      // The start cell keeps its slot; cells walked into share the other one (which may be
+      // *cd itself: copy its ids first).
+      std::int32_t from[NV];
+      std::copy_n(cd->Ids, NV, from);
+      const CellData& next = Data(p, nb, 1 - home);
+      const std::int32_t* to = next.Ids;
       double nbBary[NV];
       for (int j = 0; j < NV; ++j)
       {
@@ -312,7 +375,9 @@ public:
       }
       prev = cell;
       cell = nb;
+      cd = &next;
     }
+    return *cd;
   }
 
   /// Verlet lists: all pairs closer than Cutoff + Skin at the positions x. The tree build and
@@ -405,7 +470,7 @@ public:
           if (grad)
           {
             Eigen::Map<Vec>(grad->data() + p * static_cast<std::size_t>(Dim), Dim) =
-              ProjectGradient(cells[p], bary.data() + 4 * p, g);
+              ProjectGradient(Data(p, cells[p], 0), bary.data() + 4 * p, g);
           }
         }
       });
@@ -438,6 +503,7 @@ public:
     N = res.Sites.NumSites();
     Lists.resize(N);
     PerParticle.assign(N, 0.0);
+    CellCache.assign(2 * N, CellData());
     const int total = opt.WarmupIterations + opt.Iterations;
     int done = 0;
     // Warm-up at the narrower kernel (harder repulsion: the nearest-neighbour distances even
@@ -560,10 +626,11 @@ public:
               std::int32_t c = cells[p];
               double* b = bt.data() + 4 * p;
               std::copy_n(bary.data() + 4 * p, 4, b);
-              Walk(c, b, step * Vec(dir.segment(static_cast<Eigen::Index>(p) * Dim, Dim)));
+              const CellData& cd =
+                Walk(p, c, b, step * Vec(dir.segment(static_cast<Eigen::Index>(p) * Dim, Dim)));
               ct[p] = c;
               Eigen::Map<Vec>(xt.data() + p * static_cast<std::size_t>(Dim), Dim) =
-                Position(c, b);
+                Position(cd, b);
             }
           });
         trialEnergy = Evaluate(xt, ct, bt, &gt);
@@ -616,7 +683,7 @@ private:
   double Skin = 1.0;
   int Evaluations = 0;
   int Rebuilds = 0;
-  std::vector<std::uint8_t> Degenerate; // per cell: Gram determinant ~ 0
+  std::vector<CellData> CellCache; // 2 per particle
   std::vector<double> ListPositions; // positions at the last list build
   std::vector<std::vector<std::uint32_t>> Lists;
   std::vector<double> PerParticle;
