@@ -2,6 +2,7 @@
 #include "SliverPerturbation.h"
 
 #include "RestrictedVoronoi.h"
+#include "SiteWalk.h"
 
 #include <Eigen/Dense>
 
@@ -14,78 +15,6 @@ namespace av
 namespace
 {
 using VecX = Eigen::VectorXd;
-
-// Walks site s by the embedded displacement d over the mesh (tets): d is projected onto the
-// current element's tangent space (least squares in its edge frame), the barycentric step is
-// cut where a coordinate reaches 0, and the rest continues in the face neighbour.
-void WalkSite(const SimplexMesh& mesh, const Embedding& emb, const std::vector<std::int32_t>& adj,
-  SiteSet& sites, std::size_t s, VecX d)
-{
-  const int dim = emb.Dim;
-  std::int32_t c = sites.CellIds[s];
-  double* b = sites.Bary.data() + 4 * s;
-  Eigen::MatrixXd E(dim, 3);
-  for (int step = 0; step < 64 && d.squaredNorm() > 0.0; ++step)
-  {
-    const std::int32_t* cell = mesh.Cell(c);
-    const double* v0 = emb.At(cell[0]);
-    for (int j = 0; j < 3; ++j)
-      for (int k = 0; k < dim; ++k)
-        E(k, j) = emb.At(cell[j + 1])[k] - v0[k];
-    const Eigen::Vector3d x = (E.transpose() * E).ldlt().solve(E.transpose() * d);
-    if (!x.allFinite())
-      break;
-    double dl[4] = { -x.sum(), x[0], x[1], x[2] };
-    // A component that is round-off while the site is on that face (moving within the face)
-    // must not cross it: crossing back and forth would stall the walk.
-    const double big = std::max({ std::abs(dl[0]), std::abs(dl[1]), std::abs(dl[2]), std::abs(dl[3]) });
-    for (int a = 0; a < 4; ++a)
-      if (b[a] <= 0.0 && dl[a] < 0.0 && dl[a] > -1e-12 * big)
-        dl[a] = 0.0;
-    double t = 1.0;
-    int hit = -1;
-    for (int a = 0; a < 4; ++a)
-      if (dl[a] < 0.0 && b[a] + t * dl[a] < 0.0)
-      {
-        t = -b[a] / dl[a];
-        hit = a;
-      }
-    for (int a = 0; a < 4; ++a)
-      b[a] += t * dl[a];
-    if (hit < 0)
-      break;
-    b[hit] = 0.0;
-    d *= 1.0 - t;
-    const std::int32_t nb = adj[static_cast<std::size_t>(c) * 4 + hit];
-    if (nb < 0)
-      break; // domain boundary: the site stays on it
-    const std::int32_t* ncell = mesh.Cell(nb);
-    double nbary[4] = { 0.0, 0.0, 0.0, 0.0 };
-    for (int a = 0; a < 4; ++a)
-      for (int q = 0; q < 4; ++q)
-        if (ncell[q] == cell[a])
-          nbary[q] = b[a];
-    c = nb;
-    std::copy(nbary, nbary + 4, b);
-  }
-  double sum = 0.0;
-  for (int a = 0; a < 4; ++a)
-  {
-    b[a] = std::max(0.0, b[a]);
-    sum += b[a];
-  }
-  for (int a = 0; a < 4; ++a)
-    b[a] /= sum;
-  sites.CellIds[s] = c;
-  const std::int32_t* cell = mesh.Cell(c);
-  for (int k = 0; k < dim; ++k)
-  {
-    double v = 0.0;
-    for (int a = 0; a < 4; ++a)
-      v += b[a] * emb.At(cell[a])[k];
-    sites.Coords[s * dim + k] = v;
-  }
-}
 } // namespace
 
 double MinDihedralAngle(const double* p0, const double* p1, const double* p2, const double* p3, int dim)
@@ -185,7 +114,7 @@ SliverPerturbationResult PerturbSliverSites(const SimplexMesh& mesh, const Embed
   for (std::size_t s = 0; s < ns; ++s)
     if (move[s].size() > 0 && move[s].squaredNorm() > 0.0)
     {
-      WalkSite(mesh, embedding, adj, r.Sites, s, move[s]);
+      WalkSiteOnMesh(mesh, embedding, adj, r.Sites, s, move[s].data());
       ++r.NumMovedSites;
     }
   return r;

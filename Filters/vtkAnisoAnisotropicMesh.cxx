@@ -38,7 +38,8 @@ int vtkAnisoAnisotropicMesh::RequestBackEnd(
   delaunay->SetRepairInverted(this->RepairInverted);
   delaunay->SetRepairNonManifold(this->RepairNonManifold);
   delaunay->SetMaxRepairRounds(this->MaxRepairRounds);
-  delaunay->SetSliverPerturbationRounds(this->SliverPerturbationRounds);
+  delaunay->SetImprovementRounds(this->ImprovementRounds);
+  delaunay->SetOdtIterations(this->OdtIterations);
   if (!this->RunStage(delaunay, "restricted Delaunay", 0.85, 0.95, error))
   {
     vtkErrorMacro(<< error);
@@ -77,5 +78,6 @@ void vtkAnisoAnisotropicMesh::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "RepairInverted: " << (this->RepairInverted ? "On" : "Off") << "\n";
   os << indent << "RepairNonManifold: " << (this->RepairNonManifold ? "On" : "Off") << "\n";
   os << indent << "MaxRepairRounds: " << this->MaxRepairRounds << "\n";
-  os << indent << "SliverPerturbationRounds: " << this->SliverPerturbationRounds << "\n";
+  os << indent << "ImprovementRounds: " << this->ImprovementRounds << "\n";
+  os << indent << "OdtIterations: " << this->OdtIterations << "\n";
 }

@@ -52,10 +52,12 @@ public:
   ///@}
 
   ///@{
-  /// Sliver perturbation rounds before the repair (default 1; 0 = the paper's pipeline), as
-  /// vtkAnisoRestrictedDelaunay.
-  vtkSetClampMacro(SliverPerturbationRounds, int, 0, 10);
-  vtkGetMacro(SliverPerturbationRounds, int);
+  /// Site improvement rounds before the repair (default 1; 0 = the paper's pipeline) and ODT
+  /// steps per round (default 3), as vtkAnisoRestrictedDelaunay.
+  vtkSetClampMacro(ImprovementRounds, int, 0, 10);
+  vtkGetMacro(ImprovementRounds, int);
+  vtkSetClampMacro(OdtIterations, int, 0, 20);
+  vtkGetMacro(OdtIterations, int);
   ///@}
 
 protected:
@@ -68,7 +70,8 @@ protected:
   bool RepairInverted = true;
   bool RepairNonManifold = false;
   int MaxRepairRounds = 10;
-  int SliverPerturbationRounds = 1;
+  int ImprovementRounds = 1;
+  int OdtIterations = 3;
 
 private:
   vtkAnisoAnisotropicMesh(const vtkAnisoAnisotropicMesh&) = delete;

@@ -2,7 +2,7 @@
 
 #include "RestrictedDelaunay.h"
 #include "RestrictedDelaunayRefinement.h"
-#include "SliverPerturbation.h"
+#include "SiteImprovement.h"
 #include "RestrictedVoronoi.h"
 #include "vtkAnisoDataConversion.h"
 
@@ -176,8 +176,9 @@ int vtkAnisoRestrictedDelaunay::RequestData(vtkInformation* request,
   this->UpdateProgress(0.1);
 
   av::DelaunayRepairResult repaired;
-  std::vector<char> moved(sites.NumSites(), 0); // by the sliver perturbation
+  std::vector<char> moved(sites.NumSites(), 0); // by the improvement rounds
   std::size_t numSlivers = 0;
+  std::size_t numOdtMoved = 0; // by the first round's ODT steps
   auto repairStart = std::chrono::steady_clock::now();
   double repairSeconds = 0.0;
   try
@@ -199,9 +200,11 @@ int vtkAnisoRestrictedDelaunay::RequestData(vtkInformation* request,
       return 1;
     }
     this->UpdateProgress(0.6);
-    for (int round = 0; round < this->SliverPerturbationRounds; ++round)
+    av::SiteImprovementOptions improve;
+    improve.OdtIterations = this->OdtIterations;
+    for (int round = 0; round < this->ImprovementRounds; ++round)
     {
-      av::SliverPerturbationResult sp = av::PerturbSliverSites(mesh, embedding, sites, rdt);
+      av::SiteImprovementResult sp = av::ImproveSites(mesh, embedding, sites, rvd, rdt, improve);
       if (sp.NumMovedSites == 0)
       {
         break;
@@ -213,6 +216,7 @@ int vtkAnisoRestrictedDelaunay::RequestData(vtkInformation* request,
             sites.Bary.begin() + 4 * i);
       }
       numSlivers += round == 0 ? sp.NumSlivers : 0;
+      numOdtMoved += round == 0 ? sp.NumOdtMoved : 0;
       sites = std::move(sp.Sites);
       rvd = av::ComputeRestrictedVoronoi(mesh, embedding, sites, options.Voronoi);
       rdt = av::ComputeRestrictedDelaunay(mesh, embedding, sites, rvd);
@@ -303,6 +307,7 @@ int vtkAnisoRestrictedDelaunay::RequestData(vtkInformation* request,
   AddFieldValue(fd, "RepairSeconds", repairSeconds);
   AddFieldValue(fd, "NumSliversPerturbed", static_cast<double>(numSlivers));
   AddFieldValue(fd, "NumMovedSites", static_cast<double>(numMoved));
+  AddFieldValue(fd, "NumOdtMovedSites", static_cast<double>(numOdtMoved));
   AddFieldValue(fd,
     "DelaunaySeconds",
     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
@@ -325,7 +330,8 @@ void vtkAnisoRestrictedDelaunay::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "RepairInverted: " << (this->RepairInverted ? "On" : "Off") << "\n";
   os << indent << "RepairNonManifold: " << (this->RepairNonManifold ? "On" : "Off") << "\n";
   os << indent << "MaxRepairRounds: " << this->MaxRepairRounds << "\n";
-  os << indent << "SliverPerturbationRounds: " << this->SliverPerturbationRounds << "\n";
+  os << indent << "ImprovementRounds: " << this->ImprovementRounds << "\n";
+  os << indent << "OdtIterations: " << this->OdtIterations << "\n";
   os << indent << "NumberOfInsertedSites (last run): " << this->NumberOfInsertedSites << "\n";
   os << indent << "NumberOfRepairRounds (last run): " << this->NumberOfRepairRounds << "\n";
   os << indent << "NumberOfInverted (last run): " << this->NumberOfInverted << "\n";

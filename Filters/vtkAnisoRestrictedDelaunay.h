@@ -62,13 +62,23 @@ public:
   ///@}
 
   ///@{
-  /// Sliver perturbation rounds before the repair (default 1; 0 = the paper's pipeline). Each
-  /// round moves the sites of every dual tetrahedron whose smallest dihedral angle in the
-  /// embedding is below 15° apart along the sliver's flat direction (walking on the embedded
-  /// mesh) and recomputes the diagram: cube2 slivers 0.61 % -> 0.18 % for one more diagram.
-  /// Moved sites get new positions and interpolated point data. Triangle meshes: no effect.
-  vtkSetClampMacro(SliverPerturbationRounds, int, 0, 10);
-  vtkGetMacro(SliverPerturbationRounds, int);
+  /// Site improvement rounds before the repair (default 1; 0 = the paper's pipeline; not in
+  /// the paper). Each round moves the sites (walking on the embedded mesh) and recomputes the
+  /// diagram once: OdtIterations ODT steps (every site whose cell does not meet the boundary
+  /// moves to the volume-weighted mean of its dual simplices' circumcentres in the
+  /// embedding), then the sites of every dual tetrahedron whose smallest dihedral angle in the
+  /// embedding is below 15° are pushed apart along the sliver's flat direction.
+  /// cube2 (5000 sites): G_avg 0.9025 -> 0.911, slivers 0.61 % -> 0.09 %.
+  /// Moved sites get new positions and interpolated point data.
+  vtkSetClampMacro(ImprovementRounds, int, 0, 10);
+  vtkGetMacro(ImprovementRounds, int);
+  ///@}
+
+  ///@{
+  /// ODT steps per improvement round (default 3, range 0..20; 0 = sliver pushes only). Steps
+  /// after the first re-use the round's connectivity, so they cost no new diagram.
+  vtkSetClampMacro(OdtIterations, int, 0, 20);
+  vtkGetMacro(OdtIterations, int);
   ///@}
 
   ///@{
@@ -93,7 +103,8 @@ protected:
   bool RepairInverted = true;
   bool RepairNonManifold = false;
   int MaxRepairRounds = 10;
-  int SliverPerturbationRounds = 1;
+  int ImprovementRounds = 1;
+  int OdtIterations = 3;
 
   vtkIdType NumberOfInverted = 0;
   vtkIdType NumberOfNonManifoldFaces = 0;

@@ -6,7 +6,7 @@
 #include "RestrictedDelaunay.h"
 #include "RestrictedDelaunayRefinement.h"
 #include "RestrictedVoronoi.h"
-#include "SliverPerturbation.h"
+#include "SiteImprovement.h"
 
 #include <Eigen/Dense>
 
@@ -131,25 +131,29 @@ MeshStageResult RunMeshStage(const av::SimplexMesh& mesh, const av::MetricField&
     av::ComputeRestrictedDelaunay(mesh, embedding, sampled.Sites, rvd0);
   r.RdtSeconds = Since(t2);
 
-  // Sliver perturbation: move the sites of slivers apart, recompute the RVD and its dual.
+  // Site improvement rounds: ODT steps and sliver pushes, then the RVD and its dual again.
   const auto ts = Clock::now();
-  for (int round = 0; round < options.SliverRounds; ++round)
+  for (int round = 0; round < options.ImproveRounds; ++round)
   {
-    av::SliverPerturbationResult sp =
-      av::PerturbSliverSites(mesh, embedding, sampled.Sites, rdt0);
+    av::SiteImprovementOptions io;
+    io.OdtIterations = options.OdtIterations;
+    io.PerturbSlivers = options.PerturbSlivers;
+    const av::SiteImprovementResult im =
+      av::ImproveSites(mesh, embedding, sampled.Sites, rvd0, rdt0, io);
     if (round == 0)
     {
-      r.SliversPerturbed = sp.NumSlivers;
+      r.SliversPerturbed = im.NumSlivers;
+      r.OdtMovedSites = im.NumOdtMoved;
     }
-    if (sp.NumMovedSites == 0)
+    if (im.NumMovedSites == 0)
     {
       break;
     }
-    sampled.Sites = std::move(sp.Sites);
+    sampled.Sites = std::move(im.Sites);
     rvd0 = av::ComputeRestrictedVoronoi(mesh, embedding, sampled.Sites, ro.Voronoi);
     rdt0 = av::ComputeRestrictedDelaunay(mesh, embedding, sampled.Sites, rvd0);
   }
-  r.SliverSeconds = Since(ts);
+  r.ImproveSeconds = Since(ts);
 
   const auto t3 = Clock::now();
   const std::size_t sampledSites = sampled.Sites.NumSites();

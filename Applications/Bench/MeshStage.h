@@ -34,9 +34,11 @@ struct MeshStageOptions
   bool Repair = true;             ///< insert sites to repair inverted dual elements
   int MaxRepairRounds = 10;
   bool RepairNonManifold = false; ///< also repair non-manifold faces
-  /// Sliver perturbation rounds before the repair (av::PerturbSliverSites, then RVD + RDT
-  /// again); 0 = the paper's pipeline.
-  int SliverRounds = 1;
+  /// Site improvement rounds before the repair (av::ImproveSites: ODT steps and sliver
+  /// pushes, then RVD + RDT again); 0 = the paper's pipeline.
+  int ImproveRounds = 1;
+  int OdtIterations = 3;      ///< ODT steps per round (0: sliver pushes only)
+  bool PerturbSlivers = true; ///< sliver pushes in each round
 };
 
 /// Timings and quality of one meshing run.
@@ -44,7 +46,8 @@ struct MeshStageResult
 {
   std::size_t Sites = 0;
   double SampleSeconds = 0.0, LloydSeconds = 0.0, RvdSeconds = 0.0, RdtSeconds = 0.0;
-  double SliverSeconds = 0.0; ///< sliver perturbation rounds (their RVD + RDT included)
+  double ImproveSeconds = 0.0; ///< site improvement rounds (their RVD + RDT included)
+  std::size_t OdtMovedSites = 0;    ///< sites moved by the first round's ODT steps
   std::size_t SliversPerturbed = 0; ///< slivers (embedded dihedral < 15 deg) of the first round
   double RepairSeconds = 0.0; ///< repair rounds after the first RVD + RDT
   double MeshSeconds = 0.0; ///< wall of sampling + RVD + RDT + repair

@@ -121,7 +121,9 @@ struct Args
   bool Repair = true;        // repair inverted dual elements by site insertion
   int RepairRounds = 10;
   bool RepairNonManifold = false;
-  int SliverRounds = 1;      // sliver perturbation rounds before the repair (0 = paper)
+  int ImproveRounds = 1;     // site improvement rounds before the repair (0 = paper)
+  int OdtIterations = 3;     // ODT steps per improvement round
+  bool PerturbSlivers = true;
 };
 
 /// Paper values (Tab. 5 and Fig. 4); NaN where the paper gives none.
@@ -334,7 +336,9 @@ void StageMesh(const Args& a, const Case& c, JsonLine& out)
   o.Repair = a.Repair;
   o.MaxRepairRounds = a.RepairRounds;
   o.RepairNonManifold = a.RepairNonManifold;
-  o.SliverRounds = a.SliverRounds;
+  o.ImproveRounds = a.ImproveRounds;
+  o.OdtIterations = a.OdtIterations;
+  o.PerturbSlivers = a.PerturbSlivers;
   const avbench::MeshStageResult r = avbench::RunMeshStage(c.Mesh, c.Metric, embedded, o);
   const avbench::PaperMeshValues p = avbench::PaperMeshValuesFor(c.Preset);
   out.Set("sites", r.Sites);
@@ -345,8 +349,11 @@ void StageMesh(const Args& a, const Case& c, JsonLine& out)
   out.Set("lloyd_seconds", r.LloydSeconds);
   out.Set("rvd_seconds", r.RvdSeconds);
   out.Set("rdt_seconds", r.RdtSeconds);
-  out.Set("sliver_rounds", o.SliverRounds);
-  out.Set("sliver_seconds", r.SliverSeconds);
+  out.Set("improve_rounds", o.ImproveRounds);
+  out.Set("odt_iterations", o.OdtIterations);
+  out.Set("perturb_slivers", o.PerturbSlivers);
+  out.Set("improve_seconds", r.ImproveSeconds);
+  out.Set("odt_moved_sites", r.OdtMovedSites);
   out.Set("slivers_perturbed", r.SliversPerturbed);
   out.Set("repair", o.Repair);
   out.Set("repair_nonmanifold", o.RepairNonManifold);
@@ -418,8 +425,11 @@ void Usage(std::ostream& os)
         "                    Voronoi vertices until none is left)\n"
         "  --repair-rounds N mesh: insertion rounds at most (default 10)\n"
         "  --repair-nonmanifold  mesh: also repair non-manifold faces of the dual\n"
-        "  --sliver-rounds N mesh: sliver perturbation rounds before the repair (default 1,\n"
-        "                    0 = the paper's pipeline)\n"
+        "  --improve-rounds N  mesh: site improvement rounds before the repair: ODT steps\n"
+        "                    and sliver pushes, then RVD + RDT again (default 1, 0 = the\n"
+        "                    paper's pipeline)\n"
+        "  --odt-iterations N  mesh: ODT steps per improvement round (default 3, 0 = none)\n"
+        "  --no-sliver-push  mesh: no sliver pushes in the improvement rounds\n"
         "Prints one JSON object per case on stdout.\n";
 }
 
@@ -483,8 +493,12 @@ bool Parse(int argc, char** argv, Args& a)
       a.RepairRounds = std::stoi(next());
     else if (k == "--repair-nonmanifold")
       a.RepairNonManifold = true;
-    else if (k == "--sliver-rounds")
-      a.SliverRounds = std::stoi(next());
+    else if (k == "--improve-rounds")
+      a.ImproveRounds = std::stoi(next());
+    else if (k == "--odt-iterations")
+      a.OdtIterations = std::stoi(next());
+    else if (k == "--no-sliver-push")
+      a.PerturbSlivers = false;
     else if (!k.empty() && k[0] != '-' && a.CaseName.empty())
       a.CaseName = k;
     else
@@ -494,9 +508,9 @@ bool Parse(int argc, char** argv, Args& a)
   {
     throw std::runtime_error("--init must be smooth or random");
   }
-  if (a.SliverRounds < 0)
+  if (a.ImproveRounds < 0 || a.OdtIterations < 0)
   {
-    throw std::runtime_error("--sliver-rounds must be >= 0");
+    throw std::runtime_error("--improve-rounds and --odt-iterations must be >= 0");
   }
   if (a.RepairRounds < 0)
   {

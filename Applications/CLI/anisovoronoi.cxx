@@ -101,8 +101,9 @@ options:
                            Voronoi vertices until none is left, paper §4.2)
   --repair-rounds N        insertion rounds at most (default 10)
   --repair-nonmanifold     also repair faces shared by more than two mesh elements
-  --sliver-rounds N        sliver perturbation rounds before the repair (default 1; 0 = the
-                           paper's pipeline): sites of slivers pushed apart, diagram redone
+  --improve-rounds N       site improvement rounds before the repair (default 1; 0 = the
+                           paper's pipeline): ODT steps and sliver pushes, diagram redone
+  --odt-iterations N       ODT steps per improvement round (default 3; 0 = sliver pushes only)
   --output-dir DIR         where the results go (created if missing)
   --quiet                  no progress on stderr
   --help                   this text
@@ -116,7 +117,7 @@ struct Options
 {
   std::string Input, Metric, Sol, OutputDir;
   int Step = 0, Resolution = 0, Sites = 2000, Dim = 8, Iterations = 50, SampleIterations = 50;
-  int Seed = 1, Smooth = 0, Refine = 0, RepairRounds = 10, SliverRounds = 1;
+  int Seed = 1, Smooth = 0, Refine = 0, RepairRounds = 10, ImproveRounds = 1, OdtIterations = 3;
   double Mu = 100.0, Shrink = 0.8, MinEigenvalue = 1e-3, MaxAnisotropy = 25.0;
   bool TensorAsMetric = false, Clamp = false, Quiet = false, Repair = true;
   bool RepairNonManifold = false, DoubleSolve = false;
@@ -259,8 +260,10 @@ Options ParseCommandLine(int argc, char* argv[])
       o.Repair = false;
     else if (a == "--repair-rounds")
       o.RepairRounds = ParseInt(a, next());
-    else if (a == "--sliver-rounds")
-      o.SliverRounds = ParseInt(a, next());
+    else if (a == "--improve-rounds")
+      o.ImproveRounds = ParseInt(a, next());
+    else if (a == "--odt-iterations")
+      o.OdtIterations = ParseInt(a, next());
     else if (a == "--repair-nonmanifold")
       o.RepairNonManifold = true;
     else if (!a.empty() && a[0] == '-')
@@ -286,8 +289,10 @@ Options ParseCommandLine(int argc, char* argv[])
     Fail("--shrink must be in (0, 1]", 2);
   if (o.RepairRounds < 0 || o.RepairRounds > 1000)
     Fail("--repair-rounds must be in [0, 1000]", 2);
-  if (o.SliverRounds < 0 || o.SliverRounds > 10)
-    Fail("--sliver-rounds must be in [0, 10]", 2);
+  if (o.ImproveRounds < 0 || o.ImproveRounds > 10)
+    Fail("--improve-rounds must be in [0, 10]", 2);
+  if (o.OdtIterations < 0 || o.OdtIterations > 20)
+    Fail("--odt-iterations must be in [0, 20]", 2);
   return o;
 }
 
@@ -647,7 +652,8 @@ int main(int argc, char* argv[])
   rdt->SetInputConnection(1, sampler->GetOutputPort(0));
   rdt->SetRepairInverted(o.Repair);
   rdt->SetMaxRepairRounds(o.RepairRounds);
-  rdt->SetSliverPerturbationRounds(o.SliverRounds);
+  rdt->SetImprovementRounds(o.ImproveRounds);
+  rdt->SetOdtIterations(o.OdtIterations);
   rdt->SetRepairNonManifold(o.RepairNonManifold);
   pipeline.Run(rdt, "restricted Delaunay mesh");
   vtkNew<vtkAnisoRestrictedVoronoi> rvd;
@@ -711,6 +717,7 @@ int main(int argc, char* argv[])
     { "inserted_sites", JsonNumber(FieldValue(rdtOut, "NumInsertedSites")) },
     { "slivers_perturbed", JsonNumber(FieldValue(rdtOut, "NumSliversPerturbed")) },
     { "moved_sites", JsonNumber(FieldValue(rdtOut, "NumMovedSites")) },
+    { "odt_moved_sites", JsonNumber(FieldValue(rdtOut, "NumOdtMovedSites")) },
     { "rdt_inverted_before_repair", JsonNumber(FieldValue(rdtOut, "NumInvertedBeforeRepair")) },
     { "rdt_inverted", JsonNumber(FieldValue(rdtOut, "NumInverted")) },
     { "mesh_seconds", JsonNumber(meshSeconds) },

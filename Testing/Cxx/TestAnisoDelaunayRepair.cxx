@@ -165,6 +165,9 @@ int main(int, char*[])
   rdt->SetInputData(1, sites);
   CHECK(rdt->GetRepairInverted() && rdt->GetMaxRepairRounds() == 10 &&
     !rdt->GetRepairNonManifold());
+  // The input sites must stay as given (checked below): no ODT / sliver improvement rounds.
+  CHECK(rdt->GetImprovementRounds() == 1);
+  rdt->SetImprovementRounds(0);
 
   // Without repair: inverted triangles are reported (the case exercises the repair).
   rdt->RepairInvertedOff();

@@ -136,10 +136,11 @@ worst = max(abs(emb.GetComponent(i, d) - tets.GetPoint(i)[d])
 print("cube1 RDT: %d tets, slivers perturbed %g, moved sites %g, inverted %g, worst "
       "position/embedding mismatch %.3g" % (tets.GetNumberOfCells(), field(tets, "NumSliversPerturbed"),
                                             field(tets, "NumMovedSites"), field(tets, "NumInverted"), worst))
-assert cube_rdt.GetSliverPerturbationRounds() == 1
+assert cube_rdt.GetImprovementRounds() == 1 and cube_rdt.GetOdtIterations() == 3
+assert field(tets, "NumOdtMovedSites") > 0
 assert field(tets, "NumMovedSites") > 0 and field(tets, "NumInverted") == 0
 assert worst < 1e-9
-cube_rdt.SetSliverPerturbationRounds(0)
+cube_rdt.SetImprovementRounds(0)
 cube_rdt.Update()
 assert field(cube_rdt.GetOutput(), "NumMovedSites") == 0
 
