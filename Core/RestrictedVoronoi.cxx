@@ -34,22 +34,27 @@ namespace
 {
 
 // ---------------------------------------------------------------------------------------------
-// kd-tree over the sites (nanoflann, runtime dimension).
+// kd-tree over the sites (nanoflann; DIM > 0: compile-time dimension, -1: runtime).
+template <int DIM>
 struct SiteCloud
 {
   const double* Pts;
   std::size_t N;
   int D;
   std::size_t kdtree_get_point_count() const { return N; }
-  double kdtree_get_pt(std::size_t i, std::size_t d) const { return Pts[i * D + d]; }
+  double kdtree_get_pt(std::size_t i, std::size_t d) const
+  {
+    return Pts[i * (DIM > 0 ? DIM : D) + d];
+  }
   template <class B>
   bool kdtree_get_bbox(B&) const
   {
     return false;
   }
 };
+template <int DIM>
 using SiteTree = nanoflann::KDTreeSingleIndexAdaptor<
-  nanoflann::L2_Simple_Adaptor<double, SiteCloud>, SiteCloud, -1, std::uint32_t>;
+  nanoflann::L2_Simple_Adaptor<double, SiteCloud<DIM>>, SiteCloud<DIM>, DIM, std::uint32_t>;
 
 template <int DIM>
 inline double Dist2(const double* a, const double* b, int dim)
@@ -139,8 +144,8 @@ struct Vert
   std::array<std::int32_t, K> Pl;
   std::array<double, K + 1> Lam;
   double G;
+  std::int32_t MinSite; // smallest site label (INT32_MAX if none): the classification reference
   bool Out;
-  bool Dead;
 };
 
 template <int K>
@@ -250,7 +255,7 @@ public:
   const Embedding& Emb;
   const SiteSet& Sites;
   const RestrictedVoronoiOptions& Opt;
-  const SiteTree& Tree;
+  const SiteTree<DIM>& Tree;
   const std::vector<std::int32_t>& Adj;
   const std::vector<std::uint32_t>& Nbr; // NumSites x NbrK, by distance
   const std::vector<double>& NbrD2;
@@ -267,7 +272,7 @@ public:
   double Rho = 0.0;
 
   Worker(const SimplexMesh& m, const Embedding& e, const SiteSet& s,
-    const RestrictedVoronoiOptions& o, const SiteTree& t, const std::vector<std::int32_t>& adj,
+    const RestrictedVoronoiOptions& o, const SiteTree<DIM>& t, const std::vector<std::int32_t>& adj,
     const std::vector<std::uint32_t>& nbr, const std::vector<double>& nbrd2, int nbrk)
     : Mesh(m)
     , Emb(e)
@@ -428,15 +433,22 @@ public:
     return true;
   }
 
-  // Classification of vertex v of piece `site` against the bisector with site m.
-  void Classify(Context<K>& C, std::int32_t site, Vert<K>& v, std::int32_t m) const
+  static std::int32_t MinSiteLabel(const std::array<std::int32_t, K>& pl)
   {
-    std::int32_t s0 = site;
+    std::int32_t s0 = std::numeric_limits<std::int32_t>::max();
     for (int a = 0; a < K; ++a)
-      if (!IsFacet(v.Pl[a]))
-        s0 = std::min(s0, v.Pl[a]);
-    const double* dm = DRow(C, m);
-    const double* d0 = DRow(C, s0);
+      if (!IsFacet(pl[a]))
+        s0 = std::min(s0, pl[a]);
+    return s0;
+  }
+
+  // Classification of vertex v of piece `site` against the bisector with site m (dm, di: the
+  // rows of m and site): the reference is the smallest site of v's labels and `site`.
+  void Classify(Context<K>& C, std::int32_t site, Vert<K>& v, std::int32_t m, const double* dm,
+    const double* di) const
+  {
+    const std::int32_t s0 = std::min(site, v.MinSite);
+    const double* d0 = s0 == site ? di : DRow(C, s0);
     double g = 0.0;
     for (int a = 0; a < NV; ++a)
       g += v.Lam[a] * (dm[a] - d0[a]);
@@ -464,7 +476,7 @@ public:
     }
     nv.G = 0.0;
     nv.Out = false;
-    nv.Dead = false;
+    nv.MinSite = MinSiteLabel(nv.Pl);
     C.V.push_back(nv);
     return static_cast<std::int32_t>(C.V.size() - 1);
   }
@@ -491,7 +503,7 @@ public:
       v.Lam[b] = 1.0;
       v.G = 0.0;
       v.Out = false;
-      v.Dead = false;
+      v.MinSite = std::numeric_limits<std::int32_t>::max();
       C.V.push_back(v);
     }
     if constexpr (K == 2)
@@ -518,14 +530,26 @@ public:
   // Returns 0: unchanged, 1: cut, -1: empty.
   int Clip(Context<K>& C, std::int32_t site, std::int32_t m) const
   {
+    // Copies: DRow of a new site grows the slot array (pointers would dangle).
+    double dm[NV], di[NV];
+    std::copy_n(DRow(C, m), NV, dm);
+    std::copy_n(DRow(C, site), NV, di);
     // Fast path: with the piece's own site as reference, every vertex is clearly on the
     // site's side (margin far above round-off), so the exact classification would keep all.
     {
-      const double* dm = DRow(C, m);
-      const double* di = DRow(C, site);
-      double scale = 0.0, gmin = std::numeric_limits<double>::infinity();
+      double scale = 0.0, emin = std::numeric_limits<double>::infinity();
+      double diff[NV];
       for (int a = 0; a < NV; ++a)
+      {
         scale = std::max(scale, std::max(dm[a], di[a]));
+        diff[a] = dm[a] - di[a];
+        emin = std::min(emin, diff[a]);
+      }
+      // The piece's vertices are convex combinations of the element's: when all element
+      // vertices pass with twice the margin, so do they (no loop over the piece).
+      if (emin > 2e-9 * scale)
+        return 0;
+      double gmin = std::numeric_limits<double>::infinity();
       for (const std::int32_t id : C.Alive)
       {
         const Vert<K>& v = C.V[id];
@@ -543,7 +567,7 @@ public:
     for (const std::int32_t id : C.Alive)
     {
       Vert<K>& v = C.V[id];
-      Classify(C, site, v, m);
+      Classify(C, site, v, m, dm, di);
       nout += v.Out;
     }
     if (nout == 0)
@@ -557,7 +581,7 @@ public:
       const int n = static_cast<int>(C.Loops.size());
       for (int t = 0; t < n; ++t)
       {
-        const std::int32_t u = C.Loops[t], w = C.Loops[(t + 1) % n];
+        const std::int32_t u = C.Loops[t], w = C.Loops[t + 1 == n ? 0 : t + 1];
         const bool uo = C.V[u].Out, wo = C.V[w].Out;
         if (!uo)
         {
@@ -586,32 +610,41 @@ public:
       C.NFacePlane.clear();
       C.NFaceStart.clear();
       C.NFaceCount.clear();
-      C.NLoops.clear();
       C.EdgeCache.clear();
       C.CapNext.clear();
       const int nf = static_cast<int>(C.FacePlane.size());
+      // New loops written through a raw pointer (no push_back in the inner loop). Bound: a
+      // face keeps at most its n vertices plus one new per edge; the cap has at most nf.
+      const std::size_t cap = 2 * C.Loops.size() + static_cast<std::size_t>(nf) + 4;
+      if (C.NLoops.size() < cap)
+        C.NLoops.resize(cap);
+      std::int32_t* nl = C.NLoops.data();
+      std::int32_t nn = 0;
       for (int f = 0; f < nf; ++f)
       {
         const int st = C.FaceStart[f], n = C.FaceCount[f];
-        const std::int32_t start = static_cast<std::int32_t>(C.NLoops.size());
+        const std::int32_t start = nn;
         std::int32_t exitW = -1, enterW = -1;
+        const std::int32_t* loop = C.Loops.data() + st;
+        bool uo = C.V[loop[0]].Out;
         for (int t = 0; t < n; ++t)
         {
-          const std::int32_t u = C.Loops[st + t], w = C.Loops[st + (t + 1) % n];
-          const bool uo = C.V[u].Out, wo = C.V[w].Out;
+          const std::int32_t u = loop[t], w = loop[t + 1 == n ? 0 : t + 1];
+          const bool wo = C.V[w].Out;
           if (!uo)
-            C.NLoops.push_back(u);
+            nl[nn++] = u;
           if (uo != wo)
           {
             const std::int32_t x = EdgeVertex(C, site, u, w, m);
-            C.NLoops.push_back(x);
+            nl[nn++] = x;
             if (!uo)
               exitW = x;
             else
               enterW = x;
           }
+          uo = wo;
         }
-        const std::int32_t cnt = static_cast<std::int32_t>(C.NLoops.size()) - start;
+        const std::int32_t cnt = nn - start;
         if (cnt >= 3)
         {
           C.NFacePlane.push_back(C.FacePlane[f]);
@@ -619,18 +652,18 @@ public:
           C.NFaceCount.push_back(cnt);
         }
         else
-          C.NLoops.resize(start);
+          nn = start;
         if (exitW >= 0 && enterW >= 0)
           C.CapNext.push_back({ enterW, exitW });
       }
       // Cap face on the new plane: walk enter -> exit links (reverse of the faces' direction).
       if (C.CapNext.size() >= 3)
       {
-        const std::int32_t start = static_cast<std::int32_t>(C.NLoops.size());
+        const std::int32_t start = nn;
         std::int32_t cur = C.CapNext[0][0];
         for (std::size_t it = 0; it < C.CapNext.size(); ++it)
         {
-          C.NLoops.push_back(cur);
+          nl[nn++] = cur;
           std::int32_t next = -1;
           for (const auto& e : C.CapNext)
             if (e[0] == cur)
@@ -644,8 +677,9 @@ public:
         }
         C.NFacePlane.push_back(m);
         C.NFaceStart.push_back(start);
-        C.NFaceCount.push_back(static_cast<std::int32_t>(C.NLoops.size()) - start);
+        C.NFaceCount.push_back(nn - start);
       }
+      C.NLoops.resize(static_cast<std::size_t>(nn));
       std::swap(C.FacePlane, C.NFacePlane);
       std::swap(C.FaceStart, C.NFaceStart);
       std::swap(C.FaceCount, C.NFaceCount);
@@ -658,9 +692,6 @@ public:
     C.Alive.resize(w);
     for (std::size_t id = oldSize; id < C.V.size(); ++id)
       C.Alive.push_back(static_cast<std::int32_t>(id));
-    for (auto& v : C.V)
-      if (v.Out)
-        v.Dead = true;
     return 1;
   }
 
@@ -708,6 +739,7 @@ public:
   {
     InitPolytope(C);
     double r2 = Radius2(C, site);
+    double rr = std::sqrt(r2);
     const double dci = DCentroid(C, site);
     const std::size_t nc = C.Cand.size();
     for (std::size_t t = 0; t < nc; ++t)
@@ -719,6 +751,10 @@ public:
       const double gap = dcm - dci;
       if (gap > 0.0 && gap * gap > 4.0 * r2 * (1.0 + 1e-12))
         break; // security radius: no farther candidate can cut
+      // Same through the element's ball: every x of the piece has |x - p_m| >= dcm - Rho,
+      // more than |x - p_site| <= sqrt(r2) (better when the element is large for its pieces).
+      if (dcm > (rr + Rho) * (1.0 + 1e-9))
+        break;
       // Cheap reject: the element's bounding ball is entirely on site's side.
       if (dcm - Rho > dci + Rho)
         continue;
@@ -726,7 +762,10 @@ public:
       if (r < 0)
         return false;
       if (r > 0)
+      {
         r2 = Radius2(C, site);
+        rr = std::sqrt(r2);
+      }
     }
     return true;
   }
@@ -828,8 +867,9 @@ public:
     int t = 0;
     for (; t < NbrK && d2[t] <= reach2; ++t)
     {
+      // Same value as DCentroid, without a slot for the many sites that are too far.
       const std::int32_t j = static_cast<std::int32_t>(idx[t]);
-      const double dj = DCentroid(C, j);
+      const double dj = std::sqrt(Dist2<DIM>(Centroid.data(), SiteP(j), Dim));
       if (dj <= bound)
         C.CandOrder.push_back({ dj, j });
     }
@@ -840,7 +880,7 @@ public:
       for (const auto& r : C.Radius)
       {
         const std::int32_t j = static_cast<std::int32_t>(r.first);
-        const double dj = DCentroid(C, j);
+        const double dj = std::sqrt(Dist2<DIM>(Centroid.data(), SiteP(j), Dim));
         if (dj <= bound || j == n)
           C.CandOrder.push_back({ dj, j });
       }
@@ -1104,10 +1144,39 @@ public:
 
 template <int K, int DIM>
 void RunBlocks(const SimplexMesh& mesh, const Embedding& emb, const SiteSet& sites,
-  const RestrictedVoronoiOptions& opt, const SiteTree& tree, const std::vector<std::int32_t>& adj,
-  const std::vector<std::uint32_t>& nbr, const std::vector<double>& nbrd2, int nbrk,
+  const RestrictedVoronoiOptions& opt, const std::vector<std::int32_t>& adj,
   std::vector<Chunk>& chunks, std::size_t blockSize, std::size_t first, std::size_t last)
 {
+  const std::size_t ns = sites.NumSites();
+  SiteCloud<DIM> cloud{ sites.Coords.data(), ns, sites.Dim };
+  SiteTree<DIM> tree(sites.Dim, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(10));
+  int nbrk = opt.NumNeighbors > 0 ? opt.NumNeighbors : (K == 2 ? 32 : 64);
+  nbrk = static_cast<int>(std::min<std::size_t>(nbrk, ns - 1));
+  std::vector<std::uint32_t> nbr(ns * nbrk);
+  std::vector<double> nbrd2(ns * nbrk);
+  if (nbrk > 0)
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, ns), [&](const tbb::blocked_range<std::size_t>& r) {
+      std::vector<std::uint32_t> idx(nbrk + 1);
+      std::vector<double> d2(nbrk + 1);
+      for (std::size_t s = r.begin(); s != r.end(); ++s)
+      {
+        const std::size_t got = tree.knnSearch(sites.At(s), nbrk + 1, idx.data(), d2.data());
+        std::size_t w = 0;
+        for (std::size_t q = 0; q < got && w < static_cast<std::size_t>(nbrk); ++q)
+          if (idx[q] != s)
+          {
+            nbr[s * nbrk + w] = idx[q];
+            nbrd2[s * nbrk + w] = d2[q];
+            ++w;
+          }
+        for (; w < static_cast<std::size_t>(nbrk); ++w) // only with duplicates: repeat last
+        {
+          nbr[s * nbrk + w] = nbr[s * nbrk + w - 1];
+          nbrd2[s * nbrk + w] = nbrd2[s * nbrk + w - 1];
+        }
+      }
+    });
+
   tbb::enumerable_thread_specific<Context<K>> contexts;
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, chunks.size()),
     [&](const tbb::blocked_range<std::size_t>& r) {
@@ -1125,19 +1194,18 @@ void RunBlocks(const SimplexMesh& mesh, const Embedding& emb, const SiteSet& sit
 
 template <int K>
 void RunDim(int dim, const SimplexMesh& mesh, const Embedding& emb, const SiteSet& sites,
-  const RestrictedVoronoiOptions& opt, const SiteTree& tree, const std::vector<std::int32_t>& adj,
-  const std::vector<std::uint32_t>& nbr, const std::vector<double>& nbrd2, int nbrk,
+  const RestrictedVoronoiOptions& opt, const std::vector<std::int32_t>& adj,
   std::vector<Chunk>& chunks, std::size_t bs, std::size_t e0, std::size_t e1)
 {
   switch (dim)
   {
-    case 2: RunBlocks<K, 2>(mesh, emb, sites, opt, tree, adj, nbr, nbrd2, nbrk, chunks, bs, e0, e1); break;
-    case 3: RunBlocks<K, 3>(mesh, emb, sites, opt, tree, adj, nbr, nbrd2, nbrk, chunks, bs, e0, e1); break;
-    case 4: RunBlocks<K, 4>(mesh, emb, sites, opt, tree, adj, nbr, nbrd2, nbrk, chunks, bs, e0, e1); break;
-    case 5: RunBlocks<K, 5>(mesh, emb, sites, opt, tree, adj, nbr, nbrd2, nbrk, chunks, bs, e0, e1); break;
-    case 6: RunBlocks<K, 6>(mesh, emb, sites, opt, tree, adj, nbr, nbrd2, nbrk, chunks, bs, e0, e1); break;
-    case 8: RunBlocks<K, 8>(mesh, emb, sites, opt, tree, adj, nbr, nbrd2, nbrk, chunks, bs, e0, e1); break;
-    default: RunBlocks<K, -1>(mesh, emb, sites, opt, tree, adj, nbr, nbrd2, nbrk, chunks, bs, e0, e1);
+    case 2: RunBlocks<K, 2>(mesh, emb, sites, opt, adj, chunks, bs, e0, e1); break;
+    case 3: RunBlocks<K, 3>(mesh, emb, sites, opt, adj, chunks, bs, e0, e1); break;
+    case 4: RunBlocks<K, 4>(mesh, emb, sites, opt, adj, chunks, bs, e0, e1); break;
+    case 5: RunBlocks<K, 5>(mesh, emb, sites, opt, adj, chunks, bs, e0, e1); break;
+    case 6: RunBlocks<K, 6>(mesh, emb, sites, opt, adj, chunks, bs, e0, e1); break;
+    case 8: RunBlocks<K, 8>(mesh, emb, sites, opt, adj, chunks, bs, e0, e1); break;
+    default: RunBlocks<K, -1>(mesh, emb, sites, opt, adj, chunks, bs, e0, e1);
   }
 }
 
@@ -1324,10 +1392,11 @@ RestrictedVoronoiDiagram ComputeRestrictedVoronoi(const SimplexMesh& mesh,
         double h2 = 0.0;
         for (int a = 0; a < nv; ++a)
           v[a] = embedding.At(cell[a]);
+        const bool d8 = embedding.Dim == 8; // the usual embedding: compile-time loops
         for (int a = 0; a < nv; ++a)
           for (int b = a + 1; b < nv; ++b)
-            h2 = std::max(h2, Dist2<-1>(v[a], v[b], embedding.Dim));
-        const double m = SimplexMeasure(v, K, embedding.Dim);
+            h2 = std::max(h2, d8 ? Dist2<8>(v[a], v[b], 8) : Dist2<-1>(v[a], v[b], embedding.Dim));
+        const double m = d8 ? SimplexMeasureT<8>(v, K, 8) : SimplexMeasure(v, K, embedding.Dim);
         bad[c] = !(m > 1e-12 * std::pow(std::sqrt(h2), K));
       }
     });
@@ -1337,35 +1406,6 @@ RestrictedVoronoiDiagram ComputeRestrictedVoronoi(const SimplexMesh& mesh,
           " is degenerate (zero area/volume)");
   }
   const std::vector<std::int32_t> adj = ComputeElementAdjacency(mesh);
-
-  SiteCloud cloud{ sites.Coords.data(), ns, sites.Dim };
-  SiteTree tree(sites.Dim, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(10));
-  int nbrk = options.NumNeighbors > 0 ? options.NumNeighbors : (K == 2 ? 32 : 64);
-  nbrk = static_cast<int>(std::min<std::size_t>(nbrk, ns - 1));
-  std::vector<std::uint32_t> nbr(ns * nbrk);
-  std::vector<double> nbrd2(ns * nbrk);
-  if (nbrk > 0)
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, ns), [&](const tbb::blocked_range<std::size_t>& r) {
-      std::vector<std::uint32_t> idx(nbrk + 1);
-      std::vector<double> d2(nbrk + 1);
-      for (std::size_t s = r.begin(); s != r.end(); ++s)
-      {
-        const std::size_t got = tree.knnSearch(sites.At(s), nbrk + 1, idx.data(), d2.data());
-        std::size_t w = 0;
-        for (std::size_t q = 0; q < got && w < static_cast<std::size_t>(nbrk); ++q)
-          if (idx[q] != s)
-          {
-            nbr[s * nbrk + w] = idx[q];
-            nbrd2[s * nbrk + w] = d2[q];
-            ++w;
-          }
-        for (; w < static_cast<std::size_t>(nbrk); ++w) // only with duplicates: repeat last
-        {
-          nbr[s * nbrk + w] = nbr[s * nbrk + w - 1];
-          nbrd2[s * nbrk + w] = nbrd2[s * nbrk + w - 1];
-        }
-      }
-    });
 
   // Element range (a distributed run clips one block per process).
   if (options.ElementBegin < 0 || options.ElementBegin > static_cast<std::int64_t>(nc) ||
@@ -1378,9 +1418,9 @@ RestrictedVoronoiDiagram ComputeRestrictedVoronoi(const SimplexMesh& mesh,
   const std::size_t blockSize = 256;
   std::vector<Chunk> chunks((last - first + blockSize - 1) / blockSize);
   if (K == 2)
-    RunDim<2>(embedding.Dim, mesh, embedding, sites, options, tree, adj, nbr, nbrd2, nbrk, chunks, blockSize, first, last);
+    RunDim<2>(embedding.Dim, mesh, embedding, sites, options, adj, chunks, blockSize, first, last);
   else
-    RunDim<3>(embedding.Dim, mesh, embedding, sites, options, tree, adj, nbr, nbrd2, nbrk, chunks, blockSize, first, last);
+    RunDim<3>(embedding.Dim, mesh, embedding, sites, options, adj, chunks, blockSize, first, last);
 
   // Concatenate the chunks in order (deterministic).
   RestrictedVoronoiDiagram out;
