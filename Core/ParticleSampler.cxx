@@ -1,9 +1,7 @@
 #include "ParticleSampler.h"
 
 #include <Eigen/Dense>
-#include <nanoflann.hpp>
 #include <tbb/blocked_range.h>
-#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
@@ -69,24 +67,6 @@ struct Rng
   double Uniform() { return static_cast<double>(Next() >> 11) * 0x1.0p-53; }
 };
 
-/// nanoflann adaptor over a row-major n x dim array.
-struct Cloud
-{
-  const double* Data = nullptr;
-  std::size_t N = 0;
-  int Dim = 0;
-  std::size_t kdtree_get_point_count() const { return N; }
-  double kdtree_get_pt(std::size_t i, std::size_t d) const
-  {
-    return Data[i * static_cast<std::size_t>(Dim) + d];
-  }
-  template <class B>
-  bool kdtree_get_bbox(B&) const
-  {
-    return false;
-  }
-};
-
 /**
  * The optimiser for a compile-time embedding dimension D (Eigen::Dynamic: runtime, stack
  * storage up to kMaxDim) and simplex dimension K.
@@ -100,8 +80,6 @@ class Sampler
   using Edges = Eigen::Matrix<double, D, Eigen::Dynamic, Eigen::ColMajor, MaxD, K>;
   using Small = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, K, K>;
   using SmallVec = Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, K, 1>;
-  using Tree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, Cloud>,
-    Cloud, D == Eigen::Dynamic ? -1 : D, std::uint32_t>;
 
   /**
    * Per-particle copy of the data of one cell: the embedded vertices, face neighbours, the
@@ -380,58 +358,178 @@ public:
     return *cd;
   }
 
-  /// Verlet lists: all pairs closer than Cutoff + Skin at the positions x. The tree build and
-  /// each query are sequential and deterministic, so list order (summation order) is too.
-  void BuildNeighbours(const std::vector<double>& x)
+  /// Outer lists: all pairs closer than Cutoff + Skin + OuterSkin at the positions x, each
+  /// sorted by particle index (the summation order then does not depend on the search). The
+  /// candidates come from a uniform grid on the particles' 3 principal coordinates: the
+  /// projection onto orthonormal axes shortens distances, so no pair is missed, and the
+  /// particles live on a 2- or 3-manifold, so these coordinates separate them well (a kd-tree
+  /// over all Dim coordinates visits many more leaves at this radius).
+  void BuildOuter(const std::vector<double>& x)
   {
     ++Rebuilds;
-    ListPositions = x;
-    Cloud cloud{ ListPositions.data(), N, Dim };
-    Tree tree(Dim, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(12));
-    tree.buildIndex();
-    const double r2 = (Cutoff + Skin) * (Cutoff + Skin);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, N),
-      [&](const tbb::blocked_range<std::size_t>& r)
+    OuterPositions = x;
+    const double r = Cutoff + Skin + OuterSkin;
+    const double r2 = r * r;
+    const int kp = std::min(3, Dim);
+    // Principal axes (serial: deterministic).
+    Vec mean = Vec::Zero(Dim);
+    for (std::size_t p = 0; p < N; ++p)
+      mean += Eigen::Map<const Vec>(x.data() + p * static_cast<std::size_t>(Dim), Dim);
+    mean /= static_cast<double>(N);
+    Eigen::MatrixXd cov = Eigen::MatrixXd::Zero(Dim, Dim);
+    for (std::size_t p = 0; p < N; ++p)
+    {
+      const Vec c = Eigen::Map<const Vec>(x.data() + p * static_cast<std::size_t>(Dim), Dim) - mean;
+      cov.noalias() += c * c.transpose();
+    }
+    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(cov);
+    Eigen::Matrix<double, 3, D, Eigen::RowMajor, 3, MaxD> axes =
+      Eigen::Matrix<double, 3, D, Eigen::RowMajor, 3, MaxD>::Zero(3, Dim);
+    if (eig.info() == Eigen::Success)
+      for (int a = 0; a < kp; ++a)
+        axes.row(a) = eig.eigenvectors().col(Dim - 1 - a).transpose().normalized();
+    else
+      for (int a = 0; a < kp; ++a)
+        axes(a, a) = 1.0;
+    // Projected coordinates and the grid (cell side a bit over r: neighbours are in the
+    // adjacent cells despite round-off).
+    Proj.resize(3 * N);
+    double lo[3] = { 0.0, 0.0, 0.0 }, hi[3] = { 0.0, 0.0, 0.0 };
+    for (std::size_t p = 0; p < N; ++p)
+    {
+      const Eigen::Vector3d y =
+        axes * Eigen::Map<const Vec>(x.data() + p * static_cast<std::size_t>(Dim), Dim);
+      for (int a = 0; a < 3; ++a)
       {
-        auto& buf = SearchBuffers.local();
-        for (std::size_t p = r.begin(); p != r.end(); ++p)
+        Proj[3 * p + a] = y[a];
+        lo[a] = p == 0 ? y[a] : std::min(lo[a], y[a]);
+        hi[a] = p == 0 ? y[a] : std::max(hi[a], y[a]);
+      }
+    }
+    double h = r * (1.0 + 1e-6);
+    double extent = 0.0;
+    for (int a = 0; a < 3; ++a)
+      extent = std::max(extent, hi[a] - lo[a]);
+    h = std::max(h, 1e-12 * extent);
+    long long n[3];
+    for (;;)
+    {
+      long long cells = 1;
+      for (int a = 0; a < 3; ++a)
+      {
+        n[a] = static_cast<long long>((hi[a] - lo[a]) / h) + 1;
+        cells *= n[a];
+      }
+      if (cells <= 4 * static_cast<long long>(N) + 64)
+        break;
+      h *= 1.5; // far-apart clusters: coarser grid, still exact
+    }
+    auto cellOf = [&](std::size_t p, int a)
+    { return std::min(n[a] - 1, static_cast<long long>((Proj[3 * p + a] - lo[a]) / h)); };
+    const auto numCells = static_cast<std::size_t>(n[0] * n[1] * n[2]);
+    GridStart.assign(numCells + 1, 0);
+    ParticleCell.resize(N);
+    for (std::size_t p = 0; p < N; ++p)
+    {
+      const long long c = (cellOf(p, 0) * n[1] + cellOf(p, 1)) * n[2] + cellOf(p, 2);
+      ParticleCell[p] = static_cast<std::uint32_t>(c);
+      ++GridStart[static_cast<std::size_t>(c) + 1];
+    }
+    for (std::size_t c = 0; c < numCells; ++c)
+      GridStart[c + 1] += GridStart[c];
+    GridItems.resize(N);
+    {
+      std::vector<std::uint32_t> fill(GridStart.begin(), GridStart.end() - 1);
+      for (std::size_t p = 0; p < N; ++p)
+        GridItems[fill[ParticleCell[p]]++] = static_cast<std::uint32_t>(p);
+    }
+    const double rBox = r * (1.0 + 1e-9); // projected test with slack for round-off
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, N),
+      [&](const tbb::blocked_range<std::size_t>& rg)
+      {
+        for (std::size_t p = rg.begin(); p != rg.end(); ++p)
         {
-          buf.clear();
-          tree.radiusSearch(x.data() + p * static_cast<std::size_t>(Dim), r2, buf,
-            nanoflann::SearchParams(32, 0.0f, false));
-          auto& list = Lists[p];
+          const Eigen::Map<const Vec> xp(x.data() + p * static_cast<std::size_t>(Dim), Dim);
+          const double* yp = Proj.data() + 3 * p;
+          long long c[3];
+          for (int a = 0; a < 3; ++a)
+            c[a] = cellOf(p, a);
+          auto& list = Outer[p];
           list.clear();
-          for (const auto& hit : buf)
-            if (hit.first != p)
-              list.push_back(hit.first);
+          for (long long i = std::max(0LL, c[0] - 1); i <= std::min(n[0] - 1, c[0] + 1); ++i)
+            for (long long j = std::max(0LL, c[1] - 1); j <= std::min(n[1] - 1, c[1] + 1); ++j)
+              for (long long k = std::max(0LL, c[2] - 1); k <= std::min(n[2] - 1, c[2] + 1); ++k)
+              {
+                const auto cell = static_cast<std::size_t>((i * n[1] + j) * n[2] + k);
+                for (std::uint32_t t = GridStart[cell]; t < GridStart[cell + 1]; ++t)
+                {
+                  const std::uint32_t q = GridItems[t];
+                  const double* yq = Proj.data() + 3 * q;
+                  if (q == p || std::abs(yp[0] - yq[0]) >= rBox ||
+                    std::abs(yp[1] - yq[1]) >= rBox || std::abs(yp[2] - yq[2]) >= rBox)
+                    continue;
+                  const Eigen::Map<const Vec> xq(
+                    x.data() + q * static_cast<std::size_t>(Dim), Dim);
+                  if ((xp - xq).squaredNorm() < r2)
+                    list.push_back(q);
+                }
+              }
+          std::sort(list.begin(), list.end());
         }
       });
   }
 
-  /// Rebuilds the lists when the two largest displacements since the last build add up to
-  /// more than Skin: no pair can then have closed in by more than Skin, so the lists (radius
-  /// Cutoff + Skin) still hold every pair closer than Cutoff.
+  /// Sum of the two largest displacements between `x` and `ref` (no pair can have closed in
+  /// by more than this); infinity when `ref` is unset.
+  double TwoLargestMoves(const std::vector<double>& x, const std::vector<double>& ref) const
+  {
+    if (ref.size() != x.size())
+      return std::numeric_limits<double>::infinity();
+    double m1 = 0.0, m2 = 0.0; // two largest squared displacements
+    for (std::size_t p = 0; p < N; ++p)
+    {
+      const Eigen::Map<const Vec> a(x.data() + p * static_cast<std::size_t>(Dim), Dim);
+      const Eigen::Map<const Vec> b(ref.data() + p * static_cast<std::size_t>(Dim), Dim);
+      const double d2 = (a - b).squaredNorm();
+      if (d2 > m2)
+      {
+        m2 = std::min(d2, m1);
+        m1 = std::max(d2, m1);
+      }
+    }
+    return std::sqrt(m1) + std::sqrt(m2);
+  }
+
+  /// Two-level Verlet lists. The inner lists (radius Cutoff + Skin, used by the energy) are
+  /// refiltered from the outer lists (radius Cutoff + Skin + OuterSkin, kd-tree) when two
+  /// particles may have closed in by more than Skin; the outer lists are rebuilt when that
+  /// may be by more than OuterSkin since their build, so every pair closer than Cutoff stays
+  /// listed. Lists are sorted by index, so results do not depend on when they were rebuilt.
   void EnsureNeighbours(const std::vector<double>& x)
   {
-    if (ListPositions.size() == x.size())
-    {
-      double m1 = 0.0, m2 = 0.0; // two largest squared displacements
-      for (std::size_t p = 0; p < N; ++p)
+    if (TwoLargestMoves(x, ListPositions) <= Skin)
+      return;
+    if (TwoLargestMoves(x, OuterPositions) > OuterSkin)
+      BuildOuter(x);
+    ListPositions = x;
+    const double r = Cutoff + Skin;
+    const double r2 = r * r;
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, N),
+      [&](const tbb::blocked_range<std::size_t>& rg)
       {
-        double d2 = 0.0;
-        for (std::size_t i = p * static_cast<std::size_t>(Dim), e = i + static_cast<std::size_t>(Dim);
-             i < e; ++i)
-          d2 += (x[i] - ListPositions[i]) * (x[i] - ListPositions[i]);
-        if (d2 > m2)
+        for (std::size_t p = rg.begin(); p != rg.end(); ++p)
         {
-          m2 = std::min(d2, m1);
-          m1 = std::max(d2, m1);
+          const Eigen::Map<const Vec> xp(x.data() + p * static_cast<std::size_t>(Dim), Dim);
+          auto& list = Lists[p];
+          list.clear();
+          for (std::uint32_t q : Outer[p])
+          {
+            const Eigen::Map<const Vec> xq(x.data() + q * static_cast<std::size_t>(Dim), Dim);
+            if ((xp - xq).squaredNorm() < r2)
+              list.push_back(q);
+          }
         }
-      }
-      if (std::sqrt(m1) + std::sqrt(m2) <= Skin)
-        return;
-    }
-    BuildNeighbours(x);
+      });
   }
 
   /**
@@ -502,6 +600,7 @@ public:
   {
     N = res.Sites.NumSites();
     Lists.resize(N);
+    Outer.resize(N);
     PerParticle.assign(N, 0.0);
     CellCache.assign(2 * N, CellData());
     const int total = opt.WarmupIterations + opt.Iterations;
@@ -537,8 +636,21 @@ public:
   {
     Sigma = sigma;
     Cutoff = opt.NeighbourCutoff * Sigma;
-    Skin = Sigma; // list radius Cutoff + sigma: rebuilt about every few steps
+    // Skins tuned on cube2 (5000 sites): a thin inner skin keeps the energy loops short
+    // (the inner lists are rebuilt most iterations, cheaply), the outer one makes grid
+    // builds rare (about one in 9 evaluations).
+    Skin = 0.5 * Sigma;
+    OuterSkin = 2.0 * Sigma;
     ListPositions.clear();
+    OuterPositions.clear();
+  }
+
+  template <class P>
+  static void ClearHistory(std::deque<P>& hist, std::vector<P>& spare)
+  {
+    for (auto& pr : hist)
+      spare.push_back(std::move(pr));
+    hist.clear();
   }
 
   /**
@@ -557,7 +669,13 @@ public:
     std::vector<double> g(nd), xt(nd), gt(nd), bt(bary.size());
     std::vector<std::int32_t> ct(N);
     Eigen::VectorXd dir(nd);
-    std::deque<std::pair<Eigen::VectorXd, Eigen::VectorXd>> hist; // (s, y)
+    struct Pair
+    {
+      Eigen::VectorXd S, Y;
+      double Sy = 0.0, Yy = 0.0; // s.y and |y|^2, kept from the acceptance test
+    };
+    std::deque<Pair> hist;
+    std::vector<Pair> spare; // storage of dropped pairs, reused (no 2 x nd allocation per step)
     std::vector<double> alpha;
 
     double energy = Evaluate(x, cells, bary, &g);
@@ -576,14 +694,14 @@ public:
       alpha.assign(hist.size(), 0.0);
       for (std::size_t h = hist.size(); h-- > 0;)
       {
-        const double rho = 1.0 / hist[h].second.dot(hist[h].first);
-        alpha[h] = rho * hist[h].first.dot(dir);
-        dir -= alpha[h] * hist[h].second;
+        const double rho = 1.0 / hist[h].Sy;
+        alpha[h] = rho * hist[h].S.dot(dir);
+        dir -= alpha[h] * hist[h].Y;
       }
       if (!hist.empty())
       {
         const auto& last = hist.back();
-        dir *= last.first.dot(last.second) / last.second.squaredNorm();
+        dir *= last.Sy / last.Yy;
       }
       else
       {
@@ -595,13 +713,13 @@ public:
       }
       for (std::size_t h = 0; h < hist.size(); ++h)
       {
-        const double rho = 1.0 / hist[h].second.dot(hist[h].first);
-        const double beta = rho * hist[h].second.dot(dir);
-        dir += (alpha[h] - beta) * hist[h].first;
+        const double rho = 1.0 / hist[h].Sy;
+        const double beta = rho * hist[h].Y.dot(dir);
+        dir += (alpha[h] - beta) * hist[h].S;
       }
       if (!(gv.dot(dir) < 0.0))
       {
-        hist.clear();
+        ClearHistory(hist, spare);
         const double rms = std::sqrt(gv.squaredNorm() / static_cast<double>(N));
         dir = -gv * (0.5 * Sigma / std::max(rms, 1e-300));
       }
@@ -645,22 +763,36 @@ public:
         itDone = it + 1;
         if (hist.empty() || ++failures >= 2)
           break; // converged as far as the line search can tell
-        hist.clear();
+        ClearHistory(hist, spare);
         continue;
       }
       failures = 0;
-      Eigen::VectorXd sv(nd), yv(nd);
+      Pair pr;
+      if (!spare.empty())
+      {
+        pr = std::move(spare.back());
+        spare.pop_back();
+      }
+      pr.S.resize(static_cast<Eigen::Index>(nd));
+      pr.Y.resize(static_cast<Eigen::Index>(nd));
       for (std::size_t i = 0; i < nd; ++i)
       {
-        sv[static_cast<Eigen::Index>(i)] = xt[i] - x[i];
-        yv[static_cast<Eigen::Index>(i)] = gt[i] - g[i];
+        pr.S[static_cast<Eigen::Index>(i)] = xt[i] - x[i];
+        pr.Y[static_cast<Eigen::Index>(i)] = gt[i] - g[i];
       }
-      if (sv.dot(yv) > 1e-10 * yv.squaredNorm())
+      pr.Sy = pr.S.dot(pr.Y);
+      pr.Yy = pr.Y.squaredNorm();
+      if (pr.Sy > 1e-10 * pr.Yy)
       {
-        hist.emplace_back(std::move(sv), std::move(yv));
+        hist.push_back(std::move(pr));
         if (static_cast<int>(hist.size()) > opt.History)
+        {
+          spare.push_back(std::move(hist.front()));
           hist.pop_front();
+        }
       }
+      else
+        spare.push_back(std::move(pr));
       x.swap(xt);
       g.swap(gt);
       bary.swap(bt);
@@ -684,10 +816,13 @@ private:
   int Evaluations = 0;
   int Rebuilds = 0;
   std::vector<CellData> CellCache; // 2 per particle
-  std::vector<double> ListPositions; // positions at the last list build
-  std::vector<std::vector<std::uint32_t>> Lists;
+  double OuterSkin = 2.0;
+  std::vector<double> ListPositions;  // positions at the last inner list build
+  std::vector<double> OuterPositions; // positions at the last kd-tree build
+  std::vector<std::vector<std::uint32_t>> Lists, Outer;
+  std::vector<double> Proj;                 // principal coordinates (3 per particle)
+  std::vector<std::uint32_t> GridStart, GridItems, ParticleCell; // outer-list grid (CSR)
   std::vector<double> PerParticle;
-  tbb::enumerable_thread_specific<std::vector<std::pair<std::uint32_t, double>>> SearchBuffers;
 };
 
 template <int D>
