@@ -105,6 +105,7 @@ MeshStageResult RunMeshStage(const av::SimplexMesh& mesh, const av::MetricField&
   av::ParticleSamplerOptions so;
   so.NumSites = options.Sites;
   so.Iterations = options.SampleIterations;
+  so.WarmupIterations = options.WarmupIterations;
   so.Seed = options.Seed;
   so.KernelWidthFactor = options.KernelWidthFactor;
   av::ParticleSamplerResult sampled = av::SampleParticles(mesh, embedding, so);

@@ -28,6 +28,7 @@ struct MeshStageOptions
 {
   std::size_t Sites = 1000;
   int SampleIterations = 50;
+  int WarmupIterations = 100;     ///< sampler warm-up iterations (ParticleSamplerOptions)
   std::uint64_t Seed = 1;
   double KernelWidthFactor = 0.3; ///< sampler's sigma factor
   int LloydIterations = 0;        ///< Lloyd (CVT) steps after sampling (av::RelaxSitesLloyd)

@@ -116,6 +116,7 @@ struct Args
   bool TrackError = true;
   std::size_t Sites = 0;     // 0: case default (paper Tab. 5 / Tab. 3)
   int SampleIterations = 50; // sampler L-BFGS iterations
+  int WarmupIterations = 100; // sampler warm-up iterations
   double KernelWidth = 0.3;  // sampler sigma factor
   int Lloyd = 0;             // Lloyd (CVT) steps after sampling
   bool Repair = true;        // repair inverted dual elements by site insertion
@@ -330,6 +331,7 @@ void StageMesh(const Args& a, const Case& c, JsonLine& out)
   avbench::MeshStageOptions o;
   o.Sites = a.Sites > 0 ? a.Sites : avbench::DefaultSitesFor(c.Preset);
   o.SampleIterations = a.SampleIterations;
+  o.WarmupIterations = a.WarmupIterations;
   o.Seed = a.Seed;
   o.KernelWidthFactor = a.KernelWidth;
   o.LloydIterations = a.Lloyd;
@@ -343,6 +345,7 @@ void StageMesh(const Args& a, const Case& c, JsonLine& out)
   const avbench::PaperMeshValues p = avbench::PaperMeshValuesFor(c.Preset);
   out.Set("sites", r.Sites);
   out.Set("sample_iterations", o.SampleIterations);
+  out.Set("warmup_iterations", o.WarmupIterations);
   out.Set("sample_seconds", r.SampleSeconds);
   out.Set("kernel_width", o.KernelWidthFactor);
   out.Set("lloyd_iterations", o.LloydIterations);
@@ -419,6 +422,7 @@ void Usage(std::ostream& os)
         "  --sites N         sites for mesh (default: cube1 2000, cube2 5000, cube3 5600,\n"
         "                    sphere-cyl 5000, sphere-cos 1000, gaussian2d 4000)\n"
         "  --sample-iterations N  sampler iterations (default 50)\n"
+        "  --warmup-iterations N  sampler warm-up iterations at sigma factor 0.25 (default 100)\n"
         "  --kernel-width F  sampler sigma factor (default 0.3)\n"
         "  --lloyd N         Lloyd (CVT) steps after sampling (default 0)\n"
         "  --no-repair       mesh: keep inverted dual elements (default: insert sites at their\n"
@@ -483,6 +487,8 @@ bool Parse(int argc, char** argv, Args& a)
       a.Sites = static_cast<std::size_t>(std::stoll(next()));
     else if (k == "--sample-iterations")
       a.SampleIterations = std::stoi(next());
+    else if (k == "--warmup-iterations")
+      a.WarmupIterations = std::stoi(next());
     else if (k == "--kernel-width")
       a.KernelWidth = std::stod(next());
     else if (k == "--lloyd")
@@ -507,6 +513,10 @@ bool Parse(int argc, char** argv, Args& a)
   if (a.Init != "smooth" && a.Init != "random")
   {
     throw std::runtime_error("--init must be smooth or random");
+  }
+  if (a.WarmupIterations < 0)
+  {
+    throw std::runtime_error("--warmup-iterations must be >= 0");
   }
   if (a.ImproveRounds < 0 || a.OdtIterations < 0)
   {
