@@ -112,6 +112,8 @@ DelaunayRepairResult Repair(const SimplexMesh& mesh, const Embedding& embedding,
   DelaunayRepairResult out;
   out.Sites = sites;
   out.NumInputSites = sites.NumSites();
+  SiteSet previousSites; // sites of out.Voronoi after an insertion round
+  bool havePrevious = false;
   for (int round = 0;; ++round)
   {
     if (round == 0 && voronoi)
@@ -125,6 +127,14 @@ DelaunayRepairResult Repair(const SimplexMesh& mesh, const Embedding& embedding,
                          "were not computed from these sites");
       out.Voronoi = std::move(*voronoi);
       out.Delaunay = std::move(*delaunay);
+    }
+    else if (havePrevious)
+    {
+      // Only the elements near the inserted sites change: re-clip those (same result as the
+      // full computation, bit for bit).
+      out.Voronoi = UpdateRestrictedVoronoi(
+        mesh, embedding, out.Sites, out.Voronoi, previousSites, options.Voronoi);
+      out.Delaunay = ComputeRestrictedDelaunay(mesh, embedding, out.Sites, out.Voronoi);
     }
     else
     {
@@ -193,6 +203,8 @@ DelaunayRepairResult Repair(const SimplexMesh& mesh, const Embedding& embedding,
     if (acceptedElement.empty())
       break; // every candidate was skipped: no progress possible
     // Appended after the scan: all candidates of a round come from the same site set.
+    previousSites = out.Sites;
+    havePrevious = true;
     out.Sites.Coords.insert(out.Sites.Coords.end(), accepted.begin(), accepted.end());
     out.Sites.CellIds.insert(
       out.Sites.CellIds.end(), acceptedElement.begin(), acceptedElement.end());

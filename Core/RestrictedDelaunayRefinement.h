@@ -17,8 +17,9 @@ namespace av
 /// Options of RepairRestrictedDelaunay.
 struct DelaunayRepairOptions
 {
-  /// Insertion rounds at most (0: only compute and report). Each round recomputes the whole
-  /// restricted Voronoi diagram and its dual.
+  /// Insertion rounds at most (0: only compute and report). Each round updates the restricted
+  /// Voronoi diagram (UpdateRestrictedVoronoi: only the elements near the inserted sites are
+  /// clipped again) and recomputes its dual.
   int MaxRounds = 10;
   /// Also insert at the Voronoi vertices of the cells around faces shared by more than two
   /// cells (the dual is then a manifold where it converges).

@@ -242,6 +242,8 @@ struct Chunk
   std::vector<RVDFaceKind> FaceKind;
   std::vector<std::int32_t> FaceNeighbor;
   std::vector<std::int32_t> VoronoiVertexSites, VoronoiVertexElement, BoundaryDualFaces;
+  // Per processed element: nearest site, pieces / Voronoi vertex / boundary records emitted.
+  std::vector<std::int32_t> ElemNearest, ElemPieces, ElemVV, ElemBD;
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -1100,6 +1102,8 @@ public:
     ElemEmbMeasure = SimplexMeasureT<DIM>(EV, K, Dim);
 
     GatherCandidates(C);
+    const std::size_t p0 = out.PieceSite.size(), v0 = out.VoronoiVertexElement.size(),
+                      b0 = out.BoundaryDualFaces.size();
     C.Queue.clear();
     C.Queue.push_back(C.Cand[0]);
     C.Slots[C.SlotOf(C.Cand[0])].Visited = true;
@@ -1138,6 +1142,10 @@ public:
         }
       Emit(C, out, site);
     }
+    out.ElemNearest.push_back(LastNearest);
+    out.ElemPieces.push_back(static_cast<std::int32_t>(out.PieceSite.size() - p0));
+    out.ElemVV.push_back(static_cast<std::int32_t>(out.VoronoiVertexElement.size() - v0));
+    out.ElemBD.push_back(static_cast<std::int32_t>((out.BoundaryDualFaces.size() - b0) / K));
     C.ResetSites();
   }
 };
@@ -1145,7 +1153,8 @@ public:
 template <int K, int DIM>
 void RunBlocks(const SimplexMesh& mesh, const Embedding& emb, const SiteSet& sites,
   const RestrictedVoronoiOptions& opt, const std::vector<std::int32_t>& adj,
-  std::vector<Chunk>& chunks, std::size_t blockSize, std::size_t first, std::size_t last)
+  std::vector<Chunk>& chunks, std::size_t blockSize, std::size_t first, std::size_t last,
+  const std::int32_t* list)
 {
   const std::size_t ns = sites.NumSites();
   SiteCloud<DIM> cloud{ sites.Coords.data(), ns, sites.Dim };
@@ -1187,7 +1196,7 @@ void RunBlocks(const SimplexMesh& mesh, const Embedding& emb, const SiteSet& sit
       {
         const std::size_t e0 = first + b * blockSize, e1 = std::min(last, e0 + blockSize);
         for (std::size_t e = e0; e < e1; ++e)
-          w.ProcessElement(C, static_cast<std::int32_t>(e), chunks[b]);
+          w.ProcessElement(C, list ? list[e] : static_cast<std::int32_t>(e), chunks[b]);
       }
     });
 }
@@ -1195,18 +1204,50 @@ void RunBlocks(const SimplexMesh& mesh, const Embedding& emb, const SiteSet& sit
 template <int K>
 void RunDim(int dim, const SimplexMesh& mesh, const Embedding& emb, const SiteSet& sites,
   const RestrictedVoronoiOptions& opt, const std::vector<std::int32_t>& adj,
-  std::vector<Chunk>& chunks, std::size_t bs, std::size_t e0, std::size_t e1)
+  std::vector<Chunk>& chunks, std::size_t bs, std::size_t e0, std::size_t e1,
+  const std::int32_t* list = nullptr)
 {
   switch (dim)
   {
-    case 2: RunBlocks<K, 2>(mesh, emb, sites, opt, adj, chunks, bs, e0, e1); break;
-    case 3: RunBlocks<K, 3>(mesh, emb, sites, opt, adj, chunks, bs, e0, e1); break;
-    case 4: RunBlocks<K, 4>(mesh, emb, sites, opt, adj, chunks, bs, e0, e1); break;
-    case 5: RunBlocks<K, 5>(mesh, emb, sites, opt, adj, chunks, bs, e0, e1); break;
-    case 6: RunBlocks<K, 6>(mesh, emb, sites, opt, adj, chunks, bs, e0, e1); break;
-    case 8: RunBlocks<K, 8>(mesh, emb, sites, opt, adj, chunks, bs, e0, e1); break;
-    default: RunBlocks<K, -1>(mesh, emb, sites, opt, adj, chunks, bs, e0, e1);
+    case 2: RunBlocks<K, 2>(mesh, emb, sites, opt, adj, chunks, bs, e0, e1, list); break;
+    case 3: RunBlocks<K, 3>(mesh, emb, sites, opt, adj, chunks, bs, e0, e1, list); break;
+    case 4: RunBlocks<K, 4>(mesh, emb, sites, opt, adj, chunks, bs, e0, e1, list); break;
+    case 5: RunBlocks<K, 5>(mesh, emb, sites, opt, adj, chunks, bs, e0, e1, list); break;
+    case 6: RunBlocks<K, 6>(mesh, emb, sites, opt, adj, chunks, bs, e0, e1, list); break;
+    case 8: RunBlocks<K, 8>(mesh, emb, sites, opt, adj, chunks, bs, e0, e1, list); break;
+    default: RunBlocks<K, -1>(mesh, emb, sites, opt, adj, chunks, bs, e0, e1, list);
   }
+}
+
+// Throws when one of the elements (list, or [0, n) when list is null) is degenerate in the
+// embedding: it cannot be clipped in barycentric coordinates.
+void CheckDegenerateElements(const SimplexMesh& mesh, const Embedding& embedding,
+  const std::int32_t* list, std::size_t n)
+{
+  const int K = mesh.SimplexDim, nv = K + 1;
+  std::vector<char> bad(n, 0);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i)
+    {
+      const std::size_t c = list ? static_cast<std::size_t>(list[i]) : i;
+      const double* v[4];
+      const std::int32_t* cell = mesh.Cell(c);
+      double h2 = 0.0;
+      for (int a = 0; a < nv; ++a)
+        v[a] = embedding.At(cell[a]);
+      const bool d8 = embedding.Dim == 8; // the usual embedding: compile-time loops
+      for (int a = 0; a < nv; ++a)
+        for (int b = a + 1; b < nv; ++b)
+          h2 = std::max(h2, d8 ? Dist2<8>(v[a], v[b], 8) : Dist2<-1>(v[a], v[b], embedding.Dim));
+      const double m = d8 ? SimplexMeasureT<8>(v, K, 8) : SimplexMeasure(v, K, embedding.Dim);
+      bad[i] = !(m > 1e-12 * std::pow(std::sqrt(h2), K));
+    }
+  });
+  for (std::size_t i = 0; i < n; ++i)
+    if (bad[i])
+      throw InputError("RestrictedVoronoi: embedded element " +
+        std::to_string(list ? static_cast<std::size_t>(list[i]) : i) +
+        " is degenerate (zero area/volume)");
 }
 
 } // namespace
@@ -1285,6 +1326,263 @@ void ValidateRestrictedVoronoiInput(
           " is not at the barycentric position in its cell (site outside the mesh?)");
     }
   }
+}
+
+RestrictedVoronoiDiagram UpdateRestrictedVoronoi(const SimplexMesh& mesh,
+  const Embedding& embedding, const SiteSet& sites, const RestrictedVoronoiDiagram& previous,
+  const SiteSet& previousSites, const RestrictedVoronoiOptions& options)
+{
+  ValidateRestrictedVoronoiInput(mesh, embedding, sites);
+  const int K = mesh.SimplexDim, nv = K + 1, dim = embedding.Dim;
+  const std::size_t ns = sites.NumSites(), ns0 = previousSites.NumSites(), nc = mesh.NumCells();
+  if (previous.NumSites != ns0 || previousSites.Dim != sites.Dim || ns0 > ns ||
+    previousSites.Coords.size() != ns0 * static_cast<std::size_t>(dim))
+    throw InputError("RestrictedVoronoi update: the previous diagram does not belong to the "
+                     "previous sites, or the sites are not the previous ones followed by new ones");
+  const auto& P = previous;
+  const bool usable = !options.ComputeGeometry && !options.MergeBySite &&
+    options.ElementBegin == 0 && options.ElementEnd < 0 && P.SimplexDim == K && P.Dim == dim &&
+    P.AmbientDim == mesh.AmbientDim && P.ElementPieceOffsets.size() == nc + 1 &&
+    P.ElementVoronoiVertexOffsets.size() == nc + 1 &&
+    P.ElementBoundaryDualFaceOffsets.size() == nc + 1 && P.ElementNearestSite.size() == nc &&
+    P.ElementBoundaryFacets.size() == nc &&
+    P.ElementPieceOffsets[nc] == static_cast<std::int64_t>(P.NumPieces()) &&
+    P.PieceElement.size() == P.NumPieces() && P.PieceMeasure.size() == P.NumPieces() &&
+    P.PieceEmbeddedMeasure.size() == P.NumPieces() &&
+    P.ElementVoronoiVertexOffsets[nc] == static_cast<std::int64_t>(P.VoronoiVertexElement.size()) &&
+    P.VoronoiVertexSites.size() == P.VoronoiVertexElement.size() * nv &&
+    P.ElementBoundaryDualFaceOffsets[nc] * K == static_cast<std::int64_t>(P.BoundaryDualFaces.size());
+  if (!usable)
+    return ComputeRestrictedVoronoi(mesh, embedding, sites, options);
+
+  // Changed sites: moved ones (old and new positions both matter) and appended ones.
+  std::vector<char> moved(ns0, 0);
+  std::vector<double> pts;
+  for (std::size_t s = 0; s < ns; ++s)
+  {
+    const double* q = sites.At(s);
+    if (s < ns0)
+    {
+      const double* o = previousSites.At(s);
+      if (std::equal(q, q + dim, o))
+        continue;
+      moved[s] = 1;
+      pts.insert(pts.end(), o, o + dim);
+    }
+    pts.insert(pts.end(), q, q + dim);
+  }
+  const std::size_t npts = pts.size() / dim;
+  if (2 * npts > ns + ns0)
+    return ComputeRestrictedVoronoi(mesh, embedding, sites, options);
+
+  // Affected elements. A site j is a candidate of element e (GatherCandidates) unless it is
+  // farther than e's nearest site n from every vertex of e, with a relative margin of 1e-9
+  // (of the squared distances). An element whose candidates and nearest site are unchanged is
+  // processed by exactly the same operations, hence copied. Here a changed position counts as
+  // harmless only with a 100x larger margin, so that round-off cannot decide differently.
+  std::vector<char> affected(nc, 0);
+  if (npts > 0)
+  {
+    SiteCloud<-1> cloud{ pts.data(), npts, dim };
+    SiteTree<-1> tree(dim, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(10));
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nc), [&](const tbb::blocked_range<std::size_t>& r) {
+      std::vector<std::pair<std::uint32_t, double>> hits;
+      std::vector<double> c(dim);
+      for (std::size_t e = r.begin(); e != r.end(); ++e)
+      {
+        const std::int32_t n = P.ElementNearestSite[e];
+        if (n < 0 || static_cast<std::size_t>(n) >= ns0 || moved[n])
+        {
+          affected[e] = 1;
+          continue;
+        }
+        const std::int32_t* cell = mesh.Cell(e);
+        const double* v[4];
+        for (int a = 0; a < nv; ++a)
+          v[a] = embedding.At(cell[a]);
+        std::fill(c.begin(), c.end(), 0.0);
+        for (int a = 0; a < nv; ++a)
+          for (int d = 0; d < dim; ++d)
+            c[d] += v[a][d] / nv;
+        double rho = 0.0;
+        for (int a = 0; a < nv; ++a)
+          rho = std::max(rho, Dist2<-1>(v[a], c.data(), dim));
+        rho = std::sqrt(rho) * (1.0 + 1e-12);
+        const double* pn = sites.At(n);
+        // A position farther than R from c is farther than n from every vertex, by far more
+        // than the margin (R(1 + 1e-6) against the 1e-9 of the test).
+        const double R = (std::sqrt(Dist2<-1>(c.data(), pn, dim)) + 2.0 * rho) * (1.0 + 1e-6);
+        hits.clear();
+        tree.radiusSearch(c.data(), R * R, hits, nanoflann::SearchParams(32, 0.0, false));
+        if (hits.empty())
+          continue;
+        double dn[4];
+        for (int a = 0; a < nv; ++a)
+          dn[a] = Dist2<-1>(v[a], pn, dim);
+        for (const auto& h : hits)
+        {
+          const double* q = pts.data() + std::size_t(h.first) * dim;
+          double scale = 0.0, gmin = std::numeric_limits<double>::infinity();
+          for (int a = 0; a < nv; ++a)
+          {
+            const double dq = Dist2<-1>(v[a], q, dim);
+            scale = std::max(scale, std::max(dq, dn[a]));
+            gmin = std::min(gmin, dq - dn[a]);
+          }
+          if (!(gmin > 1e-7 * scale))
+          {
+            affected[e] = 1;
+            break;
+          }
+        }
+      }
+    });
+  }
+  std::vector<std::int32_t> list;
+  for (std::size_t e = 0; e < nc; ++e)
+    if (affected[e])
+      list.push_back(static_cast<std::int32_t>(e));
+  if (10 * list.size() > 7 * nc)
+    return ComputeRestrictedVoronoi(mesh, embedding, sites, options);
+  CheckDegenerateElements(mesh, embedding, list.data(), list.size());
+
+  // Clip the affected elements. Without geometry the kernel only asks whether a facet is on
+  // the domain boundary: the boundary bits stand in for the adjacency.
+  const std::size_t blockSize = 64;
+  std::vector<Chunk> chunks((list.size() + blockSize - 1) / blockSize);
+  if (!list.empty())
+  {
+    std::vector<std::int32_t> adj(nc * nv, 0);
+    for (const std::int32_t e : list)
+      for (int a = 0; a < nv; ++a)
+        if (P.ElementBoundaryFacets[e] & (1u << a))
+          adj[std::size_t(e) * nv + a] = -1;
+    if (K == 2)
+      RunDim<2>(dim, mesh, embedding, sites, options, adj, chunks, blockSize, 0, list.size(), list.data());
+    else
+      RunDim<3>(dim, mesh, embedding, sites, options, adj, chunks, blockSize, 0, list.size(), list.data());
+  }
+
+  // Where each recomputed element's output starts in its chunk.
+  struct Src
+  {
+    std::int64_t P, V, B;
+  };
+  std::vector<Src> src(list.size());
+  std::vector<std::int32_t> slot(nc, -1);
+  for (std::size_t b = 0; b < chunks.size(); ++b)
+  {
+    Src o{ 0, 0, 0 };
+    const Chunk& ch = chunks[b];
+    for (std::size_t i = 0; i < ch.ElemNearest.size(); ++i)
+    {
+      const std::size_t k = b * blockSize + i;
+      src[k] = o;
+      slot[list[k]] = static_cast<std::int32_t>(k);
+      o.P += ch.ElemPieces[i];
+      o.V += ch.ElemVV[i];
+      o.B += ch.ElemBD[i];
+    }
+  }
+
+  RestrictedVoronoiDiagram out;
+  out.SimplexDim = K;
+  out.AmbientDim = mesh.AmbientDim;
+  out.Dim = dim;
+  out.NumSites = ns;
+  out.NumRecomputedElements = list.size();
+  out.ElementPieceOffsets.resize(nc + 1);
+  out.ElementVoronoiVertexOffsets.resize(nc + 1);
+  out.ElementBoundaryDualFaceOffsets.resize(nc + 1);
+  out.ElementNearestSite.resize(nc);
+  out.ElementBoundaryFacets = P.ElementBoundaryFacets;
+  out.ElementPieceOffsets[0] = out.ElementVoronoiVertexOffsets[0] =
+    out.ElementBoundaryDualFaceOffsets[0] = 0;
+  for (std::size_t e = 0; e < nc; ++e)
+  {
+    std::int64_t np, nvv, nbd;
+    const std::int32_t k = slot[e];
+    if (k < 0)
+    {
+      np = P.ElementPieceOffsets[e + 1] - P.ElementPieceOffsets[e];
+      nvv = P.ElementVoronoiVertexOffsets[e + 1] - P.ElementVoronoiVertexOffsets[e];
+      nbd = P.ElementBoundaryDualFaceOffsets[e + 1] - P.ElementBoundaryDualFaceOffsets[e];
+      out.ElementNearestSite[e] = P.ElementNearestSite[e];
+    }
+    else
+    {
+      const Chunk& ch = chunks[k / blockSize];
+      const std::size_t i = k % blockSize;
+      np = ch.ElemPieces[i];
+      nvv = ch.ElemVV[i];
+      nbd = ch.ElemBD[i];
+      out.ElementNearestSite[e] = ch.ElemNearest[i];
+    }
+    out.ElementPieceOffsets[e + 1] = out.ElementPieceOffsets[e] + np;
+    out.ElementVoronoiVertexOffsets[e + 1] = out.ElementVoronoiVertexOffsets[e] + nvv;
+    out.ElementBoundaryDualFaceOffsets[e + 1] = out.ElementBoundaryDualFaceOffsets[e] + nbd;
+  }
+  const std::size_t np = out.ElementPieceOffsets[nc];
+  out.PieceSite.resize(np);
+  out.PieceElement.resize(np);
+  out.PieceMeasure.resize(np);
+  out.PieceEmbeddedMeasure.resize(np);
+  out.VoronoiVertexSites.resize(out.ElementVoronoiVertexOffsets[nc] * nv);
+  out.VoronoiVertexElement.resize(out.ElementVoronoiVertexOffsets[nc]);
+  out.BoundaryDualFaces.resize(out.ElementBoundaryDualFaceOffsets[nc] * K);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nc, 1024), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t e = r.begin(); e != r.end(); ++e)
+    {
+      const std::int64_t p1 = out.ElementPieceOffsets[e], v1 = out.ElementVoronoiVertexOffsets[e],
+                         b1 = out.ElementBoundaryDualFaceOffsets[e];
+      const std::int64_t pn = out.ElementPieceOffsets[e + 1] - p1,
+                         vn = out.ElementVoronoiVertexOffsets[e + 1] - v1,
+                         bn = out.ElementBoundaryDualFaceOffsets[e + 1] - b1;
+      const std::int32_t k = slot[e];
+      const std::int32_t *ps, *pe, *vs, *ve, *bd;
+      const double *pm, *pem;
+      if (k < 0)
+      {
+        const std::int64_t p0 = P.ElementPieceOffsets[e], v0 = P.ElementVoronoiVertexOffsets[e],
+                           b0 = P.ElementBoundaryDualFaceOffsets[e];
+        ps = P.PieceSite.data() + p0;
+        pe = P.PieceElement.data() + p0;
+        pm = P.PieceMeasure.data() + p0;
+        pem = P.PieceEmbeddedMeasure.data() + p0;
+        vs = P.VoronoiVertexSites.data() + v0 * nv;
+        ve = P.VoronoiVertexElement.data() + v0;
+        bd = P.BoundaryDualFaces.data() + b0 * K;
+      }
+      else
+      {
+        const Chunk& ch = chunks[k / blockSize];
+        const Src& o = src[k];
+        ps = ch.PieceSite.data() + o.P;
+        pe = ch.PieceElement.data() + o.P;
+        pm = ch.PieceMeasure.data() + o.P;
+        pem = ch.PieceEmbeddedMeasure.data() + o.P;
+        vs = ch.VoronoiVertexSites.data() + o.V * nv;
+        ve = ch.VoronoiVertexElement.data() + o.V;
+        bd = ch.BoundaryDualFaces.data() + o.B * K;
+      }
+      std::copy_n(ps, pn, out.PieceSite.begin() + p1);
+      std::copy_n(pe, pn, out.PieceElement.begin() + p1);
+      std::copy_n(pm, pn, out.PieceMeasure.begin() + p1);
+      std::copy_n(pem, pn, out.PieceEmbeddedMeasure.begin() + p1);
+      std::copy_n(vs, vn * nv, out.VoronoiVertexSites.begin() + v1 * nv);
+      std::copy_n(ve, vn, out.VoronoiVertexElement.begin() + v1);
+      std::copy_n(bd, bn * K, out.BoundaryDualFaces.begin() + b1 * K);
+    }
+  });
+  // Same summation order as ComputeRestrictedVoronoi (bit-identical sums).
+  out.SiteMeasure.assign(ns, 0.0);
+  out.SiteEmbeddedMeasure.assign(ns, 0.0);
+  for (std::size_t p = 0; p < np; ++p)
+  {
+    out.SiteMeasure[out.PieceSite[p]] += out.PieceMeasure[p];
+    out.SiteEmbeddedMeasure[out.PieceSite[p]] += out.PieceEmbeddedMeasure[p];
+  }
+  return out;
 }
 
 std::vector<std::int32_t> ComputeElementAdjacency(const SimplexMesh& mesh)
@@ -1381,30 +1679,7 @@ RestrictedVoronoiDiagram ComputeRestrictedVoronoi(const SimplexMesh& mesh,
   const int nv = K + 1;
   const std::size_t ns = sites.NumSites();
   const std::size_t nc = mesh.NumCells();
-  // Degenerate embedded elements cannot be clipped in barycentric coordinates.
-  {
-    std::vector<char> bad(nc, 0);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nc), [&](const tbb::blocked_range<std::size_t>& r) {
-      for (std::size_t c = r.begin(); c != r.end(); ++c)
-      {
-        const double* v[4];
-        const std::int32_t* cell = mesh.Cell(c);
-        double h2 = 0.0;
-        for (int a = 0; a < nv; ++a)
-          v[a] = embedding.At(cell[a]);
-        const bool d8 = embedding.Dim == 8; // the usual embedding: compile-time loops
-        for (int a = 0; a < nv; ++a)
-          for (int b = a + 1; b < nv; ++b)
-            h2 = std::max(h2, d8 ? Dist2<8>(v[a], v[b], 8) : Dist2<-1>(v[a], v[b], embedding.Dim));
-        const double m = d8 ? SimplexMeasureT<8>(v, K, 8) : SimplexMeasure(v, K, embedding.Dim);
-        bad[c] = !(m > 1e-12 * std::pow(std::sqrt(h2), K));
-      }
-    });
-    for (std::size_t c = 0; c < nc; ++c)
-      if (bad[c])
-        throw InputError("RestrictedVoronoi: embedded element " + std::to_string(c) +
-          " is degenerate (zero area/volume)");
-  }
+  CheckDegenerateElements(mesh, embedding, nullptr, nc);
   const std::vector<std::int32_t> adj = ComputeElementAdjacency(mesh);
 
   // Element range (a distributed run clips one block per process).
@@ -1441,6 +1716,32 @@ RestrictedVoronoiDiagram ComputeRestrictedVoronoi(const SimplexMesh& mesh,
     bdOff[c + 1] = bdOff[c] + chunks[c].BoundaryDualFaces.size();
   }
   const std::size_t np = pOff[nchunk], nvx = vOff[nchunk], nf = fOff[nchunk];
+  out.NumRecomputedElements = last - first;
+  if (first == 0 && last == nc && !options.MergeBySite)
+  {
+    // Per-element ranges and references, for UpdateRestrictedVoronoi.
+    out.ElementPieceOffsets.resize(nc + 1);
+    out.ElementVoronoiVertexOffsets.resize(nc + 1);
+    out.ElementBoundaryDualFaceOffsets.resize(nc + 1);
+    out.ElementNearestSite.resize(nc);
+    out.ElementPieceOffsets[0] = out.ElementVoronoiVertexOffsets[0] =
+      out.ElementBoundaryDualFaceOffsets[0] = 0;
+    std::size_t e = 0;
+    for (const Chunk& ch : chunks)
+      for (std::size_t i = 0; i < ch.ElemNearest.size(); ++i, ++e)
+      {
+        out.ElementNearestSite[e] = ch.ElemNearest[i];
+        out.ElementPieceOffsets[e + 1] = out.ElementPieceOffsets[e] + ch.ElemPieces[i];
+        out.ElementVoronoiVertexOffsets[e + 1] = out.ElementVoronoiVertexOffsets[e] + ch.ElemVV[i];
+        out.ElementBoundaryDualFaceOffsets[e + 1] =
+          out.ElementBoundaryDualFaceOffsets[e] + ch.ElemBD[i];
+      }
+    out.ElementBoundaryFacets.assign(nc, 0);
+    for (std::size_t c = 0; c < nc; ++c)
+      for (int a = 0; a < nv; ++a)
+        if (adj[c * nv + a] < 0)
+          out.ElementBoundaryFacets[c] |= static_cast<std::uint8_t>(1u << a);
+  }
   const bool geom = options.ComputeGeometry;
   const bool emb = geom && options.KeepEmbeddedPoints;
   const int adim = mesh.AmbientDim, dim = embedding.Dim;
@@ -1531,6 +1832,7 @@ RestrictedVoronoiDiagram ComputeRestrictedVoronoi(const SimplexMesh& mesh,
     m.AmbientDim = out.AmbientDim;
     m.Dim = out.Dim;
     m.NumSites = out.NumSites;
+    m.NumRecomputedElements = out.NumRecomputedElements;
     m.SiteMeasure = std::move(out.SiteMeasure);
     m.SiteEmbeddedMeasure = std::move(out.SiteEmbeddedMeasure);
     m.VoronoiVertexSites = std::move(out.VoronoiVertexSites);

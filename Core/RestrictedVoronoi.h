@@ -93,6 +93,25 @@ struct RestrictedVoronoiDiagram
   /// (the sites of a Voronoi edge / polygon that meets the boundary), possibly repeated.
   std::vector<std::int32_t> BoundaryDualFaces;
 
+  // Per element (what UpdateRestrictedVoronoi needs to splice a new diagram). Filled only for
+  // a whole-mesh run (ElementBegin/End at their defaults) without MergeBySite, else empty.
+  /// NumElements + 1: pieces of element e are [ElementPieceOffsets[e], [e+1]).
+  std::vector<std::int64_t> ElementPieceOffsets;
+  /// NumElements + 1, in records: VoronoiVertexElement entries of element e (each record is
+  /// SimplexDim+1 entries of VoronoiVertexSites).
+  std::vector<std::int64_t> ElementVoronoiVertexOffsets;
+  /// NumElements + 1, in records of SimplexDim entries of BoundaryDualFaces.
+  std::vector<std::int64_t> ElementBoundaryDualFaceOffsets;
+  /// The site nearest to the element's embedded centroid (ties: lowest id): the reference of
+  /// the element's candidate sites (a site can only change the element's pieces if it is
+  /// closer than this one to some vertex of the element).
+  std::vector<std::int32_t> ElementNearestSite;
+  /// Bit a set: facet a of the element is on the domain boundary.
+  std::vector<std::uint8_t> ElementBoundaryFacets;
+  /// Elements clipped by the call that produced this diagram (all of the range for
+  /// ComputeRestrictedVoronoi, only the affected ones for UpdateRestrictedVoronoi).
+  std::size_t NumRecomputedElements = 0;
+
   std::size_t NumPieces() const { return PieceSite.size(); }
   std::size_t NumVertices() const { return Points.size() / static_cast<std::size_t>(AmbientDim); }
   std::size_t NumFaces() const { return FaceKind.size(); }
@@ -118,6 +137,25 @@ void ValidateRestrictedVoronoiInput(const SimplexMesh& mesh, const Embedding& em
 RestrictedVoronoiDiagram ComputeRestrictedVoronoi(const SimplexMesh& mesh,
   const Embedding& embedding, const SiteSet& sites,
   const RestrictedVoronoiOptions& options = RestrictedVoronoiOptions());
+
+/**
+ * The restricted Voronoi diagram of `sites` from `previous`, the diagram of `previousSites`
+ * (same mesh, embedding and options), where `sites` holds the previous sites (some of them
+ * possibly moved) followed by new ones. Only the elements whose pieces can change are clipped
+ * again, the others are copied: an element keeps its pieces unless a new or moved site (at its
+ * new or its old position) is a candidate of the element, i.e. is not farther than the
+ * element's nearest site (ElementNearestSite) from every vertex of the element, or that
+ * nearest site itself moved. The result equals ComputeRestrictedVoronoi(mesh, embedding,
+ * sites, options) field by field (bit-identical: same pieces in the same order, records,
+ * measures and sums). With ComputeGeometry, MergeBySite, an element range, many changed sites
+ * or a `previous` without the per-element members, it runs the full computation.
+ * NumRecomputedElements tells how many elements were clipped. Throws InputError as
+ * ComputeRestrictedVoronoi, and when `previous` does not belong to `previousSites` or the
+ * sites were not appended to them.
+ */
+RestrictedVoronoiDiagram UpdateRestrictedVoronoi(const SimplexMesh& mesh,
+  const Embedding& embedding, const SiteSet& sites, const RestrictedVoronoiDiagram& previous,
+  const SiteSet& previousSites, const RestrictedVoronoiOptions& options = RestrictedVoronoiOptions());
 
 /// Neighbour element across each facet: NumCells x (SimplexDim+1), -1 on the domain boundary.
 /// Facet a of a cell is the one opposite its local vertex a. Throws InputError when a facet is
