@@ -48,7 +48,7 @@ struct ParticleSamplerResult
   double EmbeddedMeasure = 0.0; ///< |embedded mesh|: area (triangles) or volume (tets)
   double MeanNeighbours = 0.0; ///< average neighbour count within the cutoff at the end
   int EnergyEvaluations = 0;   ///< energy evaluations (line-search trials included)
-  int NeighbourRebuilds = 0;   ///< kd-tree neighbour-list builds
+  int NeighbourRebuilds = 0;   ///< builds of the outer neighbour lists (grid)
   int IterationsDone = 0;
   bool Aborted = false;        ///< the progress callback asked to stop
   double Seconds = 0.0;        ///< wall time of the whole call
@@ -60,7 +60,10 @@ struct ParticleSamplerResult
  * isotropically by minimising E = sum_{p<q} [exp(-|x_p - x_q|^2 / (4 sigma^2)) - exp(-c^2/4)]
  * over pairs closer than the cutoff c * sigma (c = NeighbourCutoff). The constant shift
  * makes E continuous, so it is a function of the positions alone; neighbours come from
- * kd-tree Verlet lists (radius c sigma + sigma, rebuilt when a particle moved sigma / 2).
+ * two-level Verlet lists: outer lists of radius c sigma + 2.5 sigma built on a grid over the
+ * particles' three principal coordinates (a projection only shortens distances, so no pair
+ * is missed), inner lists of radius c sigma + sigma / 2 re-filtered from them; each level is
+ * rebuilt when the particles' moves could let a pair closer than c sigma escape it.
  *
  * Initial particles are drawn with probability proportional to the embedded cell measure
  * and uniformly inside the cell. The minimiser is a projected L-BFGS: the gradient of every

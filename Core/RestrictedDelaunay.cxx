@@ -9,6 +9,7 @@
 #include <Eigen/Dense>
 
 #include <algorithm>
+#include <cmath>
 #include <array>
 #include <numeric>
 
@@ -29,8 +30,10 @@ inline void SortSmall(It b, It e)
 
 // Coordinates of points in the k-dimensional frame (v1-v0, ..., vk-v0) of an element whose
 // vertices are rows `v` in R^dim (least squares = orthogonal projection onto its affine hull),
-// then the signed volume (times k!) of the simplex they span.
-double FrameOrientation(const double* const* v, int k, int dim, const double* const* p)
+// then the signed volume (times k!) of the simplex they span. `edgeSquares` (optional) gets
+// the sum of its squared edge lengths in the same frame coordinates.
+double FrameOrientation(const double* const* v, int k, int dim, const double* const* p,
+  double* edgeSquares = nullptr)
 {
   Eigen::MatrixXd B(dim, k);
   for (int c = 0; c < k; ++c)
@@ -49,8 +52,18 @@ double FrameOrientation(const double* const* v, int k, int dim, const double* co
   Eigen::MatrixXd E(k, k);
   for (int a = 0; a < k; ++a)
     E.col(a) = C.col(a + 1) - C.col(0);
+  if (edgeSquares)
+  {
+    *edgeSquares = 0.0;
+    for (int a = 0; a <= k; ++a)
+      for (int b = a + 1; b <= k; ++b)
+        *edgeSquares += (C.col(b) - C.col(a)).squaredNorm();
+  }
   return E.determinant();
 }
+// Relative volume (k! V / (sum of squared edges)^(k/2)) below which a simplex is flat; a
+// regular tetrahedron has 0.048, a regular triangle 0.29.
+constexpr double kFlatTolerance = 1e-7;
 } // namespace
 
 RestrictedDelaunayMesh ComputeRestrictedDelaunay(const SimplexMesh& mesh,
@@ -123,8 +136,13 @@ RestrictedDelaunayMesh ComputeRestrictedDelaunay(const SimplexMesh& mesh,
       }
       for (int a = 0; a < nv; ++a)
         xp[a] = out.Points.data() + std::size_t(key[a]) * adim;
-      const double oi = FrameOrientation(xv, k, adim, xp);
-      out.Inverted[c] = (oe > 0.0 && oi > 0.0) ? 0 : 1;
+      double l2 = 0.0;
+      const double oi = FrameOrientation(xv, k, adim, xp, &l2);
+      // Flat counts as inverted: a simplex whose volume is round-off next to its edges (e.g.
+      // four sites on a flat boundary face whose embedded images are not quite coplanar) is
+      // no usable element, and the repair breaks it up like an inverted one.
+      const double flat = kFlatTolerance * std::pow(l2, 0.5 * k);
+      out.Inverted[c] = (oe > 0.0 && oi > flat) ? 0 : 1;
       for (int a = 0; a < nv; ++a)
         out.Cells[c * nv + a] = key[a];
       out.CellElement[c] = e;

@@ -27,7 +27,7 @@ struct RestrictedDelaunayMesh
   std::vector<double> Points;       ///< NumSites x AmbientDim
   std::vector<std::int32_t> Cells;  ///< NumCells x (SimplexDim+1), positive in the tangent frame
   std::vector<std::int32_t> CellElement; ///< input element holding the dual Voronoi vertex
-  std::vector<std::uint8_t> Inverted;    ///< 1 where the input-space orientation disagrees
+  std::vector<std::uint8_t> Inverted;    ///< 1 where the input-space orientation disagrees or the cell is flat
 
   std::size_t NumInverted = 0;   ///< cells whose back-projection is inverted or flat
   std::size_t NumNonManifoldFaces = 0;   ///< faces shared by more than two cells
@@ -41,7 +41,8 @@ struct RestrictedDelaunayMesh
  * Builds the dual of `rvd` (computed from the same mesh / embedding / sites). Each simplex is
  * oriented positively in the frame of the element that holds its Voronoi vertex (sites
  * projected onto that element's affine hull in R^Dim) and flagged inverted when, mapped back
- * to input space, its orientation in the same element's input frame is not positive.
+ * to input space, its orientation in the same element's input frame is not positive or it is
+ * flat (k! volume below 1e-7 (sum of squared edge lengths)^(k/2), both in that frame).
  * No repair here: RepairRestrictedDelaunay (RestrictedDelaunayRefinement.h) inserts sites.
  */
 RestrictedDelaunayMesh ComputeRestrictedDelaunay(const SimplexMesh& mesh,

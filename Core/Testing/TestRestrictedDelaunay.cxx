@@ -194,10 +194,45 @@ void TestBadInput()
   AV_CHECK_THROWS(av::ComputeRestrictedDelaunay(m, e, none, rvd));
 }
 
+// Four sites on a square of the boundary face z = 0, one lifted by 1e-9: their circumcentre is
+// 5e-10 inside the cube, so the restricted Delaunay mesh has a flat tet there. It must be
+// flagged (as inverted: the repair then breaks it up), the lattice's other tets must not.
+void TestFlatBoundaryTet()
+{
+  const double lo[3] = { 0, 0, 0 }, hi[3] = { 1, 1, 1 };
+  const av::SimplexMesh m = KuhnGrid(6, 6, 6, lo, hi);
+  const av::Embedding e = MakeEmbedding(m, 3, nullptr);
+  av::SiteSet s;
+  s.Dim = 3;
+  const double quad[4][3] = { { 0.4, 0.4, 0.0 }, { 0.6, 0.4, 0.0 }, { 0.6, 0.6, 0.0 }, { 0.4, 0.6, 1e-9 } };
+  for (const auto& x : quad)
+    AV_CHECK(SiteAt(s, m, e, x));
+  const double far[4][3] = { { 0.5, 0.5, 0.5 }, { 0.1, 0.1, 0.3 }, { 0.9, 0.2, 0.4 }, { 0.3, 0.9, 0.6 } };
+  for (const auto& x : far)
+    AV_CHECK(SiteAt(s, m, e, x));
+  const av::RestrictedVoronoiDiagram rvd = av::ComputeRestrictedVoronoi(m, e, s);
+  const av::RestrictedDelaunayMesh rdt = av::ComputeRestrictedDelaunay(m, e, s, rvd);
+  std::size_t flat = 0, flagged = 0;
+  for (std::size_t c = 0; c < rdt.NumCells(); ++c)
+  {
+    std::set<int> ids(rdt.Cells.begin() + 4 * c, rdt.Cells.begin() + 4 * c + 4);
+    const bool isQuad = ids == std::set<int>{ 0, 1, 2, 3 };
+    flat += isQuad;
+    flagged += rdt.Inverted[c];
+    if (isQuad)
+      AV_CHECK(rdt.Inverted[c] == 1);
+  }
+  std::cout << "flat boundary tet: " << flat << " of " << rdt.NumCells() << " cells, " << flagged
+            << " flagged" << std::endl;
+  AV_CHECK(flat == 1);
+  AV_CHECK(flagged == 1 && rdt.NumInverted == 1);
+}
+
 } // namespace
 
 int main()
 {
+  TestFlatBoundaryTet();
   Test2DIdentity();
   Test3DIdentity();
   TestSmoothEmbedding();
