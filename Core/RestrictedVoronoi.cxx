@@ -103,6 +103,15 @@ inline void Sort4(std::array<std::int32_t, 4>& k)
   cs(1, 2);
 }
 
+// float not below x (compact per-piece bounds).
+inline float RoundUp(double x)
+{
+  float f = static_cast<float>(x);
+  if (static_cast<double>(f) < x)
+    f = std::nextafter(f, std::numeric_limits<float>::infinity());
+  return f;
+}
+
 inline bool IsFacet(std::int32_t label) { return label < 0; }
 inline int FacetOf(std::int32_t label) { return -label - 1; }
 
@@ -194,6 +203,9 @@ struct Context
   std::vector<double> CandDist;
   std::vector<std::pair<double, std::int32_t>> CandOrder;
   std::vector<std::pair<std::uint32_t, double>> Radius; // kd-tree radius query result
+  // Of the last ComputePiece: final squared security radius, centroid distance of the last
+  // candidate that cut the piece (-1: none).
+  double PieceR2 = 0.0, PieceLastCut = -1.0;
 
   void Init(std::size_t nsites)
   {
@@ -244,6 +256,8 @@ struct Chunk
   std::vector<std::int32_t> VoronoiVertexSites, VoronoiVertexElement, BoundaryDualFaces;
   // Per processed element: nearest site, pieces / Voronoi vertex / boundary records emitted.
   std::vector<std::int32_t> ElemNearest, ElemPieces, ElemVV, ElemBD;
+  std::vector<std::uint8_t> ElemEmptyVisit; // a visited site had an empty piece
+  std::vector<float> PieceRadius2, PieceLastCut; // rounded up
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -742,6 +756,7 @@ public:
     InitPolytope(C);
     double r2 = Radius2(C, site);
     double rr = std::sqrt(r2);
+    C.PieceLastCut = -1.0;
     const double dci = DCentroid(C, site);
     const std::size_t nc = C.Cand.size();
     for (std::size_t t = 0; t < nc; ++t)
@@ -767,8 +782,10 @@ public:
       {
         r2 = Radius2(C, site);
         rr = std::sqrt(r2);
+        C.PieceLastCut = dcm;
       }
     }
+    C.PieceR2 = r2;
     return true;
   }
 
@@ -956,6 +973,8 @@ public:
     out.PieceElement.push_back(Elem);
     out.PieceMeasure.push_back(rel * ElemMeasure);
     out.PieceEmbeddedMeasure.push_back(rel * ElemEmbMeasure);
+    out.PieceRadius2.push_back(RoundUp(C.PieceR2));
+    out.PieceLastCut.push_back(RoundUp(C.PieceLastCut));
 
     // Voronoi vertices and boundary dual faces (symbolic).
     auto visitVertex = [&](const Vert<K>& v) {
@@ -1108,12 +1127,13 @@ public:
     C.Queue.push_back(C.Cand[0]);
     C.Slots[C.SlotOf(C.Cand[0])].Visited = true;
     std::size_t nextStart = 1;
-    bool any = false;
+    bool any = false, emptyVisit = false;
     for (std::size_t q = 0; q < C.Queue.size(); ++q)
     {
       const std::int32_t site = C.Queue[q];
       if (!ComputePiece(C, site))
       {
+        emptyVisit = true;
         // Tie at the centroid: try the next nearest candidates until one has a piece.
         while (!any && q + 1 == C.Queue.size() && nextStart < C.Cand.size())
         {
@@ -1143,6 +1163,7 @@ public:
       Emit(C, out, site);
     }
     out.ElemNearest.push_back(LastNearest);
+    out.ElemEmptyVisit.push_back(emptyVisit);
     out.ElemPieces.push_back(static_cast<std::int32_t>(out.PieceSite.size() - p0));
     out.ElemVV.push_back(static_cast<std::int32_t>(out.VoronoiVertexElement.size() - v0));
     out.ElemBD.push_back(static_cast<std::int32_t>((out.BoundaryDualFaces.size() - b0) / K));
@@ -1345,7 +1366,8 @@ RestrictedVoronoiDiagram UpdateRestrictedVoronoi(const SimplexMesh& mesh,
     P.AmbientDim == mesh.AmbientDim && P.ElementPieceOffsets.size() == nc + 1 &&
     P.ElementVoronoiVertexOffsets.size() == nc + 1 &&
     P.ElementBoundaryDualFaceOffsets.size() == nc + 1 && P.ElementNearestSite.size() == nc &&
-    P.ElementBoundaryFacets.size() == nc &&
+    P.ElementBoundaryFacets.size() == nc && P.ElementEmptyVisit.size() == nc &&
+    P.PieceSecurityRadius2.size() == P.NumPieces() && P.PieceLastCutDistance.size() == P.NumPieces() &&
     P.ElementPieceOffsets[nc] == static_cast<std::int64_t>(P.NumPieces()) &&
     P.PieceElement.size() == P.NumPieces() && P.PieceMeasure.size() == P.NumPieces() &&
     P.PieceEmbeddedMeasure.size() == P.NumPieces() &&
@@ -1419,6 +1441,7 @@ RestrictedVoronoiDiagram UpdateRestrictedVoronoi(const SimplexMesh& mesh,
         double dn[4];
         for (int a = 0; a < nv; ++a)
           dn[a] = Dist2<-1>(v[a], pn, dim);
+        const std::int64_t p0 = P.ElementPieceOffsets[e], p1 = P.ElementPieceOffsets[e + 1];
         for (const auto& h : hits)
         {
           const double* q = pts.data() + std::size_t(h.first) * dim;
@@ -1429,7 +1452,39 @@ RestrictedVoronoiDiagram UpdateRestrictedVoronoi(const SimplexMesh& mesh,
             scale = std::max(scale, std::max(dq, dn[a]));
             gmin = std::min(gmin, dq - dn[a]);
           }
-          if (!(gmin > 1e-7 * scale))
+          if (gmin > 1e-7 * scale)
+            continue; // not a candidate
+          // A candidate: harmless if every piece (all visited sites have one) was final when
+          // q came (q farther from the centroid than the piece's last cut) and the final piece
+          // lies, with margin, on its site's side of the bisector: with D = |q - p_i| and R
+          // the piece's security radius, |x - q|^2 - |x - p_i|^2 >= D (D - 2R) on the piece,
+          // against Clip's fast-path margin 1e-9 (max_a |v_a - p_i| + D)^2.
+          bool harmless = !P.ElementEmptyVisit[e] && p1 > p0;
+          const double dqc = std::sqrt(Dist2<-1>(c.data(), q, dim));
+          for (std::int64_t p = p0; p < p1 && harmless; ++p)
+          {
+            const std::int32_t i = P.PieceSite[p];
+            if (static_cast<std::size_t>(i) >= ns0 || moved[i])
+            {
+              harmless = false;
+              break;
+            }
+            const double last = P.PieceLastCutDistance[p];
+            if (!(dqc > last * (1.0 + 1e-9) + 1e-300))
+            {
+              harmless = false;
+              break;
+            }
+            const double* pi = sites.At(i);
+            double rho2 = 0.0;
+            for (int a = 0; a < nv; ++a)
+              rho2 = std::max(rho2, Dist2<-1>(v[a], pi, dim));
+            const double D = std::sqrt(Dist2<-1>(q, pi, dim));
+            const double R = std::sqrt(static_cast<double>(P.PieceSecurityRadius2[p])) * (1.0 + 1e-9);
+            const double bound = std::sqrt(rho2) + D;
+            harmless = D > 2.0 * R && D * (D - 2.0 * R) > 1e-7 * bound * bound;
+          }
+          if (!harmless)
           {
             affected[e] = 1;
             break;
@@ -1495,6 +1550,7 @@ RestrictedVoronoiDiagram UpdateRestrictedVoronoi(const SimplexMesh& mesh,
   out.ElementVoronoiVertexOffsets.resize(nc + 1);
   out.ElementBoundaryDualFaceOffsets.resize(nc + 1);
   out.ElementNearestSite.resize(nc);
+  out.ElementEmptyVisit.resize(nc);
   out.ElementBoundaryFacets = P.ElementBoundaryFacets;
   out.ElementPieceOffsets[0] = out.ElementVoronoiVertexOffsets[0] =
     out.ElementBoundaryDualFaceOffsets[0] = 0;
@@ -1508,6 +1564,7 @@ RestrictedVoronoiDiagram UpdateRestrictedVoronoi(const SimplexMesh& mesh,
       nvv = P.ElementVoronoiVertexOffsets[e + 1] - P.ElementVoronoiVertexOffsets[e];
       nbd = P.ElementBoundaryDualFaceOffsets[e + 1] - P.ElementBoundaryDualFaceOffsets[e];
       out.ElementNearestSite[e] = P.ElementNearestSite[e];
+      out.ElementEmptyVisit[e] = P.ElementEmptyVisit[e];
     }
     else
     {
@@ -1517,6 +1574,7 @@ RestrictedVoronoiDiagram UpdateRestrictedVoronoi(const SimplexMesh& mesh,
       nvv = ch.ElemVV[i];
       nbd = ch.ElemBD[i];
       out.ElementNearestSite[e] = ch.ElemNearest[i];
+      out.ElementEmptyVisit[e] = ch.ElemEmptyVisit[i];
     }
     out.ElementPieceOffsets[e + 1] = out.ElementPieceOffsets[e] + np;
     out.ElementVoronoiVertexOffsets[e + 1] = out.ElementVoronoiVertexOffsets[e] + nvv;
@@ -1527,6 +1585,8 @@ RestrictedVoronoiDiagram UpdateRestrictedVoronoi(const SimplexMesh& mesh,
   out.PieceElement.resize(np);
   out.PieceMeasure.resize(np);
   out.PieceEmbeddedMeasure.resize(np);
+  out.PieceSecurityRadius2.resize(np);
+  out.PieceLastCutDistance.resize(np);
   out.VoronoiVertexSites.resize(out.ElementVoronoiVertexOffsets[nc] * nv);
   out.VoronoiVertexElement.resize(out.ElementVoronoiVertexOffsets[nc]);
   out.BoundaryDualFaces.resize(out.ElementBoundaryDualFaceOffsets[nc] * K);
@@ -1541,6 +1601,7 @@ RestrictedVoronoiDiagram UpdateRestrictedVoronoi(const SimplexMesh& mesh,
       const std::int32_t k = slot[e];
       const std::int32_t *ps, *pe, *vs, *ve, *bd;
       const double *pm, *pem;
+      const float *pr, *pl;
       if (k < 0)
       {
         const std::int64_t p0 = P.ElementPieceOffsets[e], v0 = P.ElementVoronoiVertexOffsets[e],
@@ -1549,6 +1610,8 @@ RestrictedVoronoiDiagram UpdateRestrictedVoronoi(const SimplexMesh& mesh,
         pe = P.PieceElement.data() + p0;
         pm = P.PieceMeasure.data() + p0;
         pem = P.PieceEmbeddedMeasure.data() + p0;
+        pr = P.PieceSecurityRadius2.data() + p0;
+        pl = P.PieceLastCutDistance.data() + p0;
         vs = P.VoronoiVertexSites.data() + v0 * nv;
         ve = P.VoronoiVertexElement.data() + v0;
         bd = P.BoundaryDualFaces.data() + b0 * K;
@@ -1561,6 +1624,8 @@ RestrictedVoronoiDiagram UpdateRestrictedVoronoi(const SimplexMesh& mesh,
         pe = ch.PieceElement.data() + o.P;
         pm = ch.PieceMeasure.data() + o.P;
         pem = ch.PieceEmbeddedMeasure.data() + o.P;
+        pr = ch.PieceRadius2.data() + o.P;
+        pl = ch.PieceLastCut.data() + o.P;
         vs = ch.VoronoiVertexSites.data() + o.V * nv;
         ve = ch.VoronoiVertexElement.data() + o.V;
         bd = ch.BoundaryDualFaces.data() + o.B * K;
@@ -1569,6 +1634,8 @@ RestrictedVoronoiDiagram UpdateRestrictedVoronoi(const SimplexMesh& mesh,
       std::copy_n(pe, pn, out.PieceElement.begin() + p1);
       std::copy_n(pm, pn, out.PieceMeasure.begin() + p1);
       std::copy_n(pem, pn, out.PieceEmbeddedMeasure.begin() + p1);
+      std::copy_n(pr, pn, out.PieceSecurityRadius2.begin() + p1);
+      std::copy_n(pl, pn, out.PieceLastCutDistance.begin() + p1);
       std::copy_n(vs, vn * nv, out.VoronoiVertexSites.begin() + v1 * nv);
       std::copy_n(ve, vn, out.VoronoiVertexElement.begin() + v1);
       std::copy_n(bd, bn * K, out.BoundaryDualFaces.begin() + b1 * K);
@@ -1724,6 +1791,9 @@ RestrictedVoronoiDiagram ComputeRestrictedVoronoi(const SimplexMesh& mesh,
     out.ElementVoronoiVertexOffsets.resize(nc + 1);
     out.ElementBoundaryDualFaceOffsets.resize(nc + 1);
     out.ElementNearestSite.resize(nc);
+    out.ElementEmptyVisit.resize(nc);
+    out.PieceSecurityRadius2.resize(np);
+    out.PieceLastCutDistance.resize(np);
     out.ElementPieceOffsets[0] = out.ElementVoronoiVertexOffsets[0] =
       out.ElementBoundaryDualFaceOffsets[0] = 0;
     std::size_t e = 0;
@@ -1731,6 +1801,7 @@ RestrictedVoronoiDiagram ComputeRestrictedVoronoi(const SimplexMesh& mesh,
       for (std::size_t i = 0; i < ch.ElemNearest.size(); ++i, ++e)
       {
         out.ElementNearestSite[e] = ch.ElemNearest[i];
+        out.ElementEmptyVisit[e] = ch.ElemEmptyVisit[i];
         out.ElementPieceOffsets[e + 1] = out.ElementPieceOffsets[e] + ch.ElemPieces[i];
         out.ElementVoronoiVertexOffsets[e + 1] = out.ElementVoronoiVertexOffsets[e] + ch.ElemVV[i];
         out.ElementBoundaryDualFaceOffsets[e + 1] =
@@ -1773,6 +1844,11 @@ RestrictedVoronoiDiagram ComputeRestrictedVoronoi(const SimplexMesh& mesh,
     std::copy(ch.PieceMeasure.begin(), ch.PieceMeasure.end(), out.PieceMeasure.begin() + pOff[c]);
     std::copy(ch.PieceEmbeddedMeasure.begin(), ch.PieceEmbeddedMeasure.end(),
       out.PieceEmbeddedMeasure.begin() + pOff[c]);
+    if (!out.PieceSecurityRadius2.empty())
+    {
+      std::copy(ch.PieceRadius2.begin(), ch.PieceRadius2.end(), out.PieceSecurityRadius2.begin() + pOff[c]);
+      std::copy(ch.PieceLastCut.begin(), ch.PieceLastCut.end(), out.PieceLastCutDistance.begin() + pOff[c]);
+    }
     std::copy(ch.VoronoiVertexSites.begin(), ch.VoronoiVertexSites.end(),
       out.VoronoiVertexSites.begin() + vvOff[c] * nv);
     std::copy(ch.VoronoiVertexElement.begin(), ch.VoronoiVertexElement.end(),

@@ -106,6 +106,15 @@ struct RestrictedVoronoiDiagram
   /// the element's candidate sites (a site can only change the element's pieces if it is
   /// closer than this one to some vertex of the element).
   std::vector<std::int32_t> ElementNearestSite;
+  /// 1: the element's flood fill visited a site whose piece turned out empty (near-ties).
+  std::vector<std::uint8_t> ElementEmptyVisit;
+  /// Per piece (same condition): squared security radius (max over the piece's vertices of
+  /// the squared embedding distance to its site) and the distance from the element's centroid
+  /// of the last site whose bisector cut the piece (-1: none), both rounded up to float. A new
+  /// site farther from the centroid than that, and farther than 2 x the radius from the
+  /// piece's site, cannot cut the piece while it is being clipped.
+  std::vector<float> PieceSecurityRadius2;
+  std::vector<float> PieceLastCutDistance;
   /// Bit a set: facet a of the element is on the domain boundary.
   std::vector<std::uint8_t> ElementBoundaryFacets;
   /// Elements clipped by the call that produced this diagram (all of the range for
@@ -143,9 +152,10 @@ RestrictedVoronoiDiagram ComputeRestrictedVoronoi(const SimplexMesh& mesh,
  * (same mesh, embedding and options), where `sites` holds the previous sites (some of them
  * possibly moved) followed by new ones. Only the elements whose pieces can change are clipped
  * again, the others are copied: an element keeps its pieces unless a new or moved site (at its
- * new or its old position) is a candidate of the element, i.e. is not farther than the
- * element's nearest site (ElementNearestSite) from every vertex of the element, or that
- * nearest site itself moved. The result equals ComputeRestrictedVoronoi(mesh, embedding,
+ * new or its old position) is a candidate of the element (not farther than the element's
+ * nearest site, ElementNearestSite, from every vertex of the element) that can cut one of
+ * its pieces while that piece is clipped (PieceLastCutDistance, PieceSecurityRadius2), or
+ * the site of one of its pieces moved. The result equals ComputeRestrictedVoronoi(mesh, embedding,
  * sites, options) field by field (bit-identical: same pieces in the same order, records,
  * measures and sums). With ComputeGeometry, MergeBySite, an element range, many changed sites
  * or a `previous` without the per-element members, it runs the full computation.

@@ -80,6 +80,9 @@ bool SameDiagram(const av::RestrictedVoronoiDiagram& u, const av::RestrictedVoro
          name + " ElementBoundaryDualFaceOffsets") && ok;
   ok = Same(u.ElementNearestSite, f.ElementNearestSite, name + " ElementNearestSite") && ok;
   ok = Same(u.ElementBoundaryFacets, f.ElementBoundaryFacets, name + " ElementBoundaryFacets") && ok;
+  ok = Same(u.ElementEmptyVisit, f.ElementEmptyVisit, name + " ElementEmptyVisit") && ok;
+  ok = Same(u.PieceSecurityRadius2, f.PieceSecurityRadius2, name + " PieceSecurityRadius2") && ok;
+  ok = Same(u.PieceLastCutDistance, f.PieceLastCutDistance, name + " PieceLastCutDistance") && ok;
   return ok;
 }
 
@@ -243,6 +246,17 @@ int main()
     const double lo[3] = { 0, 0, 0 }, hi[3] = { 1, 1, 1 };
     const av::SimplexMesh m = KuhnGrid(15, 15, 15, lo, hi);
     RunCase(m, Bumpy(m), 400, 4, 0.2, "tets");
+  }
+  // Coarse meshes (several pieces per element): most candidates of an element cut none of its
+  // pieces, which the per-piece test (last cut, security radius) must recognise exactly.
+  {
+    const av::SimplexMesh m = TriGrid(16, 16, 0, 0, 1, 1);
+    RunCase(m, Bumpy(m), 700, 6, 0.6, "coarse triangles");
+  }
+  {
+    const double lo[3] = { 0, 0, 0 }, hi[3] = { 1, 1, 1 };
+    const av::SimplexMesh m = KuhnGrid(7, 7, 7, lo, hi);
+    RunCase(m, Bumpy(m), 1500, 6, 0.6, "coarse tets");
   }
   TestRepair();
   return AV_TEST_RESULT();
