@@ -45,7 +45,12 @@ OdtSmoothingResult SmoothSitesOdt(const SimplexMesh& mesh, const Embedding& embe
   for (std::int32_t id : rvd.BoundaryDualFaces)
     fixed[static_cast<std::size_t>(id)] = 1;
 
-  const std::vector<std::int32_t> adj = ComputeElementAdjacency(mesh);
+  std::vector<std::int32_t> ownAdjacency;
+  if (!options.ElementAdjacency)
+    ownAdjacency = ComputeElementAdjacency(mesh);
+  else if (options.ElementAdjacency->size() != mesh.NumCells() * static_cast<std::size_t>(nv))
+    fail("ElementAdjacency does not match the mesh (pass ComputeElementAdjacency of this mesh)");
+  const std::vector<std::int32_t>& adj = options.ElementAdjacency ? *options.ElementAdjacency : ownAdjacency;
   std::vector<double> acc(ns * static_cast<std::size_t>(dim), 0.0);
   std::vector<double> weight(ns, 0.0);
   const std::size_t ncell = rdt.Cells.size() / static_cast<std::size_t>(nv);

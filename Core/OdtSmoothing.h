@@ -9,6 +9,7 @@
 #include "SimplexMesh.h"
 
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 namespace av
@@ -21,6 +22,8 @@ struct OdtSmoothingOptions
   double StepFraction = 1.0;
   /// ODT steps on the connectivity of the given mesh (the moved positions are re-used).
   int Iterations = 1;
+  /// ComputeElementAdjacency(mesh) if the caller has it (nullptr: computed here).
+  const std::vector<std::int32_t>* ElementAdjacency = nullptr;
 };
 
 /// Output of SmoothSitesOdt.

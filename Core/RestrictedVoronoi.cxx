@@ -1747,7 +1747,14 @@ RestrictedVoronoiDiagram ComputeRestrictedVoronoi(const SimplexMesh& mesh,
   const std::size_t ns = sites.NumSites();
   const std::size_t nc = mesh.NumCells();
   CheckDegenerateElements(mesh, embedding, nullptr, nc);
-  const std::vector<std::int32_t> adj = ComputeElementAdjacency(mesh);
+  std::vector<std::int32_t> ownAdjacency;
+  if (!options.ElementAdjacency)
+    ownAdjacency = ComputeElementAdjacency(mesh);
+  else if (options.ElementAdjacency->size() != nc * static_cast<std::size_t>(nv))
+    throw InputError("RestrictedVoronoi: ElementAdjacency has " +
+      std::to_string(options.ElementAdjacency->size()) + " entries, expected NumCells x (SimplexDim+1) = " +
+      std::to_string(nc * static_cast<std::size_t>(nv)) + " (pass ComputeElementAdjacency of this mesh)");
+  const std::vector<std::int32_t>& adj = options.ElementAdjacency ? *options.ElementAdjacency : ownAdjacency;
 
   // Element range (a distributed run clips one block per process).
   if (options.ElementBegin < 0 || options.ElementBegin > static_cast<std::int64_t>(nc) ||

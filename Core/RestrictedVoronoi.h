@@ -39,6 +39,9 @@ struct RestrictedVoronoiOptions
   /// MergeBySite merges only inside the range.
   std::int64_t ElementBegin = 0;
   std::int64_t ElementEnd = -1;
+  /// ComputeElementAdjacency(mesh) computed once by a caller that runs several diagrams on
+  /// the same mesh (nullptr: computed here; about 20 ms for 240k tets). Must outlive the call.
+  const std::vector<std::int32_t>* ElementAdjacency = nullptr;
 };
 
 /**

@@ -17,6 +17,8 @@ SiteImprovementResult ImproveSites(const SimplexMesh& mesh, const Embedding& emb
   if (options.OdtIterations > 0)
   {
     OdtSmoothingOptions oo = options.Odt;
+    if (!oo.ElementAdjacency)
+      oo.ElementAdjacency = options.ElementAdjacency;
     oo.Iterations = options.OdtIterations;
     OdtSmoothingResult od = SmoothSitesOdt(mesh, embedding, r.Sites, rvd, rdt, oo);
     r.Sites = std::move(od.Sites);
@@ -25,7 +27,10 @@ SiteImprovementResult ImproveSites(const SimplexMesh& mesh, const Embedding& emb
   }
   if (options.PerturbSlivers)
   {
-    SliverPerturbationResult sp = PerturbSliverSites(mesh, embedding, r.Sites, rdt, options.Sliver);
+    SliverPerturbationOptions so = options.Sliver;
+    if (!so.ElementAdjacency)
+      so.ElementAdjacency = options.ElementAdjacency;
+    SliverPerturbationResult sp = PerturbSliverSites(mesh, embedding, r.Sites, rdt, so);
     r.Sites = std::move(sp.Sites);
     r.NumSlivers = sp.NumSlivers;
   }

@@ -11,6 +11,8 @@
 #include "SliverPerturbation.h"
 
 #include <cstddef>
+#include <cstdint>
+#include <vector>
 
 namespace av
 {
@@ -24,6 +26,8 @@ struct SiteImprovementOptions
   /// Push the sites of slivers apart after the ODT steps (tet meshes only).
   bool PerturbSlivers = true;
   SliverPerturbationOptions Sliver;
+  /// ComputeElementAdjacency(mesh), shared by both steps (nullptr: each computes it).
+  const std::vector<std::int32_t>* ElementAdjacency = nullptr;
 };
 
 /// Output of ImproveSites.

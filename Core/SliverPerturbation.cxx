@@ -110,7 +110,12 @@ SliverPerturbationResult PerturbSliverSites(const SimplexMesh& mesh, const Embed
   }
   if (r.NumSlivers == 0 || options.StepFraction == 0.0)
     return r;
-  const std::vector<std::int32_t> adj = ComputeElementAdjacency(mesh);
+  std::vector<std::int32_t> ownAdjacency;
+  if (!options.ElementAdjacency)
+    ownAdjacency = ComputeElementAdjacency(mesh);
+  else if (options.ElementAdjacency->size() != mesh.NumCells() * 4)
+    fail("ElementAdjacency does not match the mesh (pass ComputeElementAdjacency of this mesh)");
+  const std::vector<std::int32_t>& adj = options.ElementAdjacency ? *options.ElementAdjacency : ownAdjacency;
   for (std::size_t s = 0; s < ns; ++s)
     if (move[s].size() > 0 && move[s].squaredNorm() > 0.0)
     {

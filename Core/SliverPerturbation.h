@@ -8,6 +8,7 @@
 #include "SimplexMesh.h"
 
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 namespace av
@@ -22,6 +23,8 @@ struct SliverPerturbationOptions
   /// Each sliver pushes its four sites this fraction of its mean embedded edge length away
   /// from its best-fit plane (a site of several slivers gets the sum of the pushes).
   double StepFraction = 0.07;
+  /// ComputeElementAdjacency(mesh) if the caller has it (nullptr: computed here).
+  const std::vector<std::int32_t>* ElementAdjacency = nullptr;
 };
 
 /// Output of PerturbSliverSites.

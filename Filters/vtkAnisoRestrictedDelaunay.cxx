@@ -187,6 +187,9 @@ int vtkAnisoRestrictedDelaunay::RequestData(vtkInformation* request,
     av::DelaunayRepairOptions options; // its Voronoi options: no geometry, records only
     options.MaxRounds = this->RepairInverted ? this->MaxRepairRounds : 0;
     options.RepairNonManifold = this->RepairNonManifold;
+    // Computed once for every diagram and site move below.
+    const std::vector<std::int32_t> adjacency = av::ComputeElementAdjacency(mesh);
+    options.Voronoi.ElementAdjacency = &adjacency;
     av::RestrictedVoronoiDiagram rvd =
       av::ComputeRestrictedVoronoi(mesh, embedding, sites, options.Voronoi);
     if (this->GetAbortExecute())
@@ -202,6 +205,7 @@ int vtkAnisoRestrictedDelaunay::RequestData(vtkInformation* request,
     this->UpdateProgress(0.6);
     av::SiteImprovementOptions improve;
     improve.OdtIterations = this->OdtIterations;
+    improve.ElementAdjacency = &adjacency;
     for (int round = 0; round < this->ImprovementRounds; ++round)
     {
       av::SiteImprovementResult sp = av::ImproveSites(mesh, embedding, sites, rvd, rdt, improve);

@@ -123,6 +123,9 @@ MeshStageResult RunMeshStage(const av::SimplexMesh& mesh, const av::MetricField&
   av::DelaunayRepairOptions ro; // its Voronoi options: no geometry, the dual needs only records
   ro.MaxRounds = options.Repair ? options.MaxRepairRounds : 0;
   ro.RepairNonManifold = options.RepairNonManifold;
+  // Computed once for all the diagrams and site moves on this mesh.
+  const std::vector<std::int32_t> adjacency = av::ComputeElementAdjacency(mesh);
+  ro.Voronoi.ElementAdjacency = &adjacency;
   av::RestrictedVoronoiDiagram rvd0 =
     av::ComputeRestrictedVoronoi(mesh, embedding, sampled.Sites, ro.Voronoi);
   r.RvdSeconds = Since(t1);
@@ -139,6 +142,7 @@ MeshStageResult RunMeshStage(const av::SimplexMesh& mesh, const av::MetricField&
     av::SiteImprovementOptions io;
     io.OdtIterations = options.OdtIterations;
     io.PerturbSlivers = options.PerturbSlivers;
+    io.ElementAdjacency = &adjacency;
     const av::SiteImprovementResult im =
       av::ImproveSites(mesh, embedding, sampled.Sites, rvd0, rdt0, io);
     if (round == 0)
