@@ -193,6 +193,21 @@ int main()
     av::RestrictedDelaunayMesh wrong = rdt;
     wrong.Cells[0] = 1000;
     AV_CHECK_THROWS(av::SmoothSitesOdt(tets, emb, sites, rvd, wrong));
+    // A shared adjacency gives the same result; one of the wrong size is refused.
+    const std::vector<std::int32_t> adjacency = av::ComputeElementAdjacency(tets);
+    av::OdtSmoothingOptions shared;
+    shared.ElementAdjacency = &adjacency;
+    const av::OdtSmoothingResult own = av::SmoothSitesOdt(tets, emb, sites, rvd, rdt);
+    const av::OdtSmoothingResult withShared = av::SmoothSitesOdt(tets, emb, sites, rvd, rdt, shared);
+    AV_CHECK(own.Sites.Coords == withShared.Sites.Coords && own.Sites.CellIds == withShared.Sites.CellIds);
+    const std::vector<std::int32_t> tooShort(adjacency.begin(), adjacency.end() - 4);
+    shared.ElementAdjacency = &tooShort;
+    AV_CHECK_THROWS(av::SmoothSitesOdt(tets, emb, sites, rvd, rdt, shared));
+    av::RestrictedVoronoiOptions vo;
+    vo.ElementAdjacency = &tooShort;
+    AV_CHECK_THROWS(av::ComputeRestrictedVoronoi(tets, emb, sites, vo));
+    vo.ElementAdjacency = &adjacency;
+    AV_CHECK(av::ComputeRestrictedVoronoi(tets, emb, sites, vo).PieceMeasure == rvd.PieceMeasure);
     av::SiteSet shortSites = sites;
     shortSites.Coords.pop_back();
     AV_CHECK_THROWS(av::SmoothSitesOdt(tets, emb, shortSites, rvd, rdt));
