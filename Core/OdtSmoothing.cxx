@@ -38,6 +38,9 @@ OdtSmoothingResult SmoothSitesOdt(const SimplexMesh& mesh, const Embedding& embe
   for (std::int32_t id : rvd.BoundaryDualFaces)
     if (id < 0 || static_cast<std::size_t>(id) >= ns)
       fail("the Voronoi diagram refers to a site id out of range (pass its sites)");
+  for (std::int32_t c : sites.CellIds)
+    if (c < 0 || static_cast<std::size_t>(c) >= mesh.NumCells())
+      fail("a site has a cell id out of range");
 
   OdtSmoothingResult r;
   r.Sites = sites;

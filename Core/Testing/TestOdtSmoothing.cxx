@@ -208,6 +208,9 @@ int main()
     AV_CHECK_THROWS(av::ComputeRestrictedVoronoi(tets, emb, sites, vo));
     vo.ElementAdjacency = &adjacency;
     AV_CHECK(av::ComputeRestrictedVoronoi(tets, emb, sites, vo).PieceMeasure == rvd.PieceMeasure);
+    av::SiteSet badCell = sites;
+    badCell.CellIds[0] = static_cast<std::int32_t>(tets.NumCells());
+    AV_CHECK_THROWS(av::SmoothSitesOdt(tets, emb, badCell, rvd, rdt));
     av::SiteSet shortSites = sites;
     shortSites.Coords.pop_back();
     AV_CHECK_THROWS(av::SmoothSitesOdt(tets, emb, shortSites, rvd, rdt));
