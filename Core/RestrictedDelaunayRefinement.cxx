@@ -102,6 +102,8 @@ DelaunayRepairResult Repair(const SimplexMesh& mesh, const Embedding& embedding,
 {
   if (options.MaxRounds < 0)
     throw InputError("RepairRestrictedDelaunay: MaxRounds must be >= 0");
+  if (options.StallRounds < 1)
+    throw InputError("RepairRestrictedDelaunay: StallRounds must be >= 1");
   if (!(options.MinDistanceFraction >= 0.0 && options.MinDistanceFraction < 1.0))
     throw InputError("RepairRestrictedDelaunay: MinDistanceFraction must be in [0, 1)");
   if (options.Voronoi.ElementBegin != 0 || options.Voronoi.ElementEnd >= 0)
@@ -114,6 +116,18 @@ DelaunayRepairResult Repair(const SimplexMesh& mesh, const Embedding& embedding,
   out.NumInputSites = sites.NumSites();
   SiteSet previousSites; // sites of out.Voronoi after an insertion round
   bool havePrevious = false;
+  // The state with the fewest bad elements so far, saved before each insertion that starts
+  // from it (a later round can be worse).
+  struct State
+  {
+    SiteSet Sites;
+    RestrictedVoronoiDiagram Voronoi;
+    RestrictedDelaunayMesh Delaunay;
+    int Rounds = 0;
+    std::size_t InsertedRounds = 0;
+  } best;
+  std::size_t bestBad = 0;
+  int roundsSinceBest = 0;
   for (int round = 0;; ++round)
   {
     if (round == 0 && voronoi)
@@ -147,11 +161,42 @@ DelaunayRepairResult Repair(const SimplexMesh& mesh, const Embedding& embedding,
       out.InitialInverted = rdt.NumInverted;
       out.InitialNonManifoldFaces = rdt.NumNonManifoldFaces;
     }
-    out.InvertedPerRound.push_back(rdt.NumInverted);
     const bool nonManifold = options.RepairNonManifold && rdt.NumNonManifoldFaces > 0;
+    const std::size_t numBad =
+      rdt.NumInverted + (options.RepairNonManifold ? rdt.NumNonManifoldFaces : 0);
+    out.InvertedPerRound.push_back(rdt.NumInverted);
     out.Converged = rdt.NumInverted == 0 && !nonManifold;
-    if (out.Converged || round >= options.MaxRounds)
+    const bool currentIsBest = round == 0 || numBad < bestBad;
+    if (currentIsBest)
+    {
+      bestBad = numBad;
+      roundsSinceBest = 0;
+    }
+    else
+    {
+      ++roundsSinceBest;
+    }
+    if (out.Converged || round >= options.MaxRounds || roundsSinceBest >= options.StallRounds)
+    {
+      if (!currentIsBest)
+      {
+        out.Sites = std::move(best.Sites);
+        out.Voronoi = std::move(best.Voronoi);
+        out.Delaunay = std::move(best.Delaunay);
+        out.Rounds = best.Rounds;
+        out.InsertedPerRound.resize(best.InsertedRounds);
+        out.Stalled = true;
+      }
       break;
+    }
+    if (currentIsBest)
+    {
+      best.Sites = out.Sites;
+      best.Voronoi = out.Voronoi;
+      best.Delaunay = out.Delaunay;
+      best.Rounds = out.Rounds;
+      best.InsertedRounds = out.InsertedPerRound.size();
+    }
 
     std::vector<std::uint8_t> bad = rdt.Inverted;
     if (nonManifold)

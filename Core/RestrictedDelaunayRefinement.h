@@ -28,6 +28,10 @@ struct DelaunayRepairOptions
   /// candidate accepted in the same round is skipped: nearly coincident Voronoi vertices
   /// (almost co-spherical sites) would otherwise give two sites at almost the same place.
   double MinDistanceFraction = 0.25;
+  /// Stop after this many rounds in a row that do not lower the fewest bad elements seen so
+  /// far (inverted, plus non-manifold faces with RepairNonManifold), and return that best state: on a poor embedding insertions can create more inverted
+  /// elements than they remove (the sphere-cos preset: 283 -> 523 -> 765 ...).
+  int StallRounds = 2;
   /// Options of every restricted Voronoi computation (ElementBegin/End must be the defaults).
   /// Default: no geometry (the dual needs only the Voronoi vertex records).
   RestrictedVoronoiOptions Voronoi = [] {
@@ -50,9 +54,13 @@ struct DelaunayRepairResult
   std::size_t InitialInverted = 0;   ///< inverted elements before any insertion
   std::size_t InitialNonManifoldFaces = 0;
   std::vector<std::size_t> InsertedPerRound;
-  std::vector<std::size_t> InvertedPerRound; ///< after each RDT (Rounds + 1 values)
+  /// Inverted elements after each RDT, also of the rounds a stall discarded.
+  std::vector<std::size_t> InvertedPerRound;
   /// No inverted element left (and no non-manifold face when RepairNonManifold).
   bool Converged = false;
+  /// The insertions stopped lowering the bad count (StallRounds): the returned state is the
+  /// one with the fewest bad elements, the later rounds' sites are dropped.
+  bool Stalled = false;
 };
 
 /**

@@ -305,6 +305,7 @@ int vtkAnisoRestrictedDelaunay::RequestData(vtkInformation* request,
   AddFieldValue(fd, "NumUnusedSites", static_cast<double>(rdt.NumUnusedSites));
   AddFieldValue(fd, "NumInsertedSites", static_cast<double>(repaired.NumInserted));
   AddFieldValue(fd, "RepairRounds", static_cast<double>(repaired.Rounds));
+  AddFieldValue(fd, "RepairStalled", repaired.Stalled ? 1.0 : 0.0);
   AddFieldValue(fd, "NumInvertedBeforeRepair", static_cast<double>(repaired.InitialInverted));
   AddFieldValue(fd, "NumNonManifoldFacesBeforeRepair",
     static_cast<double>(repaired.InitialNonManifoldFaces));
@@ -319,10 +320,16 @@ int vtkAnisoRestrictedDelaunay::RequestData(vtkInformation* request,
   {
     vtkWarningMacro("the dual mesh has " << rdt.NumInverted << " inverted element(s) and "
                                          << rdt.NumNonManifoldFaces << " non-manifold face(s) "
-                                         << (this->RepairInverted
-                                                ? "left after the repair (more repair rounds, "
-                                                  "more sites or a better embedding reduce them)"
-                                                : "(RepairInverted is off)"));
+                                         << (!this->RepairInverted
+                                                ? "(RepairInverted is off)"
+                                                : repaired.Stalled
+                                                ? "left: the repair stopped because insertions "
+                                                  "made more elements inverted than they "
+                                                  "removed (the embedding is too poor here: "
+                                                  "more embedding iterations or a finer input "
+                                                  "mesh help); the best state is kept"
+                                                : "left after the repair (more repair rounds, "
+                                                  "more sites or a better embedding reduce them)"));
   }
   this->UpdateProgress(1.0);
   return 1;

@@ -171,6 +171,8 @@ MeshStageResult RunMeshStage(const av::SimplexMesh& mesh, const av::MetricField&
   sampled.Sites = std::move(repaired.Sites);
   r.InsertedSites = repaired.NumInserted;
   r.RepairRounds = repaired.Rounds;
+  r.InvertedPerRound = repaired.InvertedPerRound;
+  r.RepairStalled = repaired.Stalled;
   r.RdtInvertedBeforeRepair = repaired.InitialInverted;
   r.NonManifoldFacesBeforeRepair = repaired.InitialNonManifoldFaces;
 

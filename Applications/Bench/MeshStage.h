@@ -55,6 +55,8 @@ struct MeshStageResult
   std::size_t Cells = 0;    ///< restricted Delaunay cells
   std::size_t InsertedSites = 0; ///< by the repair (Sites counts the sampled ones only)
   int RepairRounds = 0;
+  std::vector<std::size_t> InvertedPerRound; ///< bad dual elements before each repair round
+  bool RepairStalled = false; ///< the repair kept an earlier, better state
   std::size_t RdtInvertedBeforeRepair = 0;
   std::size_t NonManifoldFacesBeforeRepair = 0;
   double GMin = 0.0, GAvg = 0.0, ThetaMin = 0.0, ThetaAvg = 0.0, PercentBad = 0.0;

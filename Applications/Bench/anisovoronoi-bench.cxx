@@ -72,6 +72,13 @@ public:
   void Set(const std::string& key, int value) { this->Put(key, std::to_string(value)); }
   void Set(const std::string& key, std::size_t value) { this->Put(key, std::to_string(value)); }
   void Set(const std::string& key, bool value) { this->Put(key, value ? "true" : "false"); }
+  void Set(const std::string& key, const std::vector<std::size_t>& values)
+  {
+    std::string s = "[";
+    for (std::size_t i = 0; i < values.size(); ++i)
+      s += (i ? ", " : "") + std::to_string(values[i]);
+    this->Put(key, s + "]");
+  }
   std::string Str() const
   {
     std::string s = "{";
@@ -362,6 +369,8 @@ void StageMesh(const Args& a, const Case& c, JsonLine& out)
   out.Set("repair_nonmanifold", o.RepairNonManifold);
   out.Set("repair_seconds", r.RepairSeconds);
   out.Set("repair_rounds", r.RepairRounds);
+  out.Set("inverted_per_round", r.InvertedPerRound);
+  out.Set("repair_stalled", r.RepairStalled);
   out.Set("inserted_sites", r.InsertedSites);
   out.Set("mesh_seconds", r.MeshSeconds);
   out.Set("output_cells", r.Cells);

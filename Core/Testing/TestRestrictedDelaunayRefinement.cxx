@@ -248,6 +248,39 @@ void TestRepair3D()
             << std::endl;
 }
 
+// A strongly folded embedding: every insertion round makes more inverted elements than it
+// removes (183 -> 322 -> 651 here). The repair must stop after StallRounds rounds without
+// progress and return its best state (the input, untouched), not run away.
+void TestRepairStalls()
+{
+  const double lo[3] = { 0, 0, 0 }, hi[3] = { 1, 1, 1 };
+  const av::SimplexMesh m = KuhnGrid(9, 9, 9, lo, hi);
+  const av::Embedding e = Wavy(m, 0.3, 12.0);
+  const av::SiteSet s = RandomSites(m, e, 60, 3);
+  const av::DelaunayRepairResult r = av::RepairRestrictedDelaunay(m, e, s);
+  std::cout << "stalled repair: bad per round";
+  for (std::size_t v : r.InvertedPerRound)
+    std::cout << " " << v;
+  std::cout << ", kept " << r.Delaunay.NumInverted << std::endl;
+  AV_CHECK(r.Stalled && !r.Converged);
+  AV_CHECK(r.InvertedPerRound.size() == 3); // round 0 and StallRounds (2) worse rounds
+  const std::size_t best = *std::min_element(r.InvertedPerRound.begin(), r.InvertedPerRound.end());
+  AV_CHECK(best == r.InvertedPerRound[0] && best > 0);
+  AV_CHECK(r.Delaunay.NumInverted == best);
+  AV_CHECK(r.NumInserted == 0 && r.Rounds == 0 && r.InsertedPerRound.empty());
+  AV_CHECK(r.Sites.Coords == s.Coords && r.Sites.CellIds == s.CellIds);
+  // The returned diagram and dual are those of the returned sites.
+  const av::RestrictedVoronoiDiagram v =
+    av::ComputeRestrictedVoronoi(m, e, r.Sites, av::DelaunayRepairOptions().Voronoi);
+  AV_CHECK(v.PieceMeasure == r.Voronoi.PieceMeasure);
+  AV_CHECK(av::ComputeRestrictedDelaunay(m, e, r.Sites, v).Cells == r.Delaunay.Cells);
+  // One round without progress is enough to stop with StallRounds = 1.
+  av::DelaunayRepairOptions o;
+  o.StallRounds = 1;
+  const av::DelaunayRepairResult r1 = av::RepairRestrictedDelaunay(m, e, s, o);
+  AV_CHECK(r1.Stalled && r1.InvertedPerRound.size() == 2 && r1.Delaunay.NumInverted == best);
+}
+
 void TestNothingToRepair()
 {
   // Identity embedding: Delaunay, never inverted; nothing inserted.
@@ -272,6 +305,9 @@ void TestBadOptions()
   o.MinDistanceFraction = 1.5;
   AV_CHECK_THROWS(av::RepairRestrictedDelaunay(m, e, s, o));
   o = av::DelaunayRepairOptions();
+  o.StallRounds = 0;
+  AV_CHECK_THROWS(av::RepairRestrictedDelaunay(m, e, s, o));
+  o = av::DelaunayRepairOptions();
   o.Voronoi.ElementEnd = 3;
   AV_CHECK_THROWS(av::RepairRestrictedDelaunay(m, e, s, o));
   av::SiteSet none;
@@ -286,6 +322,7 @@ int main()
   TestVoronoiVertex();
   TestRepair2D();
   TestRepair3D();
+  TestRepairStalls();
   TestNothingToRepair();
   TestBadOptions();
   return AV_TEST_RESULT();
