@@ -715,6 +715,7 @@ int main(int argc, char* argv[])
     { "repair_seconds", JsonNumber(repairSeconds) },
     { "repair_rounds", JsonNumber(FieldValue(rdtOut, "RepairRounds")) },
     { "inserted_sites", JsonNumber(FieldValue(rdtOut, "NumInsertedSites")) },
+    { "repair_stalled", FieldValue(rdtOut, "RepairStalled") > 0.0 ? "true" : "false" },
     { "slivers_perturbed", JsonNumber(FieldValue(rdtOut, "NumSliversPerturbed")) },
     { "moved_sites", JsonNumber(FieldValue(rdtOut, "NumMovedSites")) },
     { "odt_moved_sites", JsonNumber(FieldValue(rdtOut, "NumOdtMovedSites")) },
