@@ -31,6 +31,14 @@ struct ParticleSamplerOptions
   /// Initial sites drawn by jittered stratification along a Morton order of the cells
   /// (false: i.i.d. draws, the paper's random start).
   bool StratifiedInitialSites = true;
+  /// Candidates per initial site of a best-candidate (well-spaced) start, >= 1: each site
+  /// is the one of this many measure-proportional draws farthest (in R^Dim) from the sites
+  /// placed before (1: the draws above; StratifiedInitialSites is then ignored). Off by
+  /// default: 20 makes a much better start (dual of the unmoved cube1 sites G_avg 0.64 ->
+  /// 0.78, slivers 12 % -> 3 %; +0.03 s for 5000 sites on cube2), but after the default
+  /// 100 + 50 iterations the mesh is the same within seed noise (cube1 / cube2 G_avg 0.906 /
+  /// 0.911 either way); with no warm-up it gains ~0.002 G_avg.
+  int InitialCandidates = 1;
   /// Called once per iteration with the fraction done in [0,1]; return false to abort.
   std::function<bool(double)> Progress; ///< fraction of WarmupIterations + Iterations
 };
