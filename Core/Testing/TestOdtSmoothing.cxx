@@ -5,53 +5,18 @@
 #include "RestrictedDelaunayRefinement.h"
 #include "StructuredMeshes.h"
 #include "TestUtilities.h"
+#include "VoronoiTestMeshes.h"
 
 #include <Eigen/Dense>
 
 #include <cmath>
-#include <random>
 
 namespace
 {
 // Identity embedding of a mesh, padded with zero columns up to dim.
 av::Embedding Identity(const av::SimplexMesh& m, int dim)
 {
-  av::Embedding e;
-  e.Dim = dim;
-  e.Coords.assign(m.NumPoints() * dim, 0.0);
-  for (std::size_t i = 0; i < m.NumPoints(); ++i)
-    for (int d = 0; d < m.AmbientDim; ++d)
-      e.Coords[i * dim + d] = m.Point(i)[d];
-  return e;
-}
-
-// n sites at random cells and barycentric coordinates (deterministic).
-av::SiteSet RandomSites(const av::SimplexMesh& m, const av::Embedding& e, std::size_t n, unsigned seed)
-{
-  std::mt19937 rng(seed);
-  std::uniform_int_distribution<std::size_t> cell(0, m.NumCells() - 1);
-  std::uniform_real_distribution<double> u(0.05, 1.0);
-  const int nv = m.SimplexDim + 1;
-  av::SiteSet s;
-  s.Dim = e.Dim;
-  for (std::size_t i = 0; i < n; ++i)
-  {
-    const std::size_t c = cell(rng);
-    double b[4] = { 0, 0, 0, 0 }, sum = 0.0;
-    for (int a = 0; a < nv; ++a)
-      sum += (b[a] = u(rng));
-    s.CellIds.push_back(static_cast<std::int32_t>(c));
-    for (int a = 0; a < 4; ++a)
-      s.Bary.push_back(b[a] / sum);
-    for (int d = 0; d < e.Dim; ++d)
-    {
-      double y = 0.0;
-      for (int a = 0; a < nv; ++a)
-        y += b[a] / sum * e.At(m.Cell(c)[a])[d];
-      s.Coords.push_back(y);
-    }
-  }
-  return s;
+  return av_test::MakeEmbedding(m, dim, nullptr);
 }
 
 // Mean quality of a simplex mesh with site coordinates in R^dim: mean ratio for tets
@@ -84,7 +49,7 @@ double MeanQuality(const av::RestrictedDelaunayMesh& rdt, const av::SiteSet& s)
 void CheckOdt(const av::SimplexMesh& mesh, int dim, std::size_t numSites)
 {
   const av::Embedding emb = Identity(mesh, dim);
-  const av::SiteSet sites = RandomSites(mesh, emb, numSites, 7);
+  const av::SiteSet sites = av_test::RandomSites(mesh, emb, static_cast<int>(numSites), 7);
   const av::RestrictedVoronoiOptions vo = av::DelaunayRepairOptions().Voronoi;
   const av::RestrictedVoronoiDiagram rvd = av::ComputeRestrictedVoronoi(mesh, emb, sites, vo);
   const av::RestrictedDelaunayMesh rdt = av::ComputeRestrictedDelaunay(mesh, emb, sites, rvd);
@@ -182,7 +147,7 @@ int main()
   // Bad input.
   {
     const av::Embedding emb = Identity(tets, 3);
-    const av::SiteSet sites = RandomSites(tets, emb, 50, 3);
+    const av::SiteSet sites = av_test::RandomSites(tets, emb, 50, 3);
     const av::RestrictedVoronoiDiagram rvd = av::ComputeRestrictedVoronoi(tets, emb, sites);
     av::RestrictedDelaunayMesh rdt = av::ComputeRestrictedDelaunay(tets, emb, sites, rvd);
     av::OdtSmoothingOptions o;
