@@ -19,28 +19,20 @@ OdtSmoothingResult SmoothSitesOdt(const SimplexMesh& mesh, const Embedding& embe
   const OdtSmoothingOptions& options)
 {
   auto fail = [](const std::string& m) { throw InputError("SmoothSitesOdt: " + m); };
+  ValidateSiteMoveInput("SmoothSitesOdt", mesh, embedding, sites, rdt);
   const std::size_t ns = sites.NumSites();
   const int dim = embedding.Dim;
-  if (sites.Dim != dim || sites.Coords.size() != ns * static_cast<std::size_t>(dim) ||
-    sites.Bary.size() != 4 * ns)
-    fail("sites do not match the embedding dimension or have inconsistent array sizes");
   if (!(options.StepFraction >= 0.0) || !std::isfinite(options.StepFraction))
     fail("StepFraction must be finite and >= 0");
   if (options.Iterations < 0)
     fail("Iterations must be >= 0");
   const int k = rdt.SimplexDim;
   const int nv = k + 1;
-  if (k != mesh.SimplexDim || rdt.Cells.size() % static_cast<std::size_t>(nv) != 0)
+  if (k != mesh.SimplexDim)
     fail("the Delaunay mesh does not match the input mesh's simplex dimension");
-  for (std::int32_t id : rdt.Cells)
-    if (id < 0 || static_cast<std::size_t>(id) >= ns)
-      fail("a Delaunay cell refers to a site id out of range (pass the sites of that mesh)");
   for (std::int32_t id : rvd.BoundaryDualFaces)
     if (id < 0 || static_cast<std::size_t>(id) >= ns)
       fail("the Voronoi diagram refers to a site id out of range (pass its sites)");
-  for (std::int32_t c : sites.CellIds)
-    if (c < 0 || static_cast<std::size_t>(c) >= mesh.NumCells())
-      fail("a site has a cell id out of range");
 
   OdtSmoothingResult r;
   r.Sites = sites;

@@ -5,9 +5,32 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 namespace av
 {
+
+void ValidateSiteMoveInput(const char* caller, const SimplexMesh& mesh,
+  const Embedding& embedding, const SiteSet& sites, const RestrictedDelaunayMesh& rdt)
+{
+  auto fail = [caller](const std::string& m) { throw InputError(std::string(caller) + ": " + m); };
+  const std::size_t ns = sites.NumSites();
+  const int dim = embedding.Dim;
+  if (sites.Dim != dim || sites.Coords.size() != ns * static_cast<std::size_t>(dim) ||
+    sites.Bary.size() != 4 * ns)
+    fail("sites do not match the embedding dimension or have inconsistent array sizes");
+  if (embedding.Coords.size() != mesh.NumPoints() * static_cast<std::size_t>(dim))
+    fail("embedding has " + std::to_string(embedding.Coords.size()) + " values, expected NumPoints x Dim");
+  for (std::int32_t c : sites.CellIds)
+    if (c < 0 || static_cast<std::size_t>(c) >= mesh.NumCells())
+      fail("a site has a cell id out of range");
+  const int nv = rdt.SimplexDim + 1;
+  if (rdt.Cells.size() % static_cast<std::size_t>(nv) != 0)
+    fail("the Delaunay cells are not a multiple of SimplexDim+1");
+  for (std::int32_t id : rdt.Cells)
+    if (id < 0 || static_cast<std::size_t>(id) >= ns)
+      fail("a Delaunay cell refers to a site id out of range (pass the sites of that mesh)");
+}
 
 void WalkSiteOnMesh(const SimplexMesh& mesh, const Embedding& emb,
   const std::vector<std::int32_t>& adj, SiteSet& sites, std::size_t s, const double* d)

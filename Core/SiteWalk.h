@@ -3,6 +3,7 @@
 #ifndef av_SiteWalk_h
 #define av_SiteWalk_h
 
+#include "RestrictedDelaunay.h"
 #include "SimplexMesh.h"
 
 #include <cstddef>
@@ -23,6 +24,14 @@ namespace av
  */
 void WalkSiteOnMesh(const SimplexMesh& mesh, const Embedding& embedding,
   const std::vector<std::int32_t>& adjacency, SiteSet& sites, std::size_t s, const double* d);
+
+/**
+ * Checks the input of a site move on a restricted Delaunay mesh (ODT smoothing, sliver
+ * perturbation): site arrays against the embedding dimension, the embedding against the mesh,
+ * site cell ids, and the Delaunay cells' site ids. Throws InputError("<caller>: ...").
+ */
+void ValidateSiteMoveInput(const char* caller, const SimplexMesh& mesh,
+  const Embedding& embedding, const SiteSet& sites, const RestrictedDelaunayMesh& rdt);
 
 } // namespace av
 

@@ -53,24 +53,12 @@ SliverPerturbationResult PerturbSliverSites(const SimplexMesh& mesh, const Embed
   const SiteSet& sites, const RestrictedDelaunayMesh& rdt, const SliverPerturbationOptions& options)
 {
   auto fail = [](const std::string& m) { throw InputError("PerturbSliverSites: " + m); };
+  ValidateSiteMoveInput("PerturbSliverSites", mesh, embedding, sites, rdt);
   const std::size_t ns = sites.NumSites();
   const int dim = embedding.Dim;
-  if (sites.Dim != dim || sites.Coords.size() != ns * static_cast<std::size_t>(dim) || sites.Bary.size() != 4 * ns)
-    fail("sites do not match the embedding dimension or have inconsistent array sizes");
-  if (embedding.Coords.size() != mesh.NumPoints() * static_cast<std::size_t>(dim))
-    fail("embedding has " + std::to_string(embedding.Coords.size()) + " values, expected NumPoints x Dim");
   if (!(options.StepFraction >= 0.0) || !std::isfinite(options.StepFraction) ||
     !(options.MinDihedralDegrees >= 0.0) || !(options.MinDihedralDegrees <= 90.0))
     fail("StepFraction must be finite and >= 0, MinDihedralDegrees in [0, 90]");
-  const int nv = rdt.SimplexDim + 1;
-  if (rdt.Cells.size() % static_cast<std::size_t>(nv) != 0)
-    fail("the Delaunay cells are not a multiple of SimplexDim+1");
-  for (std::int32_t id : rdt.Cells)
-    if (id < 0 || static_cast<std::size_t>(id) >= ns)
-      fail("a Delaunay cell refers to a site id out of range (pass the sites of that mesh)");
-  for (std::int32_t c : sites.CellIds)
-    if (c < 0 || static_cast<std::size_t>(c) >= mesh.NumCells())
-      fail("a site has a cell id out of range");
 
   SliverPerturbationResult r;
   r.Sites = sites;
