@@ -19,6 +19,30 @@ namespace av
 {
 namespace
 {
+// Side of the cells of a uniform grid over the box [lo, hi] (3 projected coordinates) for
+// searches of radius r among `count` points: a bit over r, so neighbours are in adjacent
+// cells despite round-off, coarsened while the grid would have more than 4 count + 64 cells
+// (far-apart clusters: still exact). Writes the cell counts per axis.
+double GridCellSide(const double lo[3], const double hi[3], double r, std::size_t count,
+  long long cellsPerAxis[3])
+{
+  double extent = 0.0;
+  for (int a = 0; a < 3; ++a)
+    extent = std::max(extent, hi[a] - lo[a]);
+  double h = std::max(r * (1.0 + 1e-6), 1e-12 * extent + 1e-300);
+  for (;;)
+  {
+    long long cells = 1;
+    for (int a = 0; a < 3; ++a)
+    {
+      cellsPerAxis[a] = static_cast<long long>((hi[a] - lo[a]) / h) + 1;
+      cells *= cellsPerAxis[a];
+    }
+    if (cells <= 4 * static_cast<long long>(count) + 64)
+      return h;
+    h *= 1.5;
+  }
+}
 constexpr int kMaxDim = 20;
 
 void CheckInputs(const SimplexMesh& mesh, const Embedding& emb)
@@ -487,24 +511,8 @@ public:
         hi[a] = p == 0 ? y[a] : std::max(hi[a], y[a]);
       }
     }
-    double h = r * (1.0 + 1e-6);
-    double extent = 0.0;
-    for (int a = 0; a < 3; ++a)
-      extent = std::max(extent, hi[a] - lo[a]);
-    h = std::max(h, 1e-12 * extent);
     long long n[3];
-    for (;;)
-    {
-      long long cells = 1;
-      for (int a = 0; a < 3; ++a)
-      {
-        n[a] = static_cast<long long>((hi[a] - lo[a]) / h) + 1;
-        cells *= n[a];
-      }
-      if (cells <= 4 * static_cast<long long>(N) + 64)
-        break;
-      h *= 1.5; // far-apart clusters: coarser grid, still exact
-    }
+    const double h = GridCellSide(lo, hi, r, N, n);
     auto cellOf = [&](std::size_t p, int a)
     { return std::min(n[a] - 1, static_cast<long long>((Proj[3 * p + a] - lo[a]) / h)); };
     const auto numCells = static_cast<std::size_t>(n[0] * n[1] * n[2]);
@@ -1042,23 +1050,8 @@ void BestCandidateSites(const SimplexMesh& mesh, const Embedding& emb,
       hi[a] = v == 0 ? y[a] : std::max(hi[a], y[a]);
     }
   }
-  double h = r * (1.0 + 1e-6), extent = 0.0;
-  for (int a = 0; a < 3; ++a)
-    extent = std::max(extent, hi[a] - lo[a]);
-  h = std::max(h, 1e-12 * extent + 1e-300);
   long long g[3];
-  for (;;)
-  {
-    long long cells = 1;
-    for (int a = 0; a < 3; ++a)
-    {
-      g[a] = static_cast<long long>((hi[a] - lo[a]) / h) + 1;
-      cells *= g[a];
-    }
-    if (cells <= 4 * static_cast<long long>(n) + 64)
-      break;
-    h *= 1.5;
-  }
+  const double h = GridCellSide(lo, hi, r, n, g);
   std::vector<std::int32_t> head(static_cast<std::size_t>(g[0] * g[1] * g[2]), -1), next(n, -1);
 
   SiteSet& s = res.Sites;
