@@ -105,6 +105,7 @@ int vtkAnisoParticleSampler::RequestData(vtkInformation* request,
   av::ParticleSamplerOptions options;
   options.NumSites = static_cast<std::size_t>(this->NumberOfSites);
   options.Iterations = this->Iterations;
+  options.WarmupIterations = this->WarmupIterations;
   options.Seed = static_cast<std::uint64_t>(static_cast<std::uint32_t>(this->Seed));
   options.KernelWidthFactor = this->KernelWidthFactor;
   options.NeighbourCutoff = this->NeighbourCutoff;
@@ -177,6 +178,7 @@ int vtkAnisoParticleSampler::RequestData(vtkInformation* request,
   AddFieldValue(fd, "EmbeddedMeasure", result.EmbeddedMeasure);
   AddFieldValue(fd, "MeanNeighbours", result.MeanNeighbours);
   AddFieldValue(fd, "SamplerIterations", result.IterationsDone);
+  AddFieldValue(fd, "SamplerWarmupIterations", result.WarmupIterationsDone);
   AddFieldValue(fd, "SamplerSeconds", result.Seconds);
 
   vtkNew<vtkIntArray> iteration;
@@ -199,6 +201,7 @@ void vtkAnisoParticleSampler::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "NumberOfSites: " << this->NumberOfSites << "\n";
   os << indent << "Iterations: " << this->Iterations << "\n";
+  os << indent << "WarmupIterations: " << this->WarmupIterations << "\n";
   os << indent << "Seed: " << this->Seed << "\n";
   os << indent << "KernelWidthFactor: " << this->KernelWidthFactor << "\n";
   os << indent << "NeighbourCutoff: " << this->NeighbourCutoff << "\n";

@@ -261,6 +261,7 @@ int vtkAnisoTensorPipeline::RequestData(
   sampler->SetInputData(embedded);
   sampler->SetNumberOfSites(this->NumberOfCells);
   sampler->SetIterations(this->SamplingIterations);
+  sampler->SetWarmupIterations(this->SamplingWarmupIterations);
   sampler->SetSeed(this->Seed);
   if (!this->RunStage(sampler, "particle sampler", 0.6, 0.85, error))
   {
@@ -290,6 +291,7 @@ void vtkAnisoTensorPipeline::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "TargetDimension: " << this->TargetDimension << "\n";
   os << indent << "Iterations: " << this->Iterations << "\n";
   os << indent << "SamplingIterations: " << this->SamplingIterations << "\n";
+  os << indent << "SamplingWarmupIterations: " << this->SamplingWarmupIterations << "\n";
   os << indent << "MaximumAnisotropy: " << this->MaximumAnisotropy << "\n";
   os << indent << "MinimumEigenvalue: " << this->MinimumEigenvalue << "\n";
   os << indent << "SmoothingIterations: " << this->SmoothingIterations << "\n";

@@ -77,6 +77,13 @@ public:
   ///@}
 
   ///@{
+  /// Particle sampler warm-up iterations at a narrower kernel, run first (default 100; see
+  /// vtkAnisoParticleSampler::WarmupIterations: 0 with 1000 or more SamplingIterations).
+  vtkSetClampMacro(SamplingWarmupIterations, int, 0, 100000);
+  vtkGetMacro(SamplingWarmupIterations, int);
+  ///@}
+
+  ///@{
   /// TENSOR_FIELD: largest stretch ratio of the metric (default 10).
   vtkSetClampMacro(MaximumAnisotropy, double, 1.0, VTK_DOUBLE_MAX);
   vtkGetMacro(MaximumAnisotropy, double);
@@ -132,6 +139,7 @@ protected:
   int TargetDimension = 8;
   int Iterations = 50;
   int SamplingIterations = 50;
+  int SamplingWarmupIterations = 100;
   double MaximumAnisotropy = 10.0;
   double MinimumEigenvalue = 0.1;
   int SmoothingIterations = 10;

@@ -21,7 +21,8 @@ LoadPlugin(plugin, ns=globals())
 
 source = AnisoAnalyticMetricSource(Preset=1, Resolution=6)  # Cube1 on [0, 1]^3
 common = dict(Input=source, Tensors=["POINTS", "Metric"], FieldMode="Metric Field",
-              NumberOfCells=100, TargetDimension=5, Iterations=10, SamplingIterations=10)
+              NumberOfCells=100, TargetDimension=5, Iterations=10, SamplingIterations=10,
+              SamplingWarmupIterations=0)
 voronoi = AnisoAnisotropicVoronoi(ShrinkFactor=0.8, **common)
 voronoi.UpdatePipeline()
 cells = servermanager.Fetch(voronoi)

@@ -52,6 +52,18 @@ for name in ("Embedding", "CellId", "Barycentric", "Metric"):
     assert sites.GetPointData().GetArray(name) is not None, name
 assert sites.GetPointData().GetArray("Barycentric").GetNumberOfComponents() == 4
 assert field(sites, "Sigma") > 0
+# The warm-up runs first by default and is switched off with WarmupIterations = 0.
+assert sampler.GetWarmupIterations() == 100
+assert 0 < field(sites, "SamplerWarmupIterations") <= 100
+warm_first = [sites.GetPoint(i) for i in range(5)]
+sampler.SetWarmupIterations(0)
+sampler.Update()
+assert field(sampler.GetOutput(), "SamplerWarmupIterations") == 0
+assert [sampler.GetOutput().GetPoint(i) for i in range(5)] != warm_first
+sampler.SetWarmupIterations(100)
+sampler.Update()
+assert [sampler.GetOutput().GetPoint(i) for i in range(5)] == warm_first
+sites = sampler.GetOutput()
 
 cells = rvd.GetOutput()
 pts = cells.GetPoints()
