@@ -60,6 +60,8 @@ SliverPerturbationResult PerturbSliverSites(const SimplexMesh& mesh, const Embed
     !(options.MinDihedralDegrees >= 0.0) || !(options.MinDihedralDegrees <= 90.0))
     fail("StepFraction must be finite and >= 0, MinDihedralDegrees in [0, 90]");
 
+  if (options.FixedSites && options.FixedSites->size() != ns)
+    fail("FixedSites must have one entry per site");
   SliverPerturbationResult r;
   r.Sites = sites;
   if (mesh.SimplexDim != 3 || rdt.SimplexDim != 3)
@@ -105,7 +107,8 @@ SliverPerturbationResult PerturbSliverSites(const SimplexMesh& mesh, const Embed
     fail("ElementAdjacency does not match the mesh (pass ComputeElementAdjacency of this mesh)");
   const std::vector<std::int32_t>& adj = options.ElementAdjacency ? *options.ElementAdjacency : ownAdjacency;
   for (std::size_t s = 0; s < ns; ++s)
-    if (move[s].size() > 0 && move[s].squaredNorm() > 0.0)
+    if (move[s].size() > 0 && move[s].squaredNorm() > 0.0 &&
+      !(options.FixedSites && (*options.FixedSites)[s]))
     {
       WalkSiteOnMesh(mesh, embedding, adj, r.Sites, s, move[s].data());
       ++r.NumMovedSites;

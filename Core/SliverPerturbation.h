@@ -25,6 +25,9 @@ struct SliverPerturbationOptions
   double StepFraction = 0.07;
   /// ComputeElementAdjacency(mesh) if the caller has it (nullptr: computed here).
   const std::vector<std::int32_t>* ElementAdjacency = nullptr;
+  /// Per site, nonzero: never moved (e.g. the sampler's corner and feature-line sites, which
+  /// a push would take off their feature). nullptr: every site may move.
+  const std::vector<std::uint8_t>* FixedSites = nullptr;
 };
 
 /// Output of PerturbSliverSites.
@@ -45,7 +48,8 @@ struct SliverPerturbationResult
  * element faces; it stops at the domain boundary), so a moved site stays on the mesh with a
  * valid cell id and barycentric coordinates. Sites of no sliver keep their exact values.
  * Triangle meshes are returned unchanged (NumSlivers 0). Deterministic (serial).
- * Throws InputError when sizes do not match (sites vs embedding, RDT point ids out of range).
+ * Throws InputError when sizes do not match (sites vs embedding, RDT point ids out of range,
+ * FixedSites not one per site).
  */
 SliverPerturbationResult PerturbSliverSites(const SimplexMesh& mesh, const Embedding& embedding,
   const SiteSet& sites, const RestrictedDelaunayMesh& rdt,

@@ -169,6 +169,24 @@ int main()
     AV_CHECK(g.Sites.Coords == f.Sites.Coords && g.Sites.CellIds == f.Sites.CellIds);
   }
 
+  // Fixed sites (e.g. corner / feature-line sites) keep their exact values; the others move.
+  {
+    av::SliverPerturbationOptions fo;
+    fo.StepFraction = 0.1;
+    const std::vector<std::uint8_t> fixed = { 1, 0, 0, 1, 0, 0, 0, 0 };
+    fo.FixedSites = &fixed;
+    const av::SliverPerturbationResult k = av::PerturbSliverSites(mesh, emb, sites, rdt, fo);
+    AV_CHECK(k.NumSlivers == 1 && k.NumMovedSites == 2);
+    for (int i = 0; i < 4; ++i)
+    {
+      const bool same = k.Sites.At(i)[2] == sites.At(i)[2] && k.Sites.CellIds[i] == sites.CellIds[i];
+      AV_CHECK(same == (fixed[static_cast<std::size_t>(i)] != 0));
+    }
+    const std::vector<std::uint8_t> shortFlags = { 1, 0 };
+    fo.FixedSites = &shortFlags;
+    AV_CHECK_THROWS(av::PerturbSliverSites(mesh, emb, sites, rdt, fo));
+  }
+
   // Threshold 0: nothing is a sliver, nothing moves.
   {
     av::SliverPerturbationOptions z;
