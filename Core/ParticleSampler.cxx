@@ -1,5 +1,8 @@
 #include "ParticleSampler.h"
 
+#include "FeatureSites.h"
+#include "SharpFeatures.h"
+
 #include <Eigen/Dense>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -193,10 +196,12 @@ class Sampler
   };
 
 public:
-  Sampler(const SimplexMesh& mesh, const Embedding& emb, const VertexCells& vc)
+  Sampler(const SimplexMesh& mesh, const Embedding& emb, const VertexCells& vc,
+    const SharpFeatures* features)
     : Mesh(mesh)
     , Emb(emb)
     , VC(vc)
+    , Features(features)
     , Dim(emb.Dim)
     , NbrMemo(new std::atomic<std::int32_t>[mesh.NumCells() * NV])
   {
@@ -377,6 +382,66 @@ public:
     for (int i = 0; i < NV; ++i)
       p -= db[i] * Vertex(cd, i);
     return p;
+  }
+
+  /// Unit embedded direction of feature edge e (from its first to its second point).
+  Vec EdgeDirection(std::int32_t e, double* length) const
+  {
+    const auto ue = static_cast<std::size_t>(e);
+    const Eigen::Map<const Vec> a(Emb.At(static_cast<std::size_t>(Features->Edges[2 * ue])), Dim);
+    const Eigen::Map<const Vec> b(Emb.At(static_cast<std::size_t>(Features->Edges[2 * ue + 1])), Dim);
+    Vec u = b - a;
+    *length = u.norm();
+    if (*length > 0.0)
+      u /= *length;
+    return u;
+  }
+
+  /**
+   * Moves a feature-line particle by the component of d along its edge, continuing through
+   * non-corner points onto the next edge of the line and stopping at corners and junctions.
+   * The particle's cell is always its edge's EdgeCells entry, its barycentrics nonzero only
+   * at the edge's two points. Returns the data of the final cell.
+   */
+  const CellData& WalkLine(std::size_t p, std::int32_t& cell, double* b, std::int32_t& edge, const Vec& d)
+  {
+    const SharpFeatures& f = *Features;
+    auto ue = static_cast<std::size_t>(edge);
+    double len = 0.0;
+    const Vec u = EdgeDirection(edge, &len);
+    double t = b[f.EdgeLocal[2 * ue + 1]]; // weight of the edge's second point
+    double s = u.dot(d);                   // signed distance towards the second point
+    for (int guard = 0; guard < 100000 && len > 0.0; ++guard)
+    {
+      const double tn = t + s / len;
+      if (tn >= 0.0 && tn <= 1.0)
+      {
+        t = tn;
+        break;
+      }
+      const bool forward = tn > 1.0;
+      const double rest = forward ? (tn - 1.0) * len : -tn * len;
+      const std::int32_t at = f.Edges[2 * ue + (forward ? 1 : 0)];
+      const std::int32_t next = NextFeatureEdge(f, edge, at);
+      if (next < 0)
+      {
+        t = forward ? 1.0 : 0.0;
+        break;
+      }
+      edge = next;
+      ue = static_cast<std::size_t>(edge);
+      EdgeDirection(edge, &len);
+      // Continue away from `at` on the next edge.
+      const bool atFirst = f.Edges[2 * ue] == at;
+      t = atFirst ? 0.0 : 1.0;
+      s = atFirst ? rest : -rest;
+    }
+    cell = f.EdgeCells[ue];
+    for (int i = 0; i < 4; ++i)
+      b[i] = 0.0;
+    b[f.EdgeLocal[2 * ue]] = 1.0 - t;
+    b[f.EdgeLocal[2 * ue + 1]] = t;
+    return Data(p, cell, 1);
   }
 
   /**
@@ -634,7 +699,8 @@ public:
    * does not depend on the neighbour lists.
    */
   double Evaluate(const std::vector<double>& x, const std::vector<std::int32_t>& cells,
-    const std::vector<double>& bary, std::vector<double>* grad)
+    const std::vector<double>& bary, const std::vector<std::int32_t>& edges,
+    std::vector<double>* grad)
   {
     ++Evaluations;
     EnsureNeighbours(x);
@@ -663,8 +729,17 @@ public:
           PerParticle[p] = 0.5 * e;
           if (grad)
           {
-            Eigen::Map<Vec>(grad->data() + p * static_cast<std::size_t>(Dim), Dim) =
-              ProjectGradient(Data(p, cells[p], 0), bary.data() + 4 * p, g);
+            Eigen::Map<Vec> gp(grad->data() + p * static_cast<std::size_t>(Dim), Dim);
+            if (Kind[p] == 0)
+              gp = ProjectGradient(Data(p, cells[p], 0), bary.data() + 4 * p, g);
+            else if (Kind[p] == 1)
+            {
+              double len = 0.0;
+              const Vec u = EdgeDirection(edges[p], &len);
+              gp = u.dot(g) * u; // along the feature line only
+            }
+            else
+              gp.setZero(); // corners do not move
           }
         }
       });
@@ -695,6 +770,7 @@ public:
   void Run(const ParticleSamplerOptions& opt, ParticleSamplerResult& res)
   {
     N = res.Sites.NumSites();
+    Kind = res.FeatureKind.data();
     Lists.resize(N);
     Outer.resize(N);
     PerParticle.assign(N, 0.0);
@@ -718,7 +794,8 @@ public:
     else
     {
       SetKernel(res.Sigma, opt);
-      res.Energy.push_back(Evaluate(res.Sites.Coords, res.Sites.CellIds, res.Sites.Bary, nullptr));
+      res.Energy.push_back(
+        Evaluate(res.Sites.Coords, res.Sites.CellIds, res.Sites.Bary, res.FeatureEdge, nullptr));
     }
     res.MeanNeighbours = MeanNeighbours(res.Sites.Coords);
     res.EnergyEvaluations = Evaluations;
@@ -761,9 +838,10 @@ public:
     std::vector<double>& x = res.Sites.Coords;
     std::vector<std::int32_t>& cells = res.Sites.CellIds;
     std::vector<double>& bary = res.Sites.Bary;
+    std::vector<std::int32_t>& edges = res.FeatureEdge;
 
     std::vector<double> g(nd), xt(nd), gt(nd), bt(bary.size());
-    std::vector<std::int32_t> ct(N);
+    std::vector<std::int32_t> ct(N), et(edges);
     Eigen::VectorXd dir(nd);
     struct Pair
     {
@@ -774,7 +852,7 @@ public:
     std::vector<Pair> spare; // storage of dropped pairs, reused (no 2 x nd allocation per step)
     std::vector<double> alpha;
 
-    double energy = Evaluate(x, cells, bary, &g);
+    double energy = Evaluate(x, cells, bary, edges, &g);
     energyOut.push_back(energy);
     int failures = 0, itDone = 0;
     for (int it = 0; it < iterations; ++it)
@@ -840,14 +918,16 @@ public:
               std::int32_t c = cells[p];
               double* b = bt.data() + 4 * p;
               std::copy_n(bary.data() + 4 * p, 4, b);
-              const CellData& cd =
-                Walk(p, c, b, step * Vec(dir.segment(static_cast<Eigen::Index>(p) * Dim, Dim)));
+              const Vec d = step * Vec(dir.segment(static_cast<Eigen::Index>(p) * Dim, Dim));
+              et[p] = edges[p];
+              const CellData& cd = Kind[p] == 0 ? Walk(p, c, b, d)
+                : (Kind[p] == 1 ? WalkLine(p, c, b, et[p], d) : Data(p, c, 0));
               ct[p] = c;
               Eigen::Map<Vec>(xt.data() + p * static_cast<std::size_t>(Dim), Dim) =
                 Position(cd, b);
             }
           });
-        trialEnergy = Evaluate(xt, ct, bt, &gt);
+        trialEnergy = Evaluate(xt, ct, bt, et, &gt);
         double slope = 0.0;
         for (std::size_t i = 0; i < nd; ++i)
           slope += g[i] * (xt[i] - x[i]);
@@ -893,6 +973,7 @@ public:
       g.swap(gt);
       bary.swap(bt);
       cells.swap(ct);
+      edges.swap(et);
       energy = trialEnergy;
       energyOut.push_back(energy);
       itDone = it + 1;
@@ -904,6 +985,8 @@ private:
   const SimplexMesh& Mesh;
   const Embedding& Emb;
   const VertexCells& VC;
+  const SharpFeatures* Features; // nullptr: no feature particles
+  const std::int8_t* Kind = nullptr; // per particle: 0 free, 1 feature line, 2 corner
   const int Dim;
   static constexpr std::int32_t kUnknown = -2;
   std::unique_ptr<std::atomic<std::int32_t>[]> NbrMemo; // face neighbours, kUnknown: not yet
@@ -925,12 +1008,12 @@ private:
 
 template <int D>
 void RunDim(const SimplexMesh& mesh, const Embedding& emb, const VertexCells& nb,
-  const ParticleSamplerOptions& opt, ParticleSamplerResult& res)
+  const SharpFeatures* features, const ParticleSamplerOptions& opt, ParticleSamplerResult& res)
 {
   if (mesh.SimplexDim == 2)
-    Sampler<D, 2>(mesh, emb, nb).Run(opt, res);
+    Sampler<D, 2>(mesh, emb, nb, features).Run(opt, res);
   else
-    Sampler<D, 3>(mesh, emb, nb).Run(opt, res);
+    Sampler<D, 3>(mesh, emb, nb, features).Run(opt, res);
 }
 
 /// 30-bit Morton code of a point in the box [lo, lo + ext] (2 or 3 coordinates).
@@ -1004,9 +1087,11 @@ std::vector<std::size_t> StratifiedDraw(const std::vector<std::size_t>& order,
  */
 void BestCandidateSites(const SimplexMesh& mesh, const Embedding& emb,
   const std::vector<double>& meas, const ParticleSamplerOptions& opt, Rng& rng,
-  ParticleSamplerResult& res)
+  const SiteSet& placed, ParticleSamplerResult& res)
 {
   const int k = mesh.SimplexDim, nv = k + 1, dim = emb.Dim;
+  // Sites 0..nf-1 of the search are the already placed (feature) ones, not output.
+  const std::size_t nf = placed.NumSites();
   const std::size_t nc = mesh.NumCells(), n = opt.NumSites, np = mesh.NumPoints();
   const int m = opt.InitialCandidates;
   const auto ud = static_cast<std::size_t>(dim);
@@ -1059,7 +1144,22 @@ void BestCandidateSites(const SimplexMesh& mesh, const Embedding& emb,
   std::vector<std::int32_t> cell(n);
   std::vector<double> cx(ud);
   double bx[kMaxDim], bb[4] = { 0, 0, 0, 0 };
-  for (std::size_t i = 0; i < n; ++i)
+  auto gridKey = [&](const double* px, long long q[3])
+  {
+    const Eigen::Vector3d y = axes * Eigen::Map<const VecD>(px, dim);
+    for (int a = 0; a < 3; ++a)
+      q[a] = std::clamp(static_cast<long long>((y[a] - lo[a]) / h), 0LL, g[a] - 1);
+    return (q[0] * g[1] + q[1]) * g[2] + q[2];
+  };
+  for (std::size_t i = 0; i < nf; ++i)
+  {
+    std::copy_n(placed.At(i), ud, x.data() + i * ud);
+    long long q[3];
+    const long long key = gridKey(placed.At(i), q);
+    next[i] = head[static_cast<std::size_t>(key)];
+    head[static_cast<std::size_t>(key)] = static_cast<std::int32_t>(i);
+  }
+  for (std::size_t i = nf; i < n; ++i)
   {
     double best = -1.0;
     std::size_t bestCell = 0;
@@ -1118,12 +1218,12 @@ void BestCandidateSites(const SimplexMesh& mesh, const Embedding& emb,
     next[i] = head[static_cast<std::size_t>(bestKey)];
     head[static_cast<std::size_t>(bestKey)] = static_cast<std::int32_t>(i);
   }
-  // Sites in cell order (cache-friendly walks; ties keep placement order).
-  std::vector<std::pair<std::int32_t, std::size_t>> order(n);
-  for (std::size_t i = 0; i < n; ++i)
-    order[i] = { cell[i], i };
+  // The new sites in cell order (cache-friendly walks; ties keep placement order).
+  std::vector<std::pair<std::int32_t, std::size_t>> order(n - nf);
+  for (std::size_t i = nf; i < n; ++i)
+    order[i - nf] = { cell[i], i };
   std::sort(order.begin(), order.end());
-  for (std::size_t i = 0; i < n; ++i)
+  for (std::size_t i = 0; i < n - nf; ++i)
   {
     const std::size_t o = order[i].second;
     s.CellIds[i] = cell[o];
@@ -1138,10 +1238,11 @@ void BestCandidateSites(const SimplexMesh& mesh, const Embedding& emb,
  * uniform barycentrics inside the cell; sites ordered by cell id.
  */
 void InitialSites(const SimplexMesh& mesh, const Embedding& emb, const std::vector<double>& meas,
-  const ParticleSamplerOptions& opt, ParticleSamplerResult& res)
+  const ParticleSamplerOptions& opt, const FeatureSitePlacement& placed, ParticleSamplerResult& res)
 {
   const int k = mesh.SimplexDim, nv = k + 1, dim = emb.Dim, m = mesh.AmbientDim;
   const std::size_t nc = mesh.NumCells(), n = opt.NumSites;
+  const std::size_t nfixed = placed.Sites.NumSites(), nfree = n - nfixed;
   std::vector<std::size_t> cellOrder(nc);
   for (std::size_t c = 0; c < nc; ++c)
     cellOrder[c] = c;
@@ -1177,16 +1278,32 @@ void InitialSites(const SimplexMesh& mesh, const Embedding& emb, const std::vect
   }
 
   Rng rng(opt.Seed);
-  if (opt.InitialCandidates > 1)
+  // Best-candidate start: the free sites placed by BestCandidateSites around the feature
+  // sites, merged in below.
+  ParticleSamplerResult best;
+  const bool bestCandidate = opt.InitialCandidates > 1;
+  if (bestCandidate)
   {
-    BestCandidateSites(mesh, emb, meas, opt, rng, res);
-    return;
+    best.Sites.Dim = dim;
+    best.Sites.CellIds.resize(nfree);
+    best.Sites.Bary.assign(4 * nfree, 0.0);
+    best.Sites.Coords.assign(nfree * static_cast<std::size_t>(dim), 0.0);
+    BestCandidateSites(mesh, emb, meas, opt, rng, placed.Sites, best);
   }
   std::vector<std::pair<std::size_t, std::size_t>> draws(n); // (cell, draw index)
-  const std::vector<std::size_t> chosen =
-    StratifiedDraw(cellOrder, meas, n, opt.StratifiedInitialSites, rng);
-  for (std::size_t i = 0; i < n; ++i)
-    draws[i] = { chosen[i], i };
+  if (bestCandidate)
+    for (std::size_t i = 0; i < nfree; ++i)
+      draws[i] = { static_cast<std::size_t>(best.Sites.CellIds[i]), i };
+  else
+  {
+    const std::vector<std::size_t> chosen =
+      StratifiedDraw(cellOrder, meas, nfree, opt.StratifiedInitialSites, rng);
+    for (std::size_t i = 0; i < nfree; ++i)
+      draws[i] = { chosen[i], i };
+  }
+  // Feature sites after the free draws (indices nfree..n-1), sorted in with them.
+  for (std::size_t j = 0; j < nfixed; ++j)
+    draws[nfree + j] = { static_cast<std::size_t>(placed.Sites.CellIds[j]), nfree + j };
   // Particles in cell order: neighbouring cells are usually close in memory, which makes the
   // walks, tree queries and energy sums cache friendly (ties keep draw order).
   std::sort(draws.begin(), draws.end());
@@ -1195,8 +1312,24 @@ void InitialSites(const SimplexMesh& mesh, const Embedding& emb, const std::vect
   {
     const std::size_t c = draws[i].first;
     double* b = s.Bary.data() + 4 * i;
-    UniformBary(rng, nv, b);
     s.CellIds[i] = static_cast<std::int32_t>(c);
+    if (draws[i].second >= nfree)
+    {
+      const std::size_t j = draws[i].second - nfree;
+      std::copy_n(placed.Sites.Bary.data() + 4 * j, 4, b);
+      std::copy_n(placed.Sites.At(j), dim, s.Coords.data() + i * static_cast<std::size_t>(dim));
+      res.FeatureEdge[i] = placed.Edge[j];
+      res.FeatureKind[i] = static_cast<std::int8_t>(placed.Edge[j] < 0 ? 2 : 1);
+      continue;
+    }
+    if (bestCandidate)
+    {
+      const std::size_t j = draws[i].second;
+      std::copy_n(best.Sites.Bary.data() + 4 * j, 4, b);
+      std::copy_n(best.Sites.At(j), dim, s.Coords.data() + i * static_cast<std::size_t>(dim));
+      continue;
+    }
+    UniformBary(rng, nv, b);
     const std::int32_t* ids = mesh.Cell(c);
     for (int j = 0; j < nv; ++j)
       for (int d = 0; d < dim; ++d)
@@ -1272,9 +1405,11 @@ ParticleSamplerResult SampleParticles(
     !std::isfinite(opt.KernelWidthFactor) || !(opt.WarmupKernelWidthFactor > 0.0) ||
     !std::isfinite(opt.WarmupKernelWidthFactor) || !(opt.NeighbourCutoff > 0.0) ||
     !std::isfinite(opt.NeighbourCutoff) || opt.History < 1 || opt.MaxThreads < 0 ||
-    opt.InitialCandidates < 1)
+    opt.InitialCandidates < 1 || !std::isfinite(opt.FeatureAngle) || !(opt.FeatureAngle > 0.0) ||
+    !std::isfinite(opt.FeatureSpacingFactor) || opt.FeatureSpacingFactor < 0.0)
     throw InputError("SampleParticles: Iterations >= 0, WarmupIterations >= 0, History >= 1, "
-                     "InitialCandidates >= 1, MaxThreads >= 0 and a positive, finite "
+                     "InitialCandidates >= 1, MaxThreads >= 0, FeatureAngle > 0, "
+                     "FeatureSpacingFactor >= 0 and a positive, finite "
                      "KernelWidthFactor, "
                      "WarmupKernelWidthFactor and NeighbourCutoff are required");
 
@@ -1295,34 +1430,71 @@ ParticleSamplerResult SampleParticles(
   s.CellIds.resize(n);
   s.Bary.assign(4 * n, 0.0);
   s.Coords.assign(n * static_cast<std::size_t>(dim), 0.0);
+  res.FeatureKind.assign(n, 0);
+  res.FeatureEdge.assign(n, -1);
 
-  InitialSites(mesh, embedding, meas, opt, res);
+  // Sharp features: corner and feature-line particles placed first, the rest drawn as usual.
+  SharpFeatures features;
+  FeatureSitePlacement placed;
+  placed.Sites.Dim = dim;
+  if (opt.PreserveSharpFeatures && opt.FeatureAngle < 180.0)
+  {
+    features = DetectSharpFeatures(mesh, opt.FeatureAngle);
+    if (!features.Corners.empty() || features.NumEdges() > 0)
+    {
+      const double factor = opt.FeatureSpacingFactor > 0.0 ? opt.FeatureSpacingFactor
+                                                           : (k == 3 ? 1.26 : 1.075);
+      placed = PlaceFeatureSites(
+        mesh, embedding, features, factor * std::pow(total / static_cast<double>(n), 1.0 / k));
+      // Too few sites for the features (a coarse sampling of a domain with many corners or
+      // long edges): keep what fits in half of the sites, and say so.
+      const std::size_t lineSites = placed.Sites.NumSites() - placed.NumCorners;
+      if (2 * placed.Sites.NumSites() > n)
+      {
+        const bool cornersFit = 2 * placed.NumCorners <= n;
+        res.FeatureWarning = std::to_string(n) + " sites are too few for the sharp features (" +
+          std::to_string(placed.NumCorners) + " corners and " + std::to_string(lineSites) +
+          " sites on feature lines would take more than half): " +
+          (cornersFit ? "only the corners are kept" : "features ignored") +
+          "; ask for more sites to keep them";
+        placed.Sites.CellIds.resize(cornersFit ? placed.NumCorners : 0);
+        placed.Sites.Bary.resize(4 * placed.Sites.CellIds.size());
+        placed.Sites.Coords.resize(placed.Sites.CellIds.size() * static_cast<std::size_t>(dim));
+        placed.Edge.resize(placed.Sites.CellIds.size());
+        placed.NumCorners = placed.Sites.CellIds.size();
+      }
+      res.NumCornerSites = placed.NumCorners;
+      res.NumFeatureLineSites = placed.Sites.NumSites() - placed.NumCorners;
+    }
+  }
+  InitialSites(mesh, embedding, meas, opt, placed, res);
 
   auto run = [&]()
   {
     const VertexCells nbrs = BuildVertexCells(mesh);
+    const SharpFeatures* featurePtr = placed.Sites.NumSites() > 0 ? &features : nullptr;
     switch (dim)
     {
       case 2:
-        RunDim<2>(mesh, embedding, nbrs, opt, res);
+        RunDim<2>(mesh, embedding, nbrs, featurePtr, opt, res);
         break;
       case 3:
-        RunDim<3>(mesh, embedding, nbrs, opt, res);
+        RunDim<3>(mesh, embedding, nbrs, featurePtr, opt, res);
         break;
       case 4:
-        RunDim<4>(mesh, embedding, nbrs, opt, res);
+        RunDim<4>(mesh, embedding, nbrs, featurePtr, opt, res);
         break;
       case 5:
-        RunDim<5>(mesh, embedding, nbrs, opt, res);
+        RunDim<5>(mesh, embedding, nbrs, featurePtr, opt, res);
         break;
       case 6:
-        RunDim<6>(mesh, embedding, nbrs, opt, res);
+        RunDim<6>(mesh, embedding, nbrs, featurePtr, opt, res);
         break;
       case 8:
-        RunDim<8>(mesh, embedding, nbrs, opt, res);
+        RunDim<8>(mesh, embedding, nbrs, featurePtr, opt, res);
         break;
       default:
-        RunDim<Eigen::Dynamic>(mesh, embedding, nbrs, opt, res);
+        RunDim<Eigen::Dynamic>(mesh, embedding, nbrs, featurePtr, opt, res);
         break;
     }
   };

@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <string>
 #include <vector>
 
 namespace av
@@ -39,6 +40,16 @@ struct ParticleSamplerOptions
   /// 100 + 50 iterations the mesh is the same within seed noise (cube1 / cube2 G_avg 0.906 /
   /// 0.911 either way); with no warm-up it gains ~0.002 G_avg.
   int InitialCandidates = 1;
+  /// Sharp features (paper §4.1): a fixed particle at every corner and particles that move
+  /// only along the feature lines, found by DetectSharpFeatures(mesh, FeatureAngle) on the
+  /// input-space mesh; the dual mesh then keeps the domain's corners and edges. Smooth
+  /// domains (no dihedral angle above FeatureAngle) are unaffected.
+  bool PreserveSharpFeatures = true;
+  double FeatureAngle = 30.0; ///< degrees, in (0, 180]; 180 = no features
+  /// The feature lines get one particle per FeatureSpacingFactor * (|embedded mesh| / n)^{1/k}
+  /// of embedded length (1.26 = 2^{1/3}: the edge of the body-centred cubic cell holding two
+  /// sites of volume |mesh| / n each; 1.075 for triangles: the hexagonal spacing).
+  double FeatureSpacingFactor = 0.0; ///< 0: 1.26 for tets, 1.075 for triangles
   /// Called once per iteration with the fraction done in [0,1]; return false to abort.
   std::function<bool(double)> Progress; ///< fraction of WarmupIterations + Iterations
 };
@@ -47,6 +58,15 @@ struct ParticleSamplerOptions
 struct ParticleSamplerResult
 {
   SiteSet Sites;               ///< embedded coords (Dim each), containing cell, barycentrics
+  /// Per site: 0 free (interior or boundary), 1 on a feature line, 2 at a corner (fixed).
+  std::vector<std::int8_t> FeatureKind;
+  /// Per site: its feature edge (SharpFeatures::Edges index) for kind 1, else -1.
+  std::vector<std::int32_t> FeatureEdge;
+  std::size_t NumCornerSites = 0;
+  std::size_t NumFeatureLineSites = 0;
+  /// Non-empty when the sharp features would take more than half of the sites and were cut
+  /// back (corners only, or none): the reason, for the caller to show.
+  std::string FeatureWarning;
   /// Energy at KernelWidthFactor: Energy[0] at the start of those iterations (after the
   /// warm-up), Energy[i] after iteration i.
   std::vector<double> Energy;
@@ -80,6 +100,14 @@ struct ParticleSamplerResult
  * particle that reaches the mesh boundary slides along it; a backtracking (Armijo) line
  * search keeps the energy decreasing. Particles are therefore always on / in the embedded
  * mesh. Deterministic for a given seed, whatever the number of threads.
+ *
+ * With PreserveSharpFeatures, the corners of the input mesh get one particle each that never
+ * moves, and particles placed evenly along the feature lines (FeatureSites) move only along
+ * them (their gradient projected on the line, their steps walked from edge to edge up to the
+ * next corner); the other particles are drawn as above for the remaining count.
+ *
+ * When the feature sites would be more than half of NumSites, only the corners are kept (or
+ * none, if they alone are more than half) and FeatureWarning says so.
  *
  * Throws InputError on: NumSites 0 or > 8 * NumPoints, wrong array sizes, Dim outside
  * [max(AmbientDim, SimplexDim), 20], NaN/Inf, cell ids out of range, zero embedded measure,

@@ -483,10 +483,13 @@ public:
     std::int32_t s0;
     if (!SolveVertex(C, site, nv.Pl, nv.Lam, s0))
     {
-      // Parallel planes (degenerate): interpolate along the edge instead.
+      // Parallel planes (degenerate): interpolate along the edge instead. An edge lying in
+      // the bisector (both G exactly 0, sides set by the symbolic tie-break) has no single
+      // crossing: any point of it is on the plane, take its middle (not 0 / 0).
       const Vert<K>& a = C.V[u];
       const Vert<K>& b = C.V[w];
-      const double t = a.G / (a.G - b.G);
+      const double denom = a.G - b.G;
+      const double t = denom != 0.0 ? std::min(1.0, std::max(0.0, a.G / denom)) : 0.5;
       for (int c = 0; c < NV; ++c)
         nv.Lam[c] = a.Lam[c] + t * (b.Lam[c] - a.Lam[c]);
     }

@@ -15,6 +15,7 @@
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
+#include <vtkSignedCharArray.h>
 #include <vtkTable.h>
 
 #include <algorithm>
@@ -106,6 +107,8 @@ int vtkAnisoParticleSampler::RequestData(vtkInformation* request,
   options.NumSites = static_cast<std::size_t>(this->NumberOfSites);
   options.Iterations = this->Iterations;
   options.WarmupIterations = this->WarmupIterations;
+  options.PreserveSharpFeatures = this->PreserveSharpFeatures;
+  options.FeatureAngle = this->FeatureAngle;
   options.Seed = static_cast<std::uint64_t>(static_cast<std::uint32_t>(this->Seed));
   options.KernelWidthFactor = this->KernelWidthFactor;
   options.NeighbourCutoff = this->NeighbourCutoff;
@@ -135,6 +138,10 @@ int vtkAnisoParticleSampler::RequestData(vtkInformation* request,
   {
     vtkErrorMacro("particle sampling failed: " << e.what());
     return 0;
+  }
+  if (!result.FeatureWarning.empty())
+  {
+    vtkWarningMacro(<< result.FeatureWarning);
   }
   if (result.Aborted)
   {
@@ -167,6 +174,12 @@ int vtkAnisoParticleSampler::RequestData(vtkInformation* request,
   pd->AddArray(vtkAnisoDataConversion::MakeArray("Embedding", sites.Coords.data(), n, dim));
   pd->AddArray(cellIds);
   pd->AddArray(vtkAnisoDataConversion::MakeArray("Barycentric", sites.Bary.data(), n, 4));
+  vtkNew<vtkSignedCharArray> kind;
+  kind->SetName("FeatureKind");
+  kind->SetNumberOfTuples(static_cast<vtkIdType>(n));
+  for (std::size_t i = 0; i < n; ++i)
+    kind->SetValue(static_cast<vtkIdType>(i), static_cast<signed char>(result.FeatureKind[i]));
+  pd->AddArray(kind);
   if (haveMetric)
   {
     auto m = vtkAnisoDataConversion::MakeArray("Metric", siteMetric.Values.data(), n, 6);
@@ -180,6 +193,8 @@ int vtkAnisoParticleSampler::RequestData(vtkInformation* request,
   AddFieldValue(fd, "SamplerIterations", result.IterationsDone);
   AddFieldValue(fd, "SamplerWarmupIterations", result.WarmupIterationsDone);
   AddFieldValue(fd, "SamplerSeconds", result.Seconds);
+  AddFieldValue(fd, "NumCornerSites", static_cast<double>(result.NumCornerSites));
+  AddFieldValue(fd, "NumFeatureLineSites", static_cast<double>(result.NumFeatureLineSites));
 
   vtkNew<vtkIntArray> iteration;
   iteration->SetName("Iteration");
@@ -202,6 +217,8 @@ void vtkAnisoParticleSampler::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NumberOfSites: " << this->NumberOfSites << "\n";
   os << indent << "Iterations: " << this->Iterations << "\n";
   os << indent << "WarmupIterations: " << this->WarmupIterations << "\n";
+  os << indent << "PreserveSharpFeatures: " << (this->PreserveSharpFeatures ? "on" : "off") << "\n";
+  os << indent << "FeatureAngle: " << this->FeatureAngle << "\n";
   os << indent << "Seed: " << this->Seed << "\n";
   os << indent << "KernelWidthFactor: " << this->KernelWidthFactor << "\n";
   os << indent << "NeighbourCutoff: " << this->NeighbourCutoff << "\n";

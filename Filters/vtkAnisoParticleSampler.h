@@ -21,16 +21,18 @@
  * - "CellId": index of the containing triangle / tetrahedron (= input cell id when the input
  *   has only triangles / tetrahedra);
  * - "Barycentric": 4 components, barycentric coordinates in that cell (4th = 0 for triangles);
+ * - "FeatureKind": 0 for a free site, 1 for a site on a feature line, 2 for a corner site
+ *   (vtkAnisoRestrictedDelaunay keeps the last two on their features);
  * - "Metric": the input's metric (6 components) interpolated at the site, when the input has
  *   one (active point tensors or an array named "Metric").
  * Field data: "Sigma", "EmbeddedMeasure", "MeanNeighbours", "SamplerIterations",
- * "SamplerWarmupIterations", "SamplerSeconds".
+ * "SamplerWarmupIterations", "SamplerSeconds", "NumCornerSites", "NumFeatureLineSites".
  * Output 1 (vtkTable): "Iteration", "Energy" per iteration at the final kernel (0 = their
  * start: the initial sampling, or the sites after the warm-up).
  *
  * Parameters: NumberOfSites (default 2000; between 1 and 8 x the input's point count),
- * Iterations (50), WarmupIterations (100), Seed (1), KernelWidthFactor (0.3),
- * NeighbourCutoff (5).
+ * Iterations (50), WarmupIterations (100), PreserveSharpFeatures (on), FeatureAngle (30),
+ * Seed (1), KernelWidthFactor (0.3), NeighbourCutoff (5).
  *
  * Distributed runs (mpiexec pvbatch, pvserver): needs the whole mesh, so it asks its inputs
  * for the whole dataset and runs redundantly on every process that needs its output (the cost
@@ -72,6 +74,23 @@ public:
   ///@}
 
   ///@{
+  /// Sharp features (paper §4.1, default on): one fixed site at every corner of the input
+  /// mesh and sites that move only along its feature lines (boundary edges whose dihedral
+  /// angle exceeds FeatureAngle), so that the dual mesh keeps the domain's corners and
+  /// edges. Smooth domains are unaffected.
+  vtkSetMacro(PreserveSharpFeatures, bool);
+  vtkGetMacro(PreserveSharpFeatures, bool);
+  vtkBooleanMacro(PreserveSharpFeatures, bool);
+  ///@}
+
+  ///@{
+  /// Dihedral angle in degrees above which an edge is a feature line (default 30, as
+  /// vtkFeatureEdges; 180 = none).
+  vtkSetClampMacro(FeatureAngle, double, 1e-3, 180.0);
+  vtkGetMacro(FeatureAngle, double);
+  ///@}
+
+  ///@{
   /// Seed of the initial random sampling (default 1): same seed, same sites.
   vtkSetMacro(Seed, int);
   vtkGetMacro(Seed, int);
@@ -103,6 +122,8 @@ protected:
   int NumberOfSites = 2000;
   int Iterations = 50;
   int WarmupIterations = 100;
+  bool PreserveSharpFeatures = true;
+  double FeatureAngle = 30.0;
   int Seed = 1;
   double KernelWidthFactor = 0.3;
   double NeighbourCutoff = 5.0;

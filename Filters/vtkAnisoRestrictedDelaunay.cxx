@@ -206,6 +206,22 @@ int vtkAnisoRestrictedDelaunay::RequestData(vtkInformation* request,
     av::SiteImprovementOptions improve;
     improve.OdtIterations = this->OdtIterations;
     improve.ElementAdjacency = &adjacency;
+    // The sampler's corner and feature-line sites ("FeatureKind" != 0) are not pushed off
+    // their features.
+    std::vector<std::uint8_t> fixedSites;
+    if (vtkDataArray* kind = sitesInput->GetPointData()->GetArray("FeatureKind"))
+    {
+      if (kind->GetNumberOfComponents() != 1 ||
+        kind->GetNumberOfTuples() != static_cast<vtkIdType>(sites.NumSites()))
+      {
+        vtkErrorMacro("sites: the FeatureKind array must have one component per site");
+        return 0;
+      }
+      fixedSites.resize(sites.NumSites());
+      for (std::size_t i = 0; i < fixedSites.size(); ++i)
+        fixedSites[i] = kind->GetTuple1(static_cast<vtkIdType>(i)) != 0.0 ? 1 : 0;
+      improve.Sliver.FixedSites = &fixedSites;
+    }
     for (int round = 0; round < this->ImprovementRounds; ++round)
     {
       av::SiteImprovementResult sp = av::ImproveSites(mesh, embedding, sites, rvd, rdt, improve);

@@ -262,6 +262,8 @@ int vtkAnisoTensorPipeline::RequestData(
   sampler->SetNumberOfSites(this->NumberOfCells);
   sampler->SetIterations(this->SamplingIterations);
   sampler->SetWarmupIterations(this->SamplingWarmupIterations);
+  sampler->SetPreserveSharpFeatures(this->PreserveSharpFeatures);
+  sampler->SetFeatureAngle(this->FeatureAngle);
   sampler->SetSeed(this->Seed);
   if (!this->RunStage(sampler, "particle sampler", 0.6, 0.85, error))
   {
@@ -292,6 +294,8 @@ void vtkAnisoTensorPipeline::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Iterations: " << this->Iterations << "\n";
   os << indent << "SamplingIterations: " << this->SamplingIterations << "\n";
   os << indent << "SamplingWarmupIterations: " << this->SamplingWarmupIterations << "\n";
+  os << indent << "PreserveSharpFeatures: " << (this->PreserveSharpFeatures ? "on" : "off") << "\n";
+  os << indent << "FeatureAngle: " << this->FeatureAngle << "\n";
   os << indent << "MaximumAnisotropy: " << this->MaximumAnisotropy << "\n";
   os << indent << "MinimumEigenvalue: " << this->MinimumEigenvalue << "\n";
   os << indent << "SmoothingIterations: " << this->SmoothingIterations << "\n";

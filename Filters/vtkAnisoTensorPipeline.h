@@ -84,6 +84,16 @@ public:
   ///@}
 
   ///@{
+  /// Sharp features (default on; see vtkAnisoParticleSampler::PreserveSharpFeatures): a fixed
+  /// site at every corner, sites kept on the feature lines (dihedral angle > FeatureAngle).
+  vtkSetMacro(PreserveSharpFeatures, bool);
+  vtkGetMacro(PreserveSharpFeatures, bool);
+  vtkBooleanMacro(PreserveSharpFeatures, bool);
+  vtkSetClampMacro(FeatureAngle, double, 1e-3, 180.0);
+  vtkGetMacro(FeatureAngle, double);
+  ///@}
+
+  ///@{
   /// TENSOR_FIELD: largest stretch ratio of the metric (default 10).
   vtkSetClampMacro(MaximumAnisotropy, double, 1.0, VTK_DOUBLE_MAX);
   vtkGetMacro(MaximumAnisotropy, double);
@@ -140,6 +150,8 @@ protected:
   int Iterations = 50;
   int SamplingIterations = 50;
   int SamplingWarmupIterations = 100;
+  bool PreserveSharpFeatures = true;
+  double FeatureAngle = 30.0;
   double MaximumAnisotropy = 10.0;
   double MinimumEigenvalue = 0.1;
   int SmoothingIterations = 10;

@@ -7,6 +7,7 @@
 #include "RestrictedDelaunayRefinement.h"
 #include "RestrictedVoronoi.h"
 #include "SiteImprovement.h"
+#include "StructuredMeshes.h"
 
 #include <Eigen/Dense>
 
@@ -108,8 +109,18 @@ MeshStageResult RunMeshStage(const av::SimplexMesh& mesh, const av::MetricField&
   so.WarmupIterations = options.WarmupIterations;
   so.Seed = options.Seed;
   so.KernelWidthFactor = options.KernelWidthFactor;
+  so.PreserveSharpFeatures = options.PreserveSharpFeatures;
+  so.FeatureAngle = options.FeatureAngle;
+  if (const char* e = std::getenv("AV_FSF")) so.FeatureSpacingFactor = std::atof(e); // TMP
   av::ParticleSamplerResult sampled = av::SampleParticles(mesh, embedding, so);
   r.SampleSeconds = Since(t0);
+  r.CornerSites = sampled.NumCornerSites;
+  r.FeatureLineSites = sampled.NumFeatureLineSites;
+  // Corner and feature-line sites stay where the sampler put them (the ODT steps keep every
+  // site whose cell meets the boundary anyway).
+  std::vector<std::uint8_t> fixedSites(sampled.FeatureKind.size());
+  for (std::size_t i = 0; i < fixedSites.size(); ++i)
+    fixedSites[i] = sampled.FeatureKind[i] != 0 ? 1 : 0;
   if (options.LloydIterations > 0)
   {
     const auto tl = Clock::now();
@@ -143,6 +154,7 @@ MeshStageResult RunMeshStage(const av::SimplexMesh& mesh, const av::MetricField&
     io.OdtIterations = options.OdtIterations;
     io.PerturbSlivers = options.PerturbSlivers;
     io.ElementAdjacency = &adjacency;
+    io.Sliver.FixedSites = &fixedSites;
     const av::SiteImprovementResult im =
       av::ImproveSites(mesh, embedding, sampled.Sites, rvd0, rdt0, io);
     if (round == 0)
@@ -198,6 +210,14 @@ MeshStageResult RunMeshStage(const av::SimplexMesh& mesh, const av::MetricField&
   dual.Cells = rdt.Cells;
   const av::MeshQualityResult q =
     av::EvaluateMeshQuality(dual, av::InterpolateMetricAtSites(mesh, metric, sampled.Sites));
+  if (dual.SimplexDim == dual.AmbientDim)
+  {
+    // How much of the domain the dual mesh covers (corners and edges cut off lower it).
+    double covered = 0.0;
+    for (std::size_t c = 0; c < dual.NumCells(); ++c)
+      covered += std::abs(av::CellMeasure(dual, c));
+    r.DualVolumeRatio = covered / domain;
+  }
   r.GMin = q.Summary.GMin;
   r.GAvg = q.Summary.GAvg;
   r.ThetaMin = q.Summary.ThetaMin;

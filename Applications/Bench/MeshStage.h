@@ -40,12 +40,16 @@ struct MeshStageOptions
   int ImproveRounds = 1;
   int OdtIterations = 3;      ///< ODT steps per round (0: sliver pushes only)
   bool PerturbSlivers = true; ///< sliver pushes in each round
+  bool PreserveSharpFeatures = true; ///< corner / feature-line particles (ParticleSamplerOptions)
+  double FeatureAngle = 30.0;        ///< degrees
 };
 
 /// Timings and quality of one meshing run.
 struct MeshStageResult
 {
   std::size_t Sites = 0;
+  std::size_t CornerSites = 0, FeatureLineSites = 0; ///< of the sampled sites
+  double DualVolumeRatio = 0.0; ///< dual mesh volume / domain volume (tets; 1 = covered)
   double SampleSeconds = 0.0, LloydSeconds = 0.0, RvdSeconds = 0.0, RdtSeconds = 0.0;
   double ImproveSeconds = 0.0; ///< site improvement rounds (their RVD + RDT included)
   std::size_t OdtMovedSites = 0;    ///< sites moved by the first round's ODT steps

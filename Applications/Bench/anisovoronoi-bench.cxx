@@ -132,6 +132,8 @@ struct Args
   int ImproveRounds = 1;     // site improvement rounds before the repair (0 = paper)
   int OdtIterations = 3;     // ODT steps per improvement round
   bool PerturbSlivers = true;
+  bool Features = true;      // corner / feature-line particles
+  double FeatureAngle = 30.0;
 };
 
 /// Paper values (Tab. 5 and Fig. 4); NaN where the paper gives none.
@@ -348,9 +350,15 @@ void StageMesh(const Args& a, const Case& c, JsonLine& out)
   o.ImproveRounds = a.ImproveRounds;
   o.OdtIterations = a.OdtIterations;
   o.PerturbSlivers = a.PerturbSlivers;
+  o.PreserveSharpFeatures = a.Features;
+  o.FeatureAngle = a.FeatureAngle;
   const avbench::MeshStageResult r = avbench::RunMeshStage(c.Mesh, c.Metric, embedded, o);
   const avbench::PaperMeshValues p = avbench::PaperMeshValuesFor(c.Preset);
   out.Set("sites", r.Sites);
+  out.Set("sharp_features", o.PreserveSharpFeatures);
+  out.Set("feature_angle", o.FeatureAngle);
+  out.Set("corner_sites", r.CornerSites);
+  out.Set("feature_line_sites", r.FeatureLineSites);
   out.Set("sample_iterations", o.SampleIterations);
   out.Set("warmup_iterations", o.WarmupIterations);
   out.Set("sample_seconds", r.SampleSeconds);
@@ -385,6 +393,8 @@ void StageMesh(const Args& a, const Case& c, JsonLine& out)
   out.Set("nonmanifold_faces_before_repair", r.NonManifoldFacesBeforeRepair);
   out.Set("edges_in_unit_range", r.PercentEdgesInUnitRange);
   out.Set("rvd_volume_error", r.RvdVolumeError);
+  if (r.DualVolumeRatio > 0.0)
+    out.Set("dual_volume_ratio", r.DualVolumeRatio);
   out.Set("rvd_pieces", r.RvdPieces);
   out.Set("nonmanifold_faces", r.NonManifoldFaces);
   out.Set("unused_sites", r.UnusedSites);
@@ -443,6 +453,9 @@ void Usage(std::ostream& os)
         "                    paper's pipeline)\n"
         "  --odt-iterations N  mesh: ODT steps per improvement round (default 3, 0 = none)\n"
         "  --no-sliver-push  mesh: no sliver pushes in the improvement rounds\n"
+        "  --no-features     mesh: no corner / feature-line particles (paper §4.1 sharp features)\n"
+        "  --feature-angle A mesh: dihedral angle in degrees above which a boundary edge is a\n"
+        "                    feature line (default 30)\n"
         "Prints one JSON object per case on stdout.\n";
 }
 
@@ -514,6 +527,10 @@ bool Parse(int argc, char** argv, Args& a)
       a.OdtIterations = std::stoi(next());
     else if (k == "--no-sliver-push")
       a.PerturbSlivers = false;
+    else if (k == "--no-features")
+      a.Features = false;
+    else if (k == "--feature-angle")
+      a.FeatureAngle = std::stod(next());
     else if (!k.empty() && k[0] != '-' && a.CaseName.empty())
       a.CaseName = k;
     else

@@ -88,6 +88,9 @@ options:
   --sample-iterations N    particle L-BFGS iterations at the paper's kernel (default 50)
   --warmup-iterations N    particle iterations at a narrower kernel first (default 100;
                            0 with --sample-iterations 1500 or more: best quality)
+  --no-features            no corner / feature-line sites (paper §4.1 sharp features)
+  --feature-angle A        dihedral angle (degrees) above which an edge is a feature line
+                           (default 30; 180 = none)
   --seed S                 random seed (default 1)
   --mu X                   regularisation weight (default 100)
   --shrink F               shrink factor of the Voronoi cells (default 0.8; 1 = none)
@@ -120,6 +123,8 @@ struct Options
   std::string Input, Metric, Sol, OutputDir;
   int Step = 0, Resolution = 0, Sites = 2000, Dim = 8, Iterations = 50, SampleIterations = 50;
   int WarmupIterations = 100, Seed = 1, Smooth = 0, Refine = 0, RepairRounds = 10, ImproveRounds = 1, OdtIterations = 3;
+  double FeatureAngle = 30.0;
+  bool Features = true;
   double Mu = 100.0, Shrink = 0.8, MinEigenvalue = 1e-3, MaxAnisotropy = 25.0;
   bool TensorAsMetric = false, Clamp = false, Quiet = false, Repair = true;
   bool RepairNonManifold = false, DoubleSolve = false;
@@ -238,6 +243,10 @@ Options ParseCommandLine(int argc, char* argv[])
       o.SampleIterations = ParseInt(a, next());
     else if (a == "--warmup-iterations")
       o.WarmupIterations = ParseInt(a, next());
+    else if (a == "--no-features")
+      o.Features = false;
+    else if (a == "--feature-angle")
+      o.FeatureAngle = ParseDouble(a, next());
     else if (a == "--double-solve")
       o.DoubleSolve = true;
     else if (a == "--seed")
@@ -289,6 +298,8 @@ Options ParseCommandLine(int argc, char* argv[])
     Fail("--dim must be in [3, 20]", 2);
   if (o.Iterations < 0 || o.SampleIterations < 0 || o.WarmupIterations < 0)
     Fail("iteration counts must be >= 0", 2);
+  if (!(o.FeatureAngle > 0 && o.FeatureAngle <= 180))
+    Fail("--feature-angle must be in (0, 180]", 2);
   if (!(o.Shrink > 0 && o.Shrink <= 1))
     Fail("--shrink must be in (0, 1]", 2);
   if (o.RepairRounds < 0 || o.RepairRounds > 1000)
@@ -647,6 +658,8 @@ int main(int argc, char* argv[])
   sampler->SetNumberOfSites(o.Sites);
   sampler->SetIterations(o.SampleIterations);
   sampler->SetWarmupIterations(o.WarmupIterations);
+  sampler->SetPreserveSharpFeatures(o.Features);
+  sampler->SetFeatureAngle(o.FeatureAngle);
   sampler->SetSeed(o.Seed);
   pipeline.Run(sampler, "sampling " + std::to_string(o.Sites) + " sites");
 
@@ -715,6 +728,9 @@ int main(int argc, char* argv[])
     { "sites", std::to_string(o.Sites) },
     { "sample_iterations", std::to_string(o.SampleIterations) },
     { "warmup_iterations", std::to_string(o.WarmupIterations) },
+    { "corner_sites", JsonNumber(FieldValue(sampler->GetOutputDataObject(0), "NumCornerSites")) },
+    { "feature_line_sites",
+      JsonNumber(FieldValue(sampler->GetOutputDataObject(0), "NumFeatureLineSites")) },
     { "sample_seconds", JsonNumber(pipeline.Seconds["sampling " + std::to_string(o.Sites) + " sites"]) },
     { "rvd_seconds", JsonNumber(pipeline.Seconds["restricted Voronoi diagram"]) },
     { "rdt_seconds", JsonNumber(pipeline.Seconds["restricted Delaunay mesh"] - repairSeconds) },

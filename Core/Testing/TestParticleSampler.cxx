@@ -363,6 +363,71 @@ int main(int argc, char* argv[])
               << res.IterationsDone << " it, NN CV " << cv << ", neighbours "
               << res.MeanNeighbours << ", " << res.Seconds << " s" << std::endl;
     AV_CHECK_MSG(cv < 0.15, "nearest-neighbour CV " << cv);
+
+    // Sharp features (on by default): the 8 corner sites never move, the feature-line sites
+    // end on the cube's edges, evenly spread (every edge has some), and the rest are free.
+    {
+      AV_CHECK(res.NumCornerSites == 8 && res.FeatureWarning.empty());
+      AV_CHECK(res.NumFeatureLineSites >= 12);
+      std::size_t corners = 0, lines = 0;
+      std::vector<int> perEdge(12, 0);
+      for (std::size_t i = 0; i < res.Sites.NumSites(); ++i)
+      {
+        const double* x = res.Sites.At(i);
+        int atBound = 0, freeAxis = -1;
+        for (int d = 0; d < 3; ++d)
+        {
+          const bool b = std::abs(x[d]) < 1e-12 || std::abs(x[d] - 1.0) < 1e-12;
+          atBound += b ? 1 : 0;
+          freeAxis = b ? freeAxis : d;
+        }
+        if (res.FeatureKind[i] == 2)
+        {
+          ++corners;
+          AV_CHECK(atBound == 3);
+        }
+        else if (res.FeatureKind[i] == 1)
+        {
+          ++lines;
+          AV_CHECK_MSG(atBound >= 2, "feature-line site " << i << " left its edge");
+          if (atBound == 2)
+          {
+            const int a = (freeAxis + 1) % 3, b = (freeAxis + 2) % 3;
+            ++perEdge[static_cast<std::size_t>(4 * freeAxis + 2 * (x[a] > 0.5) + (x[b] > 0.5))];
+          }
+          AV_CHECK(res.FeatureEdge[i] >= 0);
+        }
+        for (int d = 3; d < 7; ++d)
+          AV_CHECK(x[d] == 0.0);
+      }
+      AV_CHECK(corners == 8 && lines == res.NumFeatureLineSites);
+      for (int c : perEdge)
+        AV_CHECK(c >= 1);
+      // Features off: no corner or line sites, and the output changes.
+      av::ParticleSamplerOptions plain = opt;
+      plain.PreserveSharpFeatures = false;
+      const auto rp = av::SampleParticles(mesh, emb, plain);
+      AV_CHECK(rp.NumCornerSites == 0 && rp.NumFeatureLineSites == 0);
+      AV_CHECK(std::all_of(rp.FeatureKind.begin(), rp.FeatureKind.end(), [](std::int8_t k) { return k == 0; }));
+      AV_CHECK(!SameBits(res, rp));
+      // Too few sites: the features are cut back to the corners (8 <= 20 / 2), then dropped.
+      av::ParticleSamplerOptions few = opt;
+      few.NumSites = 20;
+      const auto rf = av::SampleParticles(mesh, emb, few);
+      AV_CHECK(!rf.FeatureWarning.empty() && rf.NumCornerSites == 8 && rf.NumFeatureLineSites == 0);
+      few.NumSites = 12;
+      const auto rn = av::SampleParticles(mesh, emb, few);
+      AV_CHECK(!rn.FeatureWarning.empty() && rn.NumCornerSites == 0 && rn.NumFeatureLineSites == 0);
+      // Bad feature options.
+      av::ParticleSamplerOptions bad = opt;
+      bad.FeatureAngle = 0.0;
+      AV_CHECK_THROWS(av::SampleParticles(mesh, emb, bad));
+      bad.FeatureAngle = std::nan("");
+      AV_CHECK_THROWS(av::SampleParticles(mesh, emb, bad));
+      bad = opt;
+      bad.FeatureSpacingFactor = -1.0;
+      AV_CHECK_THROWS(av::SampleParticles(mesh, emb, bad));
+    }
     const double h = std::cbrt(1.0 / 400.0);
     for (int axis = 0; axis < 3; ++axis)
       for (int side = 0; side < 2; ++side)
@@ -389,33 +454,33 @@ int main(int argc, char* argv[])
     CheckEnergy(res, 0.5);
     const double cvEmb = CoefficientOfVariation(NearestDistances(res.Sites, 3));
     AV_CHECK_MSG(cvEmb < 0.12, "embedded NN CV " << cvEmb);
-    // Count sites per row / column band: a uniform embedded sampling has s times more
-    // distinct x-layers per unit length than y-layers. Estimate via mean |dx|, |dy| of the
-    // nearest neighbour vectors in input space.
+    // Second moments of the input-space offsets to each site's 6 nearest neighbours in the
+    // embedding: isotropic there (a hexagonal neighbourhood has isotropic second moments
+    // whatever its orientation), so sum dy^2 / sum dx^2 = s^2 in input space.
     double sx = 0.0, sy = 0.0;
-    for (std::size_t p = 0; p < res.Sites.NumSites(); ++p)
+    const std::size_t ns = res.Sites.NumSites();
+    std::vector<std::pair<double, std::size_t>> byDistance(ns);
+    for (std::size_t p = 0; p < ns; ++p)
     {
-      double best = 1e9;
-      std::size_t bq = p;
-      for (std::size_t q = 0; q < res.Sites.NumSites(); ++q)
+      for (std::size_t q = 0; q < ns; ++q)
       {
-        if (q == p)
-          continue;
         double d2 = 0.0;
         for (int d = 0; d < 3; ++d)
           d2 += std::pow(res.Sites.At(p)[d] - res.Sites.At(q)[d], 2);
-        if (d2 < best)
-        {
-          best = d2;
-          bq = q;
-        }
+        byDistance[q] = { q == p ? 1e300 : d2, q };
       }
-      sx += std::abs(res.Sites.At(p)[0] - res.Sites.At(bq)[0]);
-      sy += std::abs(res.Sites.At(p)[1] - res.Sites.At(bq)[1]);
+      std::partial_sort(byDistance.begin(), byDistance.begin() + 6, byDistance.end());
+      for (int k = 0; k < 6; ++k)
+      {
+        const std::size_t q = byDistance[static_cast<std::size_t>(k)].second;
+        sx += std::pow(res.Sites.At(p)[0] - res.Sites.At(q)[0], 2);
+        sy += std::pow(res.Sites.At(p)[1] - res.Sites.At(q)[1], 2);
+      }
     }
-    std::cout << "aniso: embedded NN CV " << cvEmb << ", mean |dy|/|dx| of NN " << sy / sx
-              << " (isotropic in embedding -> about s = " << s << ")" << std::endl;
-    AV_CHECK_MSG(sy / sx > 0.6 * s && sy / sx < 1.6 * s, "ratio " << sy / sx);
+    const double ratio = std::sqrt(sy / sx);
+    std::cout << "aniso: embedded NN CV " << cvEmb << ", rms |dy| / rms |dx| of 6 NN " << ratio
+              << " (isotropic in embedding -> s = " << s << ")" << std::endl;
+    AV_CHECK_MSG(ratio > 0.85 * s && ratio < 1.15 * s, "ratio " << ratio);
   }
 
   // Curved height field z = 0.3 sin(2 pi x) sin(pi y): sites stay on the surface.

@@ -383,6 +383,36 @@ void TestCube()
   AV_CHECK(rl.PieceMeasure == r8.PieceMeasure && rl.Points.empty());
 }
 
+void TestDegenerateSites()
+{
+  // Sites on a lattice that matches the mesh: bisectors contain element faces and edges
+  // (edges lying exactly in a bisector, parallel planes), as with the sampler's corner and
+  // feature-line sites. Every vertex must be finite and the cells must still partition.
+  const double lo[3] = { 0.0, 0.0, 0.0 }, hi[3] = { 1.0, 1.0, 1.0 };
+  const av::SimplexMesh m = KuhnGrid(5, 5, 5, lo, hi);
+  const av::Embedding e = MakeEmbedding(m, 5, nullptr);
+  av::SiteSet s;
+  s.Dim = 5;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      for (int k = 0; k < 3; ++k)
+      {
+        const double x[3] = { 0.5 * i, 0.5 * j, 0.5 * k };
+        AV_CHECK(SiteAt(s, m, e, x));
+      }
+  const double mid[3] = { 1.0, 0.0, 1.0 / 3.0 }; // on a cube edge, between two vertices
+  AV_CHECK(SiteAt(s, m, e, mid));
+  const auto r = av::ComputeRestrictedVoronoi(m, e, s);
+  std::size_t nonFinite = 0;
+  for (double v : r.Points)
+    nonFinite += std::isfinite(v) ? 0 : 1;
+  for (double v : r.EmbeddedPoints)
+    nonFinite += std::isfinite(v) ? 0 : 1;
+  AV_CHECK_MSG(nonFinite == 0, nonFinite << " non-finite RVD coordinates");
+  CheckPartition(m, e, r, "lattice sites");
+  CheckNearestSite(r, s, "lattice sites");
+}
+
 void TestFewSites()
 {
   // One site, then two: the security radius must fall back to "all sites used".
@@ -523,6 +553,7 @@ int main(int argc, char* argv[])
   TestHeightField();
   TestCube();
   TestFewSites();
+  TestDegenerateSites();
   TestElementRange();
   TestBadInput();
   return AV_TEST_RESULT();
