@@ -111,7 +111,6 @@ MeshStageResult RunMeshStage(const av::SimplexMesh& mesh, const av::MetricField&
   so.KernelWidthFactor = options.KernelWidthFactor;
   so.PreserveSharpFeatures = options.PreserveSharpFeatures;
   so.FeatureAngle = options.FeatureAngle;
-  if (const char* e = std::getenv("AV_FSF")) so.FeatureSpacingFactor = std::atof(e); // TMP
   av::ParticleSamplerResult sampled = av::SampleParticles(mesh, embedding, so);
   r.SampleSeconds = Since(t0);
   r.CornerSites = sampled.NumCornerSites;
