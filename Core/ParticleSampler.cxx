@@ -1,4 +1,5 @@
 #include "ParticleSampler.h"
+#include "SimdClones.h"
 
 #include <Eigen/Dense>
 #include <tbb/blocked_range.h>
@@ -14,6 +15,7 @@
 #include <limits>
 #include <string>
 #include <cstdlib>
+#include <cstring>
 
 namespace av
 {
@@ -44,6 +46,68 @@ double GridCellSide(const double lo[3], const double hi[3], double r, std::size_
   }
 }
 constexpr int kMaxDim = 20;
+
+/// exp(x) for x in [-700, 0], within a few ulp of std::exp; inline and branch-free so that
+/// loops over it vectorise (glibc's exp is a call per value).
+inline double ExpNonPositive(double x)
+{
+  // k = round(x / ln 2) by the 1.5 * 2^52 trick: the low bits of t hold k.
+  const double magic = 0x1.8p52;
+  const double t = x * 1.4426950408889634 + magic;
+  const double k = t - magic;
+  const double r = (x - k * 0x1.62e42fefa39efp-1) - k * 0x1.abc9e3b39803fp-56; // |r| <= ln2 / 2
+  // Taylor series to degree 13 (truncation error < 1e-17 relative).
+  double p = 1.0 / 6227020800.0;
+  p = p * r + 1.0 / 479001600.0;
+  p = p * r + 1.0 / 39916800.0;
+  p = p * r + 1.0 / 3628800.0;
+  p = p * r + 1.0 / 362880.0;
+  p = p * r + 1.0 / 40320.0;
+  p = p * r + 1.0 / 5040.0;
+  p = p * r + 1.0 / 720.0;
+  p = p * r + 1.0 / 120.0;
+  p = p * r + 1.0 / 24.0;
+  p = p * r + 1.0 / 6.0;
+  p = p * r + 0.5;
+  p = p * r + 1.0;
+  p = p * r + 1.0;
+  std::uint64_t bits;
+  std::memcpy(&bits, &t, sizeof bits);
+  bits = (bits + 1023) << 52; // 2^k (k >= -1010: a normal number)
+  double scale;
+  std::memcpy(&scale, &bits, sizeof scale);
+  return p * scale;
+}
+
+constexpr std::size_t kExpChunk = 32;
+
+/**
+ * w[j] = exp(-d2[j] * inv4s2) where d2[j] < rc2, else 0 (j < m <= kExpChunk; d2 >= 0).
+ * The comparisons are on the bit patterns (ordered like the values for non-negative
+ * doubles): floating-point selects would keep GCC from vectorising the loop.
+ */
+AV_SIMD_CLONES void GaussianKernel(
+  const double* d2, double* w, std::size_t m, double inv4s2, double rc2)
+{
+  const double clampD2 = std::min(rc2, 700.0 / inv4s2); // exp's argument stays >= -700
+  std::int64_t bRc2, bClamp;
+  std::memcpy(&bRc2, &rc2, sizeof bRc2);
+  std::memcpy(&bClamp, &clampD2, sizeof bClamp);
+  for (std::size_t j = 0; j < m; ++j)
+  {
+    std::int64_t b;
+    std::memcpy(&b, d2 + j, sizeof b);
+    const std::uint64_t keep = b < bRc2 ? ~0ull : 0ull;
+    b = std::min(b, bClamp);
+    double d;
+    std::memcpy(&d, &b, sizeof d);
+    const double v = ExpNonPositive(-d * inv4s2);
+    std::uint64_t vb;
+    std::memcpy(&vb, &v, sizeof vb);
+    vb &= keep;
+    std::memcpy(w + j, &vb, sizeof vb);
+  }
+}
 
 void CheckInputs(const SimplexMesh& mesh, const Embedding& emb)
 {
@@ -527,52 +591,58 @@ public:
     for (std::size_t c = 0; c < numCells; ++c)
       GridStart[c + 1] += GridStart[c];
     GridItems.resize(N);
-    GridProj.resize(3 * N); // projections in grid order: the candidate scan reads them in a row
+    GridX.resize(x.size()); // positions in grid order: the candidate scan reads them in a row
     {
       std::vector<std::uint32_t> fill(GridStart.begin(), GridStart.end() - 1);
       for (std::size_t p = 0; p < N; ++p)
       {
         const std::uint32_t t = fill[ParticleCell[p]]++;
         GridItems[t] = static_cast<std::uint32_t>(p);
-        std::copy_n(Proj.data() + 3 * p, 3, GridProj.data() + 3 * t);
+        std::copy_n(x.data() + p * static_cast<std::size_t>(Dim), Dim,
+          GridX.data() + t * static_cast<std::size_t>(Dim));
       }
     }
-    const double rBox = r * (1.0 + 1e-9); // projected test with slack for round-off
+    // Candidates: the 3 x 3 x 3 grid cells around the particle's, as 9 runs of consecutive
+    // cells; full distances on grid-ordered positions, stored branch-free.
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, N),
       [&](const tbb::blocked_range<std::size_t>& rg)
       {
+        std::vector<std::uint32_t> buffer; // per chunk, grows to the largest neighbourhood
         for (std::size_t p = rg.begin(); p != rg.end(); ++p)
         {
           const Eigen::Map<const Vec> xp(x.data() + p * static_cast<std::size_t>(Dim), Dim);
-          const double* yp = Proj.data() + 3 * p;
           long long c[3];
           for (int a = 0; a < 3; ++a)
             c[a] = cellOf(p, a);
-          auto& list = Outer[p];
-          list.clear();
+          const long long k0 = std::max(0LL, c[2] - 1), k1 = std::min(n[2] - 1, c[2] + 1);
+          std::size_t count = 0;
           for (long long i = std::max(0LL, c[0] - 1); i <= std::min(n[0] - 1, c[0] + 1); ++i)
             for (long long j = std::max(0LL, c[1] - 1); j <= std::min(n[1] - 1, c[1] + 1); ++j)
-              for (long long k = std::max(0LL, c[2] - 1); k <= std::min(n[2] - 1, c[2] + 1); ++k)
+            {
+              const auto row = static_cast<std::size_t>((i * n[1] + j) * n[2]);
+              const std::uint32_t t0 = GridStart[row + static_cast<std::size_t>(k0)];
+              const std::uint32_t t1 = GridStart[row + static_cast<std::size_t>(k1) + 1];
+              if (buffer.size() < count + (t1 - t0))
+                buffer.resize(2 * (count + (t1 - t0)));
+              for (std::uint32_t t = t0; t < t1; ++t)
               {
-                const auto cell = static_cast<std::size_t>((i * n[1] + j) * n[2] + k);
-                for (std::uint32_t t = GridStart[cell]; t < GridStart[cell + 1]; ++t)
-                {
-                  const double* yq = GridProj.data() + 3 * t;
-                  if (std::abs(yp[0] - yq[0]) >= rBox || std::abs(yp[1] - yq[1]) >= rBox ||
-                    std::abs(yp[2] - yq[2]) >= rBox)
-                    continue;
-                  const std::uint32_t q = GridItems[t];
-                  if (q == p)
-                    continue;
-                  const Eigen::Map<const Vec> xq(
-                    x.data() + q * static_cast<std::size_t>(Dim), Dim);
-                  if ((xp - xq).squaredNorm() < r2)
-                    list.push_back(q);
-                }
+                const Eigen::Map<const Vec> xq(
+                  GridX.data() + t * static_cast<std::size_t>(Dim), Dim);
+                const std::uint32_t q = GridItems[t];
+                buffer[count] = q;
+                count += ((xp - xq).squaredNorm() < r2) & (q != p) ? 1 : 0;
               }
+            }
+          auto& list = Outer[p];
+          list.assign(buffer.begin(), buffer.begin() + static_cast<std::ptrdiff_t>(count));
           std::sort(list.begin(), list.end());
         }
       });
+    OuterStart.resize(N + 1);
+    OuterStart[0] = 0;
+    for (std::size_t p = 0; p < N; ++p)
+      OuterStart[p + 1] = OuterStart[p] + Outer[p].size();
+    Inner.resize(OuterStart[N]);
   }
 
   /// Sum of the two largest displacements between `x` and `ref` (no pair can have closed in
@@ -616,14 +686,16 @@ public:
         for (std::size_t p = rg.begin(); p != rg.end(); ++p)
         {
           const Eigen::Map<const Vec> xp(x.data() + p * static_cast<std::size_t>(Dim), Dim);
-          auto& list = Lists[p];
-          list.clear();
+          // Into the outer list's slot (a superset), branch-free.
+          std::uint32_t* out = Inner.data() + OuterStart[p];
+          std::uint32_t count = 0;
           for (std::uint32_t q : Outer[p])
           {
             const Eigen::Map<const Vec> xq(x.data() + q * static_cast<std::size_t>(Dim), Dim);
-            if ((xp - xq).squaredNorm() < r2)
-              list.push_back(q);
+            out[count] = q;
+            count += (xp - xq).squaredNorm() < r2 ? 1 : 0;
           }
+          InnerCount[p] = count;
         }
       });
   }
@@ -640,25 +712,40 @@ public:
     EnsureNeighbours(x);
     const double inv4s2 = 1.0 / (4.0 * Sigma * Sigma);
     const double rc2 = Cutoff * Cutoff;
-    const double shift = std::exp(-rc2 * inv4s2);
+    double shift = 0.0;
+    GaussianKernel(&rc2, &shift, 1, inv4s2, std::numeric_limits<double>::infinity());
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, N),
       [&](const tbb::blocked_range<std::size_t>& r)
       {
+        double d2[kExpChunk], w[kExpChunk];
         for (std::size_t p = r.begin(); p != r.end(); ++p)
         {
           const Eigen::Map<const Vec> xp(x.data() + p * static_cast<std::size_t>(Dim), Dim);
           Vec g = Vec::Zero(Dim);
           double e = 0.0;
-          for (std::uint32_t q : Lists[p])
+          const std::uint32_t* list = Inner.data() + OuterStart[p];
+          const std::size_t count = InnerCount[p];
+          // In chunks: distances, then the kernel of the whole chunk (vectorised exp), then
+          // the sums in list order.
+          for (std::size_t j0 = 0; j0 < count; j0 += kExpChunk)
           {
-            const Eigen::Map<const Vec> xq(x.data() + q * static_cast<std::size_t>(Dim), Dim);
-            const Vec diff = xp - xq;
-            const double d2 = diff.squaredNorm();
-            if (d2 >= rc2)
-              continue;
-            const double w = std::exp(-d2 * inv4s2);
-            e += w - shift;
-            g -= (2.0 * inv4s2 * w) * diff;
+            const std::size_t m = std::min(count - j0, kExpChunk);
+            for (std::size_t j = 0; j < m; ++j)
+            {
+              const Eigen::Map<const Vec> xq(
+                x.data() + list[j0 + j] * static_cast<std::size_t>(Dim), Dim);
+              d2[j] = (xp - xq).squaredNorm();
+            }
+            GaussianKernel(d2, w, m, inv4s2, rc2);
+            for (std::size_t j = 0; j < m; ++j)
+            {
+              if (d2[j] >= rc2)
+                continue;
+              const Eigen::Map<const Vec> xq(
+                x.data() + list[j0 + j] * static_cast<std::size_t>(Dim), Dim);
+              e += w[j] - shift;
+              g -= (2.0 * inv4s2 * w[j]) * (xp - xq);
+            }
           }
           PerParticle[p] = 0.5 * e;
           if (grad)
@@ -680,8 +767,9 @@ public:
     EnsureNeighbours(x);
     std::size_t total = 0;
     for (std::size_t p = 0; p < N; ++p)
-      for (std::uint32_t q : Lists[p])
+      for (std::uint32_t j = 0; j < InnerCount[p]; ++j)
       {
+        const std::uint32_t q = Inner[OuterStart[p] + j];
         double d2 = 0.0;
         for (int d = 0; d < Dim; ++d)
           d2 += std::pow(x[p * static_cast<std::size_t>(Dim) + static_cast<std::size_t>(d)] -
@@ -695,8 +783,8 @@ public:
   void Run(const ParticleSamplerOptions& opt, ParticleSamplerResult& res)
   {
     N = res.Sites.NumSites();
-    Lists.resize(N);
     Outer.resize(N);
+    InnerCount.assign(N, 0);
     PerParticle.assign(N, 0.0);
     CellCache.assign(2 * N, CellData());
     const int total = opt.WarmupIterations + opt.Iterations;
@@ -917,8 +1005,13 @@ private:
   double OuterSkin = 2.0;
   std::vector<double> ListPositions;  // positions at the last inner list build
   std::vector<double> OuterPositions; // positions at the last kd-tree build
-  std::vector<std::vector<std::uint32_t>> Lists, Outer;
-  std::vector<double> Proj, GridProj; // principal coordinates (3 per particle; grid order)
+  std::vector<std::vector<std::uint32_t>> Outer;
+  /// Inner lists, CSR in the outer lists' layout: particle p's are the first InnerCount[p]
+  /// of Inner[OuterStart[p] ..].
+  std::vector<std::size_t> OuterStart;
+  std::vector<std::uint32_t> Inner, InnerCount;
+  std::vector<double> Proj;  // principal coordinates (3 per particle)
+  std::vector<double> GridX; // positions in grid order
   std::vector<std::uint32_t> GridStart, GridItems, ParticleCell; // outer-list grid (CSR)
   std::vector<double> PerParticle;
 };
