@@ -7,6 +7,7 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <memory>
 #include <chrono>
@@ -222,6 +223,20 @@ std::int32_t FaceNeighbour(const SimplexMesh& mesh, const VertexCells& vc, std::
     }
   }
   return count == 1 ? found : -1;
+}
+
+/// a . b with four interleaved partial sums (a single running sum is one add latency per
+/// value; the fixed order keeps the result independent of the thread count).
+inline double Dot(const double* a, const double* b, std::size_t n)
+{
+  double acc[4] = { 0.0, 0.0, 0.0, 0.0 };
+  std::size_t i = 0;
+  for (; i + 4 <= n; i += 4)
+    for (std::size_t k = 0; k < 4; ++k)
+      acc[k] += a[i + k] * b[i + k];
+  for (; i < n; ++i)
+    acc[0] += a[i] * b[i];
+  return (acc[0] + acc[1]) + (acc[2] + acc[3]);
 }
 
 /**
@@ -645,24 +660,85 @@ public:
     Inner.resize(OuterStart[N]);
   }
 
+  /// Sums f(i0, i1, out) (out: M partial sums of [i0, i1)) over fixed blocks of [0, n) in
+  /// parallel, then adds the blocks' partials in block order: the same bits for any number
+  /// of threads.
+  template <int M, class F>
+  std::array<double, M> BlockedSums(std::size_t n, F&& f)
+  {
+    const std::size_t blocks = (n + kBlock - 1) / kBlock;
+    Partials.resize(blocks * M);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, blocks, 1),
+      [&](const tbb::blocked_range<std::size_t>& r)
+      {
+        for (std::size_t b = r.begin(); b != r.end(); ++b)
+          f(b * kBlock, std::min(n, (b + 1) * kBlock), Partials.data() + b * M);
+      });
+    std::array<double, M> sum{};
+    for (std::size_t b = 0; b < blocks; ++b)
+      for (int m = 0; m < M; ++m)
+        sum[static_cast<std::size_t>(m)] += Partials[b * M + static_cast<std::size_t>(m)];
+    return sum;
+  }
+
+  /// y = s y + a x (s == 0: y = a x; x null: no a x term), then returns z . y (z null: 0);
+  /// one parallel pass over the nd values.
+  double ScaleAddDot(double s, double a, const double* x, double* y, const double* z)
+  {
+    return BlockedSums<1>(NumValues,
+      [&](std::size_t i0, std::size_t i1, double* out)
+      {
+        if (s == 0.0)
+          for (std::size_t i = i0; i < i1; ++i)
+            y[i] = x ? a * x[i] : 0.0;
+        else if (x)
+          for (std::size_t i = i0; i < i1; ++i)
+            y[i] = s * y[i] + a * x[i];
+        else if (s != 1.0)
+          for (std::size_t i = i0; i < i1; ++i)
+            y[i] *= s;
+        out[0] = z ? Dot(z + i0, y + i0, i1 - i0) : 0.0;
+      })[0];
+  }
+
   /// Sum of the two largest displacements between `x` and `ref` (no pair can have closed in
   /// by more than this); infinity when `ref` is unset.
-  double TwoLargestMoves(const std::vector<double>& x, const std::vector<double>& ref) const
+  double TwoLargestMoves(const std::vector<double>& x, const std::vector<double>& ref)
   {
     if (ref.size() != x.size())
       return std::numeric_limits<double>::infinity();
+    // Per block of particles its two largest squared displacements, then of all blocks.
+    const std::size_t perBlock = std::max<std::size_t>(1, kBlock / static_cast<std::size_t>(Dim));
+    const std::size_t blocks = (N + perBlock - 1) / perBlock;
+    Partials.resize(2 * blocks);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, blocks, 1),
+      [&](const tbb::blocked_range<std::size_t>& r)
+      {
+        for (std::size_t b = r.begin(); b != r.end(); ++b)
+        {
+          double m1 = 0.0, m2 = 0.0;
+          for (std::size_t p = b * perBlock, e = std::min(N, (b + 1) * perBlock); p < e; ++p)
+          {
+            const Eigen::Map<const Vec> u(x.data() + p * static_cast<std::size_t>(Dim), Dim);
+            const Eigen::Map<const Vec> v(ref.data() + p * static_cast<std::size_t>(Dim), Dim);
+            const double d2 = (u - v).squaredNorm();
+            if (d2 > m2)
+            {
+              m2 = std::min(d2, m1);
+              m1 = std::max(d2, m1);
+            }
+          }
+          Partials[2 * b] = m1;
+          Partials[2 * b + 1] = m2;
+        }
+      });
     double m1 = 0.0, m2 = 0.0; // two largest squared displacements
-    for (std::size_t p = 0; p < N; ++p)
-    {
-      const Eigen::Map<const Vec> a(x.data() + p * static_cast<std::size_t>(Dim), Dim);
-      const Eigen::Map<const Vec> b(ref.data() + p * static_cast<std::size_t>(Dim), Dim);
-      const double d2 = (a - b).squaredNorm();
+    for (double d2 : Partials)
       if (d2 > m2)
       {
         m2 = std::min(d2, m1);
         m1 = std::max(d2, m1);
       }
-    }
     return std::sqrt(m1) + std::sqrt(m2);
   }
 
@@ -872,49 +948,60 @@ public:
         res.Aborted = true;
         break;
       }
-      const Eigen::Map<const Eigen::VectorXd> gv(g.data(), static_cast<Eigen::Index>(nd));
-      // Two-loop recursion.
-      dir = -gv;
-      alpha.assign(hist.size(), 0.0);
-      for (std::size_t h = hist.size(); h-- > 0;)
+      // Two-loop recursion, each update of dir fused with the next dot product (pending:
+      // dir = ps dir + pa px, applied in the next pass).
+      NumValues = nd;
+      double* d = dir.data();
+      const std::size_t nh = hist.size();
+      alpha.assign(nh, 0.0);
+      double ps = 0.0, pa = -1.0;
+      const double* px = g.data();
+      double gDir = 0.0; // g . dir once dir is final
+      if (nh > 0)
       {
-        const double rho = 1.0 / hist[h].Sy;
-        alpha[h] = rho * hist[h].S.dot(dir);
-        dir -= alpha[h] * hist[h].Y;
+        for (std::size_t h = nh; h-- > 0;)
+        {
+          alpha[h] = ScaleAddDot(ps, pa, px, d, hist[h].S.data()) / hist[h].Sy;
+          ps = 1.0;
+          pa = -alpha[h];
+          px = hist[h].Y.data();
+        }
+        const double gamma = hist.back().Sy / hist.back().Yy;
+        ps = gamma;
+        pa *= gamma;
+        for (std::size_t h = 0; h < nh; ++h)
+        {
+          const double beta = ScaleAddDot(ps, pa, px, d, hist[h].Y.data()) / hist[h].Sy;
+          ps = 1.0;
+          pa = alpha[h] - beta;
+          px = hist[h].S.data();
+        }
+        gDir = ScaleAddDot(ps, pa, px, d, g.data());
       }
-      if (!hist.empty())
+      if (!(gDir < 0.0))
       {
-        const auto& last = hist.back();
-        dir *= last.Sy / last.Yy;
-      }
-      else
-      {
-        // First step: move the average particle by sigma / 2.
-        const double rms = std::sqrt(gv.squaredNorm() / static_cast<double>(N));
-        if (rms <= 0.0)
+        // First step, or not a descent direction: steepest descent moving the average
+        // particle by sigma / 2.
+        if (nh > 0)
+          ClearHistory(hist, spare);
+        const double rms =
+          std::sqrt(ScaleAddDot(1.0, 0.0, nullptr, g.data(), g.data()) / static_cast<double>(N));
+        if (rms <= 0.0 && nh == 0)
           break;
-        dir *= 0.5 * Sigma / rms;
-      }
-      for (std::size_t h = 0; h < hist.size(); ++h)
-      {
-        const double rho = 1.0 / hist[h].Sy;
-        const double beta = rho * hist[h].Y.dot(dir);
-        dir += (alpha[h] - beta) * hist[h].S;
-      }
-      if (!(gv.dot(dir) < 0.0))
-      {
-        ClearHistory(hist, spare);
-        const double rms = std::sqrt(gv.squaredNorm() / static_cast<double>(N));
-        dir = -gv * (0.5 * Sigma / std::max(rms, 1e-300));
+        ScaleAddDot(0.0, -0.5 * Sigma / std::max(rms, 1e-300), g.data(), d, nullptr);
       }
       // Trust region per particle: no particle jumps more than one sigma per step.
-      for (std::size_t p = 0; p < N; ++p)
-      {
-        auto dp = dir.segment(static_cast<Eigen::Index>(p) * Dim, Dim);
-        const double len = dp.norm();
-        if (len > Sigma)
-          dp *= Sigma / len;
-      }
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, N),
+        [&](const tbb::blocked_range<std::size_t>& r)
+        {
+          for (std::size_t p = r.begin(); p != r.end(); ++p)
+          {
+            auto dp = dir.segment(static_cast<Eigen::Index>(p) * Dim, Dim);
+            const double len = dp.norm();
+            if (len > Sigma)
+              dp *= Sigma / len;
+          }
+        });
 
       bool accepted = false;
       double step = 1.0, trialEnergy = energy;
@@ -936,9 +1023,18 @@ public:
             }
           });
         trialEnergy = Evaluate(xt, ct, bt, &gt);
-        double slope = 0.0;
-        for (std::size_t i = 0; i < nd; ++i)
-          slope += g[i] * (xt[i] - x[i]);
+        const double slope = BlockedSums<1>(nd,
+          [&](std::size_t i0, std::size_t i1, double* out)
+          {
+            double acc[4] = { 0.0, 0.0, 0.0, 0.0 };
+            std::size_t i = i0;
+            for (; i + 4 <= i1; i += 4)
+              for (std::size_t k = 0; k < 4; ++k)
+                acc[k] += g[i + k] * (xt[i + k] - x[i + k]);
+            for (; i < i1; ++i)
+              acc[0] += g[i] * (xt[i] - x[i]);
+            out[0] = (acc[0] + acc[1]) + (acc[2] + acc[3]);
+          })[0];
         accepted = trialEnergy <= energy + 1e-4 * slope && trialEnergy < energy;
       }
       if (!accepted)
@@ -959,13 +1055,21 @@ public:
       }
       pr.S.resize(static_cast<Eigen::Index>(nd));
       pr.Y.resize(static_cast<Eigen::Index>(nd));
-      for (std::size_t i = 0; i < nd; ++i)
-      {
-        pr.S[static_cast<Eigen::Index>(i)] = xt[i] - x[i];
-        pr.Y[static_cast<Eigen::Index>(i)] = gt[i] - g[i];
-      }
-      pr.Sy = pr.S.dot(pr.Y);
-      pr.Yy = pr.Y.squaredNorm();
+      const std::array<double, 2> products = BlockedSums<2>(nd,
+        [&](std::size_t i0, std::size_t i1, double* out)
+        {
+          double* sv = pr.S.data();
+          double* yv = pr.Y.data();
+          for (std::size_t i = i0; i < i1; ++i)
+          {
+            sv[i] = xt[i] - x[i];
+            yv[i] = gt[i] - g[i];
+          }
+          out[0] = Dot(sv + i0, yv + i0, i1 - i0);
+          out[1] = Dot(yv + i0, yv + i0, i1 - i0);
+        });
+      pr.Sy = products[0];
+      pr.Yy = products[1];
       if (pr.Sy > 1e-10 * pr.Yy)
       {
         hist.push_back(std::move(pr));
@@ -1014,6 +1118,9 @@ private:
   std::vector<double> GridX; // positions in grid order
   std::vector<std::uint32_t> GridStart, GridItems, ParticleCell; // outer-list grid (CSR)
   std::vector<double> PerParticle;
+  static constexpr std::size_t kBlock = 4096; ///< values per block of the parallel sums
+  std::size_t NumValues = 0;                  ///< nd, the length of ScaleAddDot's vectors
+  std::vector<double> Partials;               ///< per-block partial sums
 };
 
 template <int D>
