@@ -1,4 +1,5 @@
 #include "ParticleSampler.h"
+#include "SimdClones.h"
 
 #include "FeatureSites.h"
 #include "SharpFeatures.h"
@@ -9,6 +10,7 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <memory>
 #include <chrono>
@@ -17,6 +19,7 @@
 #include <limits>
 #include <string>
 #include <cstdlib>
+#include <cstring>
 
 namespace av
 {
@@ -47,6 +50,68 @@ double GridCellSide(const double lo[3], const double hi[3], double r, std::size_
   }
 }
 constexpr int kMaxDim = 20;
+
+/// exp(x) for x in [-700, 0], within a few ulp of std::exp; inline and branch-free so that
+/// loops over it vectorise (glibc's exp is a call per value).
+inline double ExpNonPositive(double x)
+{
+  // k = round(x / ln 2) by the 1.5 * 2^52 trick: the low bits of t hold k.
+  const double magic = 0x1.8p52;
+  const double t = x * 1.4426950408889634 + magic;
+  const double k = t - magic;
+  const double r = (x - k * 0x1.62e42fefa39efp-1) - k * 0x1.abc9e3b39803fp-56; // |r| <= ln2 / 2
+  // Taylor series to degree 13 (truncation error < 1e-17 relative).
+  double p = 1.0 / 6227020800.0;
+  p = p * r + 1.0 / 479001600.0;
+  p = p * r + 1.0 / 39916800.0;
+  p = p * r + 1.0 / 3628800.0;
+  p = p * r + 1.0 / 362880.0;
+  p = p * r + 1.0 / 40320.0;
+  p = p * r + 1.0 / 5040.0;
+  p = p * r + 1.0 / 720.0;
+  p = p * r + 1.0 / 120.0;
+  p = p * r + 1.0 / 24.0;
+  p = p * r + 1.0 / 6.0;
+  p = p * r + 0.5;
+  p = p * r + 1.0;
+  p = p * r + 1.0;
+  std::uint64_t bits;
+  std::memcpy(&bits, &t, sizeof bits);
+  bits = (bits + 1023) << 52; // 2^k (k >= -1010: a normal number)
+  double scale;
+  std::memcpy(&scale, &bits, sizeof scale);
+  return p * scale;
+}
+
+constexpr std::size_t kExpChunk = 32;
+
+/**
+ * w[j] = exp(-d2[j] * inv4s2) where d2[j] < rc2, else 0 (j < m <= kExpChunk; d2 >= 0).
+ * The comparisons are on the bit patterns (ordered like the values for non-negative
+ * doubles): floating-point selects would keep GCC from vectorising the loop.
+ */
+AV_SIMD_CLONES void GaussianKernel(
+  const double* d2, double* w, std::size_t m, double inv4s2, double rc2)
+{
+  const double clampD2 = std::min(rc2, 700.0 / inv4s2); // exp's argument stays >= -700
+  std::int64_t bRc2, bClamp;
+  std::memcpy(&bRc2, &rc2, sizeof bRc2);
+  std::memcpy(&bClamp, &clampD2, sizeof bClamp);
+  for (std::size_t j = 0; j < m; ++j)
+  {
+    std::int64_t b;
+    std::memcpy(&b, d2 + j, sizeof b);
+    const std::uint64_t keep = b < bRc2 ? ~0ull : 0ull;
+    b = std::min(b, bClamp);
+    double d;
+    std::memcpy(&d, &b, sizeof d);
+    const double v = ExpNonPositive(-d * inv4s2);
+    std::uint64_t vb;
+    std::memcpy(&vb, &v, sizeof vb);
+    vb &= keep;
+    std::memcpy(w + j, &vb, sizeof vb);
+  }
+}
 
 void CheckInputs(const SimplexMesh& mesh, const Embedding& emb)
 {
@@ -161,6 +226,20 @@ std::int32_t FaceNeighbour(const SimplexMesh& mesh, const VertexCells& vc, std::
     }
   }
   return count == 1 ? found : -1;
+}
+
+/// a . b with four interleaved partial sums (a single running sum is one add latency per
+/// value; the fixed order keeps the result independent of the thread count).
+inline double Dot(const double* a, const double* b, std::size_t n)
+{
+  double acc[4] = { 0.0, 0.0, 0.0, 0.0 };
+  std::size_t i = 0;
+  for (; i + 4 <= n; i += 4)
+    for (std::size_t k = 0; k < 4; ++k)
+      acc[k] += a[i + k] * b[i + k];
+  for (; i < n; ++i)
+    acc[0] += a[i] * b[i];
+  return (acc[0] + acc[1]) + (acc[2] + acc[3]);
 }
 
 /**
@@ -592,72 +671,139 @@ public:
     for (std::size_t c = 0; c < numCells; ++c)
       GridStart[c + 1] += GridStart[c];
     GridItems.resize(N);
-    GridProj.resize(3 * N); // projections in grid order: the candidate scan reads them in a row
+    GridX.resize(x.size()); // positions in grid order: the candidate scan reads them in a row
     {
       std::vector<std::uint32_t> fill(GridStart.begin(), GridStart.end() - 1);
       for (std::size_t p = 0; p < N; ++p)
       {
         const std::uint32_t t = fill[ParticleCell[p]]++;
         GridItems[t] = static_cast<std::uint32_t>(p);
-        std::copy_n(Proj.data() + 3 * p, 3, GridProj.data() + 3 * t);
+        std::copy_n(x.data() + p * static_cast<std::size_t>(Dim), Dim,
+          GridX.data() + t * static_cast<std::size_t>(Dim));
       }
     }
-    const double rBox = r * (1.0 + 1e-9); // projected test with slack for round-off
+    // Candidates: the 3 x 3 x 3 grid cells around the particle's, as 9 runs of consecutive
+    // cells; full distances on grid-ordered positions, stored branch-free.
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, N),
       [&](const tbb::blocked_range<std::size_t>& rg)
       {
+        std::vector<std::uint32_t> buffer; // per chunk, grows to the largest neighbourhood
         for (std::size_t p = rg.begin(); p != rg.end(); ++p)
         {
           const Eigen::Map<const Vec> xp(x.data() + p * static_cast<std::size_t>(Dim), Dim);
-          const double* yp = Proj.data() + 3 * p;
           long long c[3];
           for (int a = 0; a < 3; ++a)
             c[a] = cellOf(p, a);
-          auto& list = Outer[p];
-          list.clear();
+          const long long k0 = std::max(0LL, c[2] - 1), k1 = std::min(n[2] - 1, c[2] + 1);
+          std::size_t count = 0;
           for (long long i = std::max(0LL, c[0] - 1); i <= std::min(n[0] - 1, c[0] + 1); ++i)
             for (long long j = std::max(0LL, c[1] - 1); j <= std::min(n[1] - 1, c[1] + 1); ++j)
-              for (long long k = std::max(0LL, c[2] - 1); k <= std::min(n[2] - 1, c[2] + 1); ++k)
+            {
+              const auto row = static_cast<std::size_t>((i * n[1] + j) * n[2]);
+              const std::uint32_t t0 = GridStart[row + static_cast<std::size_t>(k0)];
+              const std::uint32_t t1 = GridStart[row + static_cast<std::size_t>(k1) + 1];
+              if (buffer.size() < count + (t1 - t0))
+                buffer.resize(2 * (count + (t1 - t0)));
+              for (std::uint32_t t = t0; t < t1; ++t)
               {
-                const auto cell = static_cast<std::size_t>((i * n[1] + j) * n[2] + k);
-                for (std::uint32_t t = GridStart[cell]; t < GridStart[cell + 1]; ++t)
-                {
-                  const double* yq = GridProj.data() + 3 * t;
-                  if (std::abs(yp[0] - yq[0]) >= rBox || std::abs(yp[1] - yq[1]) >= rBox ||
-                    std::abs(yp[2] - yq[2]) >= rBox)
-                    continue;
-                  const std::uint32_t q = GridItems[t];
-                  if (q == p)
-                    continue;
-                  const Eigen::Map<const Vec> xq(
-                    x.data() + q * static_cast<std::size_t>(Dim), Dim);
-                  if ((xp - xq).squaredNorm() < r2)
-                    list.push_back(q);
-                }
+                const Eigen::Map<const Vec> xq(
+                  GridX.data() + t * static_cast<std::size_t>(Dim), Dim);
+                const std::uint32_t q = GridItems[t];
+                buffer[count] = q;
+                count += ((xp - xq).squaredNorm() < r2) & (q != p) ? 1 : 0;
               }
+            }
+          auto& list = Outer[p];
+          list.assign(buffer.begin(), buffer.begin() + static_cast<std::ptrdiff_t>(count));
           std::sort(list.begin(), list.end());
         }
       });
+    OuterStart.resize(N + 1);
+    OuterStart[0] = 0;
+    for (std::size_t p = 0; p < N; ++p)
+      OuterStart[p + 1] = OuterStart[p] + Outer[p].size();
+    Inner.resize(OuterStart[N]);
+  }
+
+  /// Sums f(i0, i1, out) (out: M partial sums of [i0, i1)) over fixed blocks of [0, n) in
+  /// parallel, then adds the blocks' partials in block order: the same bits for any number
+  /// of threads.
+  template <int M, class F>
+  std::array<double, M> BlockedSums(std::size_t n, F&& f)
+  {
+    const std::size_t blocks = (n + kBlock - 1) / kBlock;
+    Partials.resize(blocks * M);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, blocks, 1),
+      [&](const tbb::blocked_range<std::size_t>& r)
+      {
+        for (std::size_t b = r.begin(); b != r.end(); ++b)
+          f(b * kBlock, std::min(n, (b + 1) * kBlock), Partials.data() + b * M);
+      });
+    std::array<double, M> sum{};
+    for (std::size_t b = 0; b < blocks; ++b)
+      for (int m = 0; m < M; ++m)
+        sum[static_cast<std::size_t>(m)] += Partials[b * M + static_cast<std::size_t>(m)];
+    return sum;
+  }
+
+  /// y = s y + a x (s == 0: y = a x; x null: no a x term), then returns z . y (z null: 0);
+  /// one parallel pass over the nd values.
+  double ScaleAddDot(double s, double a, const double* x, double* y, const double* z)
+  {
+    return BlockedSums<1>(NumValues,
+      [&](std::size_t i0, std::size_t i1, double* out)
+      {
+        if (s == 0.0)
+          for (std::size_t i = i0; i < i1; ++i)
+            y[i] = x ? a * x[i] : 0.0;
+        else if (x)
+          for (std::size_t i = i0; i < i1; ++i)
+            y[i] = s * y[i] + a * x[i];
+        else if (s != 1.0)
+          for (std::size_t i = i0; i < i1; ++i)
+            y[i] *= s;
+        out[0] = z ? Dot(z + i0, y + i0, i1 - i0) : 0.0;
+      })[0];
   }
 
   /// Sum of the two largest displacements between `x` and `ref` (no pair can have closed in
   /// by more than this); infinity when `ref` is unset.
-  double TwoLargestMoves(const std::vector<double>& x, const std::vector<double>& ref) const
+  double TwoLargestMoves(const std::vector<double>& x, const std::vector<double>& ref)
   {
     if (ref.size() != x.size())
       return std::numeric_limits<double>::infinity();
+    // Per block of particles its two largest squared displacements, then of all blocks.
+    const std::size_t perBlock = std::max<std::size_t>(1, kBlock / static_cast<std::size_t>(Dim));
+    const std::size_t blocks = (N + perBlock - 1) / perBlock;
+    Partials.resize(2 * blocks);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, blocks, 1),
+      [&](const tbb::blocked_range<std::size_t>& r)
+      {
+        for (std::size_t b = r.begin(); b != r.end(); ++b)
+        {
+          double m1 = 0.0, m2 = 0.0;
+          for (std::size_t p = b * perBlock, e = std::min(N, (b + 1) * perBlock); p < e; ++p)
+          {
+            const Eigen::Map<const Vec> u(x.data() + p * static_cast<std::size_t>(Dim), Dim);
+            const Eigen::Map<const Vec> v(ref.data() + p * static_cast<std::size_t>(Dim), Dim);
+            const double d2 = (u - v).squaredNorm();
+            if (d2 > m2)
+            {
+              m2 = std::min(d2, m1);
+              m1 = std::max(d2, m1);
+            }
+          }
+          Partials[2 * b] = m1;
+          Partials[2 * b + 1] = m2;
+        }
+      });
     double m1 = 0.0, m2 = 0.0; // two largest squared displacements
-    for (std::size_t p = 0; p < N; ++p)
-    {
-      const Eigen::Map<const Vec> a(x.data() + p * static_cast<std::size_t>(Dim), Dim);
-      const Eigen::Map<const Vec> b(ref.data() + p * static_cast<std::size_t>(Dim), Dim);
-      const double d2 = (a - b).squaredNorm();
+    for (double d2 : Partials)
       if (d2 > m2)
       {
         m2 = std::min(d2, m1);
         m1 = std::max(d2, m1);
       }
-    }
     return std::sqrt(m1) + std::sqrt(m2);
   }
 
@@ -681,14 +827,16 @@ public:
         for (std::size_t p = rg.begin(); p != rg.end(); ++p)
         {
           const Eigen::Map<const Vec> xp(x.data() + p * static_cast<std::size_t>(Dim), Dim);
-          auto& list = Lists[p];
-          list.clear();
+          // Into the outer list's slot (a superset), branch-free.
+          std::uint32_t* out = Inner.data() + OuterStart[p];
+          std::uint32_t count = 0;
           for (std::uint32_t q : Outer[p])
           {
             const Eigen::Map<const Vec> xq(x.data() + q * static_cast<std::size_t>(Dim), Dim);
-            if ((xp - xq).squaredNorm() < r2)
-              list.push_back(q);
+            out[count] = q;
+            count += (xp - xq).squaredNorm() < r2 ? 1 : 0;
           }
+          InnerCount[p] = count;
         }
       });
   }
@@ -706,25 +854,40 @@ public:
     EnsureNeighbours(x);
     const double inv4s2 = 1.0 / (4.0 * Sigma * Sigma);
     const double rc2 = Cutoff * Cutoff;
-    const double shift = std::exp(-rc2 * inv4s2);
+    double shift = 0.0;
+    GaussianKernel(&rc2, &shift, 1, inv4s2, std::numeric_limits<double>::infinity());
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, N),
       [&](const tbb::blocked_range<std::size_t>& r)
       {
+        double d2[kExpChunk], w[kExpChunk];
         for (std::size_t p = r.begin(); p != r.end(); ++p)
         {
           const Eigen::Map<const Vec> xp(x.data() + p * static_cast<std::size_t>(Dim), Dim);
           Vec g = Vec::Zero(Dim);
           double e = 0.0;
-          for (std::uint32_t q : Lists[p])
+          const std::uint32_t* list = Inner.data() + OuterStart[p];
+          const std::size_t count = InnerCount[p];
+          // In chunks: distances, then the kernel of the whole chunk (vectorised exp), then
+          // the sums in list order.
+          for (std::size_t j0 = 0; j0 < count; j0 += kExpChunk)
           {
-            const Eigen::Map<const Vec> xq(x.data() + q * static_cast<std::size_t>(Dim), Dim);
-            const Vec diff = xp - xq;
-            const double d2 = diff.squaredNorm();
-            if (d2 >= rc2)
-              continue;
-            const double w = std::exp(-d2 * inv4s2);
-            e += w - shift;
-            g -= (2.0 * inv4s2 * w) * diff;
+            const std::size_t m = std::min(count - j0, kExpChunk);
+            for (std::size_t j = 0; j < m; ++j)
+            {
+              const Eigen::Map<const Vec> xq(
+                x.data() + list[j0 + j] * static_cast<std::size_t>(Dim), Dim);
+              d2[j] = (xp - xq).squaredNorm();
+            }
+            GaussianKernel(d2, w, m, inv4s2, rc2);
+            for (std::size_t j = 0; j < m; ++j)
+            {
+              if (d2[j] >= rc2)
+                continue;
+              const Eigen::Map<const Vec> xq(
+                x.data() + list[j0 + j] * static_cast<std::size_t>(Dim), Dim);
+              e += w[j] - shift;
+              g -= (2.0 * inv4s2 * w[j]) * (xp - xq);
+            }
           }
           PerParticle[p] = 0.5 * e;
           if (grad)
@@ -755,8 +918,9 @@ public:
     EnsureNeighbours(x);
     std::size_t total = 0;
     for (std::size_t p = 0; p < N; ++p)
-      for (std::uint32_t q : Lists[p])
+      for (std::uint32_t j = 0; j < InnerCount[p]; ++j)
       {
+        const std::uint32_t q = Inner[OuterStart[p] + j];
         double d2 = 0.0;
         for (int d = 0; d < Dim; ++d)
           d2 += std::pow(x[p * static_cast<std::size_t>(Dim) + static_cast<std::size_t>(d)] -
@@ -771,8 +935,8 @@ public:
   {
     N = res.Sites.NumSites();
     Kind = res.FeatureKind.data();
-    Lists.resize(N);
     Outer.resize(N);
+    InnerCount.assign(N, 0);
     PerParticle.assign(N, 0.0);
     CellCache.assign(2 * N, CellData());
     const int total = opt.WarmupIterations + opt.Iterations;
@@ -862,49 +1026,60 @@ public:
         res.Aborted = true;
         break;
       }
-      const Eigen::Map<const Eigen::VectorXd> gv(g.data(), static_cast<Eigen::Index>(nd));
-      // Two-loop recursion.
-      dir = -gv;
-      alpha.assign(hist.size(), 0.0);
-      for (std::size_t h = hist.size(); h-- > 0;)
+      // Two-loop recursion, each update of dir fused with the next dot product (pending:
+      // dir = ps dir + pa px, applied in the next pass).
+      NumValues = nd;
+      double* d = dir.data();
+      const std::size_t nh = hist.size();
+      alpha.assign(nh, 0.0);
+      double ps = 0.0, pa = -1.0;
+      const double* px = g.data();
+      double gDir = 0.0; // g . dir once dir is final
+      if (nh > 0)
       {
-        const double rho = 1.0 / hist[h].Sy;
-        alpha[h] = rho * hist[h].S.dot(dir);
-        dir -= alpha[h] * hist[h].Y;
+        for (std::size_t h = nh; h-- > 0;)
+        {
+          alpha[h] = ScaleAddDot(ps, pa, px, d, hist[h].S.data()) / hist[h].Sy;
+          ps = 1.0;
+          pa = -alpha[h];
+          px = hist[h].Y.data();
+        }
+        const double gamma = hist.back().Sy / hist.back().Yy;
+        ps = gamma;
+        pa *= gamma;
+        for (std::size_t h = 0; h < nh; ++h)
+        {
+          const double beta = ScaleAddDot(ps, pa, px, d, hist[h].Y.data()) / hist[h].Sy;
+          ps = 1.0;
+          pa = alpha[h] - beta;
+          px = hist[h].S.data();
+        }
+        gDir = ScaleAddDot(ps, pa, px, d, g.data());
       }
-      if (!hist.empty())
+      if (!(gDir < 0.0))
       {
-        const auto& last = hist.back();
-        dir *= last.Sy / last.Yy;
-      }
-      else
-      {
-        // First step: move the average particle by sigma / 2.
-        const double rms = std::sqrt(gv.squaredNorm() / static_cast<double>(N));
-        if (rms <= 0.0)
+        // First step, or not a descent direction: steepest descent moving the average
+        // particle by sigma / 2.
+        if (nh > 0)
+          ClearHistory(hist, spare);
+        const double rms =
+          std::sqrt(ScaleAddDot(1.0, 0.0, nullptr, g.data(), g.data()) / static_cast<double>(N));
+        if (rms <= 0.0 && nh == 0)
           break;
-        dir *= 0.5 * Sigma / rms;
-      }
-      for (std::size_t h = 0; h < hist.size(); ++h)
-      {
-        const double rho = 1.0 / hist[h].Sy;
-        const double beta = rho * hist[h].Y.dot(dir);
-        dir += (alpha[h] - beta) * hist[h].S;
-      }
-      if (!(gv.dot(dir) < 0.0))
-      {
-        ClearHistory(hist, spare);
-        const double rms = std::sqrt(gv.squaredNorm() / static_cast<double>(N));
-        dir = -gv * (0.5 * Sigma / std::max(rms, 1e-300));
+        ScaleAddDot(0.0, -0.5 * Sigma / std::max(rms, 1e-300), g.data(), d, nullptr);
       }
       // Trust region per particle: no particle jumps more than one sigma per step.
-      for (std::size_t p = 0; p < N; ++p)
-      {
-        auto dp = dir.segment(static_cast<Eigen::Index>(p) * Dim, Dim);
-        const double len = dp.norm();
-        if (len > Sigma)
-          dp *= Sigma / len;
-      }
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, N),
+        [&](const tbb::blocked_range<std::size_t>& r)
+        {
+          for (std::size_t p = r.begin(); p != r.end(); ++p)
+          {
+            auto dp = dir.segment(static_cast<Eigen::Index>(p) * Dim, Dim);
+            const double len = dp.norm();
+            if (len > Sigma)
+              dp *= Sigma / len;
+          }
+        });
 
       bool accepted = false;
       double step = 1.0, trialEnergy = energy;
@@ -928,9 +1103,18 @@ public:
             }
           });
         trialEnergy = Evaluate(xt, ct, bt, et, &gt);
-        double slope = 0.0;
-        for (std::size_t i = 0; i < nd; ++i)
-          slope += g[i] * (xt[i] - x[i]);
+        const double slope = BlockedSums<1>(nd,
+          [&](std::size_t i0, std::size_t i1, double* out)
+          {
+            double acc[4] = { 0.0, 0.0, 0.0, 0.0 };
+            std::size_t i = i0;
+            for (; i + 4 <= i1; i += 4)
+              for (std::size_t k = 0; k < 4; ++k)
+                acc[k] += g[i + k] * (xt[i + k] - x[i + k]);
+            for (; i < i1; ++i)
+              acc[0] += g[i] * (xt[i] - x[i]);
+            out[0] = (acc[0] + acc[1]) + (acc[2] + acc[3]);
+          })[0];
         accepted = trialEnergy <= energy + 1e-4 * slope && trialEnergy < energy;
       }
       if (!accepted)
@@ -951,13 +1135,21 @@ public:
       }
       pr.S.resize(static_cast<Eigen::Index>(nd));
       pr.Y.resize(static_cast<Eigen::Index>(nd));
-      for (std::size_t i = 0; i < nd; ++i)
-      {
-        pr.S[static_cast<Eigen::Index>(i)] = xt[i] - x[i];
-        pr.Y[static_cast<Eigen::Index>(i)] = gt[i] - g[i];
-      }
-      pr.Sy = pr.S.dot(pr.Y);
-      pr.Yy = pr.Y.squaredNorm();
+      const std::array<double, 2> products = BlockedSums<2>(nd,
+        [&](std::size_t i0, std::size_t i1, double* out)
+        {
+          double* sv = pr.S.data();
+          double* yv = pr.Y.data();
+          for (std::size_t i = i0; i < i1; ++i)
+          {
+            sv[i] = xt[i] - x[i];
+            yv[i] = gt[i] - g[i];
+          }
+          out[0] = Dot(sv + i0, yv + i0, i1 - i0);
+          out[1] = Dot(yv + i0, yv + i0, i1 - i0);
+        });
+      pr.Sy = products[0];
+      pr.Yy = products[1];
       if (pr.Sy > 1e-10 * pr.Yy)
       {
         hist.push_back(std::move(pr));
@@ -1000,10 +1192,18 @@ private:
   double OuterSkin = 2.0;
   std::vector<double> ListPositions;  // positions at the last inner list build
   std::vector<double> OuterPositions; // positions at the last kd-tree build
-  std::vector<std::vector<std::uint32_t>> Lists, Outer;
-  std::vector<double> Proj, GridProj; // principal coordinates (3 per particle; grid order)
+  std::vector<std::vector<std::uint32_t>> Outer;
+  /// Inner lists, CSR in the outer lists' layout: particle p's are the first InnerCount[p]
+  /// of Inner[OuterStart[p] ..].
+  std::vector<std::size_t> OuterStart;
+  std::vector<std::uint32_t> Inner, InnerCount;
+  std::vector<double> Proj;  // principal coordinates (3 per particle)
+  std::vector<double> GridX; // positions in grid order
   std::vector<std::uint32_t> GridStart, GridItems, ParticleCell; // outer-list grid (CSR)
   std::vector<double> PerParticle;
+  static constexpr std::size_t kBlock = 4096; ///< values per block of the parallel sums
+  std::size_t NumValues = 0;                  ///< nd, the length of ScaleAddDot's vectors
+  std::vector<double> Partials;               ///< per-block partial sums
 };
 
 template <int D>
