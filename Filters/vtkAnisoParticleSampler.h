@@ -31,7 +31,7 @@
  * start: the initial sampling, or the sites after the warm-up).
  *
  * Parameters: NumberOfSites (default 2000; between 1 and 8 x the input's point count),
- * Iterations (50), WarmupIterations (100), PreserveSharpFeatures (on), FeatureAngle (30),
+ * Iterations (150), WarmupIterations (100), PreserveSharpFeatures (on), FeatureAngle (30),
  * Seed (1), KernelWidthFactor (0.3), NeighbourCutoff (5).
  *
  * Distributed runs (mpiexec pvbatch, pvserver): needs the whole mesh, so it asks its inputs
@@ -59,7 +59,8 @@ public:
   ///@}
 
   ///@{
-  /// L-BFGS iterations of the repulsion (default 50 as the paper; 0 = random sampling only).
+  /// L-BFGS iterations of the repulsion (default 150; the paper: 50; 0 = random sampling
+  /// only, after any warm-up).
   vtkSetClampMacro(Iterations, int, 0, 100000);
   vtkGetMacro(Iterations, int);
   ///@}
@@ -120,7 +121,7 @@ protected:
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   int NumberOfSites = 2000;
-  int Iterations = 50;
+  int Iterations = 150;
   int WarmupIterations = 100;
   bool PreserveSharpFeatures = true;
   double FeatureAngle = 30.0;

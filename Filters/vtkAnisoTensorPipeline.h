@@ -71,7 +71,7 @@ public:
   ///@}
 
   ///@{
-  /// Particle sampler L-BFGS iterations (default 50 as the paper).
+  /// Particle sampler L-BFGS iterations (default 150; the paper: 50).
   vtkSetClampMacro(SamplingIterations, int, 0, 100000);
   vtkGetMacro(SamplingIterations, int);
   ///@}
@@ -148,7 +148,7 @@ protected:
   int NumberOfCells = 2000;
   int TargetDimension = 8;
   int Iterations = 50;
-  int SamplingIterations = 50;
+  int SamplingIterations = 150;
   int SamplingWarmupIterations = 100;
   bool PreserveSharpFeatures = true;
   double FeatureAngle = 30.0;

@@ -27,7 +27,7 @@ std::size_t DefaultSitesFor(av::AnalyticPreset preset);
 struct MeshStageOptions
 {
   std::size_t Sites = 1000;
-  int SampleIterations = 50;
+  int SampleIterations = 150;
   int WarmupIterations = 100;     ///< sampler warm-up iterations (ParticleSamplerOptions)
   std::uint64_t Seed = 1;
   double KernelWidthFactor = 0.3; ///< sampler's sigma factor

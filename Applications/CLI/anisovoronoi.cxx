@@ -85,7 +85,8 @@ options:
   --dim N                  embedding dimension (default 8)
   --iterations N           embedding iterations (default 50)
   --double-solve           embedding: CHOLMOD's double-precision solves (default: float copy)
-  --sample-iterations N    particle L-BFGS iterations at the paper's kernel (default 50)
+  --sample-iterations N    particle L-BFGS iterations at the paper's kernel (default 150;
+                           the paper: 50)
   --warmup-iterations N    particle iterations at a narrower kernel first (default 100;
                            0 with --sample-iterations 1500 or more: best quality)
   --no-features            no corner / feature-line sites (paper §4.1 sharp features)
@@ -121,7 +122,7 @@ use the final sites (sampled ones first, then inserted ones; sites.vtp: the samp
 struct Options
 {
   std::string Input, Metric, Sol, OutputDir;
-  int Step = 0, Resolution = 0, Sites = 2000, Dim = 8, Iterations = 50, SampleIterations = 50;
+  int Step = 0, Resolution = 0, Sites = 2000, Dim = 8, Iterations = 50, SampleIterations = 150;
   int WarmupIterations = 100, Seed = 1, Smooth = 0, Refine = 0, RepairRounds = 10, ImproveRounds = 1, OdtIterations = 3;
   double FeatureAngle = 30.0;
   bool Features = true;
