@@ -17,7 +17,8 @@
  * RelativeVolumeError, NumberOfVoronoiCells, ...) plus "L_avg", "L_max" (embedding edge
  * length errors, %) and "MetricScale".
  * Parameters (defaults): NumberOfCells (2000), TargetDimension (8), Iterations (50),
- * SamplingIterations (50), MaximumAnisotropy (10), MinimumEigenvalue (0.1), SmoothingIterations
+ * SamplingIterations (150), SamplingWarmupIterations (100), PreserveSharpFeatures (on),
+ * FeatureAngle (30), MaximumAnisotropy (10), MinimumEigenvalue (0.1), SmoothingIterations
  * (10), ShrinkFactor (0.8), Seed (1), FieldMode (TENSOR_FIELD).
  */
 #ifndef vtkAnisoVoronoiCells_h
