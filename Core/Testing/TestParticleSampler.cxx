@@ -5,6 +5,7 @@
 #include "ParticleSampler.h"
 #include "StructuredMeshes.h"
 #include "TestUtilities.h"
+#include "VoronoiTestMeshes.h"
 
 #include <Eigen/Dense>
 
@@ -437,6 +438,41 @@ int main(int argc, char* argv[])
           best = std::min(best, std::abs(res.Sites.At(i)[axis] - side));
         AV_CHECK_MSG(best < 0.5 * h, "face " << axis << side << " distance " << best);
       }
+  }
+
+  // A closed box surface (the cube's boundary triangles): its 12 edges are creases. Corner
+  // sites stay at the 8 corners, crease sites on the creases (the triangle walk along lines).
+  {
+    const double lo[3] = { 0, 0, 0 }, hi[3] = { 1, 1, 1 };
+    const av::SimplexMesh box = av_test::BoundaryTriangles(av::MakeKuhnTetGrid(7, 7, 7, lo, hi));
+    const av::Embedding emb = PaddedEmbedding(box, 5);
+    av::ParticleSamplerOptions opt;
+    opt.NumSites = 300;
+    const auto res = av::SampleParticles(box, emb, opt);
+    CheckOnMesh(box, emb, res.Sites);
+    AV_CHECK(res.NumCornerSites == 8 && res.NumFeatureLineSites >= 24);
+    std::size_t onCrease = 0;
+    for (std::size_t i = 0; i < res.Sites.NumSites(); ++i)
+    {
+      int atBound = 0;
+      for (int d = 0; d < 3; ++d)
+      {
+        const double x = res.Sites.At(i)[d];
+        atBound += (std::abs(x) < 1e-12 || std::abs(x - 1.0) < 1e-12) ? 1 : 0;
+      }
+      if (res.FeatureKind[i] == 2)
+        AV_CHECK(atBound == 3);
+      if (res.FeatureKind[i] == 1)
+      {
+        AV_CHECK_MSG(atBound >= 2, "crease site " << i << " left its crease");
+        ++onCrease;
+      }
+    }
+    AV_CHECK(onCrease == res.NumFeatureLineSites);
+    const double cv = CoefficientOfVariation(NearestDistances(res.Sites, 3));
+    std::cout << "box surface: " << res.NumCornerSites << " corner + " << res.NumFeatureLineSites
+              << " crease sites, NN CV " << cv << std::endl;
+    AV_CHECK_MSG(cv < 0.15, "nearest-neighbour CV " << cv);
   }
 
   // Linear anisotropic embedding (x, y, a x): metric diag(1 + a^2, 1) = diag(s^2, 1).

@@ -4,6 +4,7 @@
 #include "StructuredMeshes.h"
 #include "TestUtilities.h"
 #include "TetMesher.h"
+#include "VoronoiTestMeshes.h"
 
 #include <algorithm>
 #include <array>
@@ -37,37 +38,6 @@ bool EdgeCellsConsistent(const av::SimplexMesh& mesh, const av::SharpFeatures& f
     if (mesh.Cell(static_cast<std::size_t>(f.CornerCells[c]))[f.CornerLocal[c]] != f.Corners[c])
       return false;
   return true;
-}
-
-/// The boundary triangles of a tet mesh as a triangle surface (same points).
-av::SimplexMesh BoundarySurface(const av::SimplexMesh& tets)
-{
-  std::map<std::array<std::int32_t, 3>, std::pair<int, std::array<std::int32_t, 3>>> faces;
-  for (std::size_t c = 0; c < tets.NumCells(); ++c)
-  {
-    const std::int32_t* ids = tets.Cell(c);
-    for (int i = 0; i < 4; ++i)
-    {
-      std::array<std::int32_t, 3> f;
-      int q = 0;
-      for (int j = 0; j < 4; ++j)
-        if (j != i)
-          f[static_cast<std::size_t>(q++)] = ids[j];
-      std::array<std::int32_t, 3> key = f;
-      std::sort(key.begin(), key.end());
-      auto& slot = faces[key];
-      ++slot.first;
-      slot.second = f;
-    }
-  }
-  av::SimplexMesh s;
-  s.AmbientDim = 3;
-  s.SimplexDim = 2;
-  s.Points = tets.Points;
-  for (const auto& kv : faces)
-    if (kv.second.first == 1)
-      s.Cells.insert(s.Cells.end(), kv.second.second.begin(), kv.second.second.end());
-  return s;
 }
 
 } // namespace
@@ -109,7 +79,7 @@ int main()
 
   // The cube's boundary as a closed surface: the same 12 creases and 8 corners.
   {
-    const av::SimplexMesh surface = BoundarySurface(cube);
+    const av::SimplexMesh surface = av_test::BoundaryTriangles(cube);
     const av::SharpFeatures f = av::DetectSharpFeatures(surface);
     AV_CHECK(f.NumEdges() == 12 * (n - 1));
     AV_CHECK(f.Corners.size() == 8);
