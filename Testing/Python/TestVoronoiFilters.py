@@ -11,6 +11,7 @@ import math
 import sys
 
 from vtkmodules.vtkCommonCore import vtkCommand
+from vtkmodules.vtkCommonDataModel import vtkPolyData
 from anisovoronoi import (vtkAnisoAnalyticMetricSource, vtkAnisoEmbedding,
                           vtkAnisoParticleSampler, vtkAnisoRestrictedVoronoi,
                           vtkAnisoRestrictedDelaunay, vtkAnisoMeshQuality)
@@ -152,6 +153,40 @@ assert cube_rdt.GetImprovementRounds() == 1 and cube_rdt.GetOdtIterations() == 3
 assert field(tets, "NumOdtMovedSites") > 0
 assert field(tets, "NumMovedSites") > 0 and field(tets, "NumInverted") == 0
 assert worst < 1e-9
+# Sharp features: 8 corner sites and sites on the cube's edges; the improvement round (ODT
+# steps, sliver pushes) must leave every one of them where the sampler put it.
+sampled = cube_sites.GetOutput()
+kind = sampled.GetPointData().GetArray("FeatureKind")
+assert kind is not None and field(sampled, "NumCornerSites") == 8
+assert field(sampled, "NumFeatureLineSites") > 0
+feature_ids = [i for i in range(sampled.GetNumberOfPoints()) if kind.GetValue(i) != 0]
+assert len(feature_ids) == 8 + field(sampled, "NumFeatureLineSites")
+moved_feature = [i for i in feature_ids if tets.GetPoint(i) != sampled.GetPoint(i)]
+assert not moved_feature, moved_feature
+out_kind = tets.GetPointData().GetArray("FeatureKind")
+assert out_kind is not None and all(out_kind.GetValue(i) == kind.GetValue(i) for i in feature_ids)
+# With every site flagged as a feature site, the sliver push must move none of them.
+flagged = vtkPolyData()
+flagged.DeepCopy(sampled)
+flags = flagged.GetPointData().GetArray("FeatureKind")
+for i in range(flagged.GetNumberOfPoints()):
+    flags.SetValue(i, 1)
+pinned = vtkAnisoRestrictedDelaunay()
+pinned.SetInputConnection(0, cube_embedding.GetOutputPort())
+pinned.SetInputData(1, flagged)
+pinned.SetOdtIterations(0)  # sliver pushes only
+pinned.Update()
+free = vtkAnisoRestrictedDelaunay()
+free.SetInputConnection(0, cube_embedding.GetOutputPort())
+free.SetInputData(1, sampled)
+free.SetOdtIterations(0)
+free.Update()
+print("sliver push: %g slivers, %g sites moved; all flagged: %g moved" % (
+    field(free.GetOutput(), "NumSliversPerturbed"), field(free.GetOutput(), "NumMovedSites"),
+    field(pinned.GetOutput(), "NumMovedSites")))
+assert field(free.GetOutput(), "NumMovedSites") > 0
+assert field(free.GetOutput(), "NumSliversPerturbed") > 0
+assert field(pinned.GetOutput(), "NumMovedSites") == 0
 cube_rdt.SetImprovementRounds(0)
 cube_rdt.Update()
 assert field(cube_rdt.GetOutput(), "NumMovedSites") == 0
