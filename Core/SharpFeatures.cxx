@@ -1,5 +1,7 @@
 #include "SharpFeatures.h"
 
+#include "RestrictedVoronoi.h" // ComputeElementAdjacency
+
 #include <Eigen/Dense>
 
 #include <algorithm>
@@ -81,54 +83,32 @@ SharpFeatures DetectSharpFeatures(const SimplexMesh& mesh, double featureAngleDe
   std::vector<std::int32_t> ownerCell;  // per owner: a cell containing it
   if (mesh.SimplexDim == 3)
   {
-    // Boundary triangles: faces of exactly one tet, with outward normals.
-    struct Face
-    {
-      std::array<std::int32_t, 3> Key;
-      std::int32_t Cell;
-      std::int8_t Opposite;
-    };
-    std::vector<Face> faces;
-    faces.reserve(4 * nc);
+    // Boundary triangles (no neighbour across them), with outward normals.
+    const std::vector<std::int32_t> adjacency = ComputeElementAdjacency(mesh);
     for (std::size_t c = 0; c < nc; ++c)
     {
       const std::int32_t* ids = mesh.Cell(c);
       for (int i = 0; i < 4; ++i)
       {
-        std::array<std::int32_t, 3> key;
+        if (adjacency[4 * c + static_cast<std::size_t>(i)] >= 0)
+          continue;
+        std::array<std::int32_t, 3> f;
         int q = 0;
         for (int j = 0; j < 4; ++j)
           if (j != i)
-            key[static_cast<std::size_t>(q++)] = ids[j];
-        std::sort(key.begin(), key.end());
-        faces.push_back({ key, static_cast<std::int32_t>(c), static_cast<std::int8_t>(i) });
-      }
-    }
-    std::sort(faces.begin(), faces.end(),
-      [](const Face& a, const Face& b) { return a.Key != b.Key ? a.Key < b.Key : a.Cell < b.Cell; });
-    for (std::size_t i = 0; i < faces.size();)
-    {
-      std::size_t j = i + 1;
-      while (j < faces.size() && faces[j].Key == faces[i].Key)
-        ++j;
-      if (j - i == 1)
-      {
-        const Face& f = faces[i];
-        const Eigen::Vector3d a = PointAt(mesh, f.Key[0]), b = PointAt(mesh, f.Key[1]),
-                              c = PointAt(mesh, f.Key[2]);
-        Eigen::Vector3d n = (b - a).cross(c - a);
-        const Eigen::Vector3d d = PointAt(mesh, mesh.Cell(static_cast<std::size_t>(f.Cell))[f.Opposite]);
-        if (n.dot(d - a) > 0.0)
+            f[static_cast<std::size_t>(q++)] = ids[j];
+        const Eigen::Vector3d a = PointAt(mesh, f[0]), b = PointAt(mesh, f[1]), d = PointAt(mesh, f[2]);
+        Eigen::Vector3d n = (b - a).cross(d - a);
+        if (n.dot(PointAt(mesh, ids[i]) - a) > 0.0)
           n = -n;
         const double len = n.norm();
         const auto owner = static_cast<std::int32_t>(normals.size());
         normals.push_back(len > 0.0 ? Eigen::Vector3d(n / len) : Eigen::Vector3d::Zero());
-        ownerCell.push_back(f.Cell);
-        edges.push_back(MakeEdge(f.Key[0], f.Key[1], owner));
-        edges.push_back(MakeEdge(f.Key[1], f.Key[2], owner));
-        edges.push_back(MakeEdge(f.Key[0], f.Key[2], owner));
+        ownerCell.push_back(static_cast<std::int32_t>(c));
+        edges.push_back(MakeEdge(f[0], f[1], owner));
+        edges.push_back(MakeEdge(f[1], f[2], owner));
+        edges.push_back(MakeEdge(f[0], f[2], owner));
       }
-      i = j;
     }
   }
   else

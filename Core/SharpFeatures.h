@@ -49,7 +49,8 @@ struct SharpFeatures
  * boundary edges) meet other than two at a time (1 = a line's free end, 3 or more = a
  * junction), or where two of them turn by more than featureAngleDegrees.
  * A feature angle of 180 or more disables the detection (empty result).
- * Throws InputError on a bad angle (NaN, <= 0), bad point ids or an empty mesh.
+ * Throws InputError on a bad angle (NaN, <= 0), bad point ids, an empty mesh or (tets) a
+ * triangle shared by more than two tets.
  */
 SharpFeatures DetectSharpFeatures(const SimplexMesh& mesh, double featureAngleDegrees = 30.0);
 

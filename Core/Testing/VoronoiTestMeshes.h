@@ -3,6 +3,7 @@
 #define av_VoronoiTestMeshes_h
 
 #include "RestrictedDelaunay.h"
+#include "RestrictedVoronoi.h"
 #include "SimplexMesh.h"
 #include "StructuredMeshes.h"
 
@@ -11,7 +12,6 @@
 #include <cmath>
 #include <cstdint>
 #include <functional>
-#include <map>
 #include <random>
 #include <vector>
 
@@ -248,31 +248,17 @@ inline int NegativeCells(const av::RestrictedDelaunayMesh& d)
 /// The boundary triangles of a tet mesh as a triangle surface (same points).
 inline av::SimplexMesh BoundaryTriangles(const av::SimplexMesh& tets)
 {
-  std::map<std::array<std::int32_t, 3>, std::pair<int, std::array<std::int32_t, 3>>> faces;
-  for (std::size_t c = 0; c < tets.NumCells(); ++c)
-  {
-    const std::int32_t* ids = tets.Cell(c);
-    for (int i = 0; i < 4; ++i)
-    {
-      std::array<std::int32_t, 3> f;
-      int q = 0;
-      for (int j = 0; j < 4; ++j)
-        if (j != i)
-          f[static_cast<std::size_t>(q++)] = ids[j];
-      std::array<std::int32_t, 3> key = f;
-      std::sort(key.begin(), key.end());
-      auto& slot = faces[key];
-      ++slot.first;
-      slot.second = f;
-    }
-  }
+  const std::vector<std::int32_t> adjacency = av::ComputeElementAdjacency(tets);
   av::SimplexMesh s;
   s.AmbientDim = 3;
   s.SimplexDim = 2;
   s.Points = tets.Points;
-  for (const auto& kv : faces)
-    if (kv.second.first == 1)
-      s.Cells.insert(s.Cells.end(), kv.second.second.begin(), kv.second.second.end());
+  for (std::size_t c = 0; c < tets.NumCells(); ++c)
+    for (int i = 0; i < 4; ++i)
+      if (adjacency[4 * c + static_cast<std::size_t>(i)] < 0)
+        for (int j = 0; j < 4; ++j)
+          if (j != i)
+            s.Cells.push_back(tets.Cell(c)[j]);
   return s;
 }
 
