@@ -69,7 +69,9 @@ public:
   /// embedding), then the sites of every dual tetrahedron whose smallest dihedral angle in the
   /// embedding is below 15° are pushed apart along the sliver's flat direction.
   /// cube2 (5000 sites): G_avg 0.9025 -> 0.911, slivers 0.61 % -> 0.09 %.
-  /// Moved sites get new positions and interpolated point data.
+  /// Moved sites get new positions and interpolated point data. Sites whose "FeatureKind"
+  /// point array (written by vtkAnisoParticleSampler) is nonzero, the corner and feature-line
+  /// sites, are never moved.
   vtkSetClampMacro(ImprovementRounds, int, 0, 10);
   vtkGetMacro(ImprovementRounds, int);
   ///@}
