@@ -327,15 +327,22 @@ public:
     Vec e[3];
     for (int j = 0; j < K; ++j)
       e[j] = Vertex(cd, j + 1) - Vertex(cd, 0);
-    Eigen::Matrix<double, 3, 3> g = Eigen::Matrix<double, 3, 3>::Identity();
-    for (int i = 0; i < K; ++i)
+    cd.InverseOk = PaddedGramInverse(e, K, cd.GramInv);
+  }
+
+  /// Inverse of the Gram matrix of the m edges e[0..m-1], padded to 3x3 with the identity;
+  /// false when it is singular or not finite.
+  static bool PaddedGramInverse(const Vec* e, int m, Eigen::Matrix3d& inverse)
+  {
+    Eigen::Matrix3d g = Eigen::Matrix3d::Identity();
+    for (int i = 0; i < m; ++i)
       for (int j = 0; j <= i; ++j)
         g(i, j) = g(j, i) = e[i].dot(e[j]);
     const double det = g.determinant();
     if (!(det > 0.0) || !std::isfinite(det))
-      return;
-    cd.InverseOk = true;
-    cd.GramInv = g.inverse();
+      return false;
+    inverse = g.inverse();
+    return true;
   }
 
   /// The cached data of `cell` for particle p (slot `prefer` is refilled on a miss).
@@ -409,14 +416,10 @@ public:
       }
       else
       {
-        Eigen::Matrix<double, 3, 3> g = Eigen::Matrix<double, 3, 3>::Identity();
-        for (int i = 0; i < m; ++i)
-          for (int j = 0; j <= i; ++j)
-            g(i, j) = g(j, i) = e[i].dot(e[j]);
-        const double det = g.determinant();
-        if (!(det > 0.0) || !std::isfinite(det))
+        Eigen::Matrix3d inverse;
+        if (!PaddedGramInverse(e, m, inverse))
           return false;
-        sol = g.inverse() * rhs;
+        sol = inverse * rhs;
       }
       for (int j = 0; j < m; ++j)
         a[j] = sol[j];
