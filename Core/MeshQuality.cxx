@@ -263,6 +263,86 @@ MeshQualityResult EvaluateMeshQuality(const SimplexMesh& mesh, const MetricField
   return res;
 }
 
+std::vector<double> SimplexQualityInEmbedding(const std::vector<std::int32_t>& cells,
+  int simplexDim, const std::vector<double>& coords, int dim)
+{
+  const int k = simplexDim;
+  if (k != 2 && k != 3)
+    throw InputError("SimplexQualityInEmbedding: simplex dimension must be 2 or 3, got " +
+      std::to_string(k));
+  if (dim < k)
+    throw InputError("SimplexQualityInEmbedding: dimension " + std::to_string(dim) +
+      " is smaller than the simplex dimension " + std::to_string(k));
+  const std::size_t nv = static_cast<std::size_t>(k + 1);
+  if (cells.size() % nv != 0 || coords.size() % static_cast<std::size_t>(dim) != 0)
+    throw InputError("SimplexQualityInEmbedding: array sizes are not multiples of " +
+      std::to_string(nv) + " ids / " + std::to_string(dim) + " coordinates");
+  const std::size_t np = coords.size() / static_cast<std::size_t>(dim);
+  for (std::int32_t id : cells)
+    if (id < 0 || static_cast<std::size_t>(id) >= np)
+      throw InputError("SimplexQualityInEmbedding: point id " + std::to_string(id) +
+        " out of range [0, " + std::to_string(np) + ")");
+  for (double v : coords)
+    if (!std::isfinite(v))
+      throw InputError("SimplexQualityInEmbedding: a coordinate is not finite");
+
+  const std::size_t nc = cells.size() / nv;
+  std::vector<double> g(nc, 0.0);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nc),
+    [&](const tbb::blocked_range<std::size_t>& r)
+    {
+      for (std::size_t c = r.begin(); c != r.end(); ++c)
+      {
+        const std::int32_t* ids = cells.data() + c * nv;
+        const double* p0 = coords.data() + static_cast<std::size_t>(ids[0]) * dim;
+        // Gram matrix of the edge vectors from vertex 0 (fixed size: no allocation).
+        Eigen::Matrix3d gram = Eigen::Matrix3d::Identity();
+        for (int a = 0; a < k; ++a)
+        {
+          const double* pa = coords.data() + static_cast<std::size_t>(ids[a + 1]) * dim;
+          for (int b = a; b < k; ++b)
+          {
+            const double* pb = coords.data() + static_cast<std::size_t>(ids[b + 1]) * dim;
+            double s = 0.0;
+            for (int d = 0; d < dim; ++d)
+              s += (pa[d] - p0[d]) * (pb[d] - p0[d]);
+            gram(a, b) = gram(b, a) = s;
+          }
+        }
+        // Squared edge lengths: |e_a|^2 and |e_a - e_b|^2.
+        double l2[6];
+        int n = 0;
+        for (int a = 0; a < k; ++a)
+          l2[n++] = gram(a, a);
+        for (int a = 0; a < k; ++a)
+          for (int b = a + 1; b < k; ++b)
+            l2[n++] = gram(a, a) + gram(b, b) - 2.0 * gram(a, b);
+        const double det = std::max(0.0, gram.determinant()); // identity padding for k = 2
+        if (k == 2)
+        {
+          const double area = 0.5 * std::sqrt(det);
+          double per = 0.0, h = 0.0;
+          for (int e = 0; e < 3; ++e)
+          {
+            const double l = std::sqrt(std::max(0.0, l2[e]));
+            per += l;
+            h = std::max(h, l);
+          }
+          g[c] = h > 0.0 ? 2.0 * std::sqrt(3.0) * area / (0.5 * per * h) : 0.0;
+        }
+        else
+        {
+          const double vol = std::sqrt(det) / 6.0;
+          double sum = 0.0;
+          for (int e = 0; e < 6; ++e)
+            sum += l2[e];
+          g[c] = sum > 0.0 ? 12.0 * std::cbrt(9.0 * vol * vol) / sum : 0.0;
+        }
+      }
+    });
+  return g;
+}
+
 MetricField InterpolateMetricAtSites(
   const SimplexMesh& mesh, const MetricField& metric, const SiteSet& sites)
 {

@@ -62,6 +62,19 @@ struct MeshQualityResult
 MeshQualityResult EvaluateMeshQuality(const SimplexMesh& mesh, const MetricField& metric);
 
 /**
+ * Quality G of simplices whose vertices are given in R^dim, e.g. the dual mesh's cells with the
+ * sites' embedded coordinates: triangles 2 sqrt3 S / (p h), tets 12 (9 V^2)^{1/3} / sum l^2, as
+ * in EvaluateMeshQuality but with no metric (area / volume from the Gram matrix of the edge
+ * vectors, any dim >= simplexDim). The gap to EvaluateMeshQuality's G is what the embedding's
+ * departure from the metric costs at the scale of the output cells.
+ * `cells` holds (simplexDim + 1) point ids per cell, `coords` numPoints x dim values.
+ * Throws InputError on a bad simplexDim (2 or 3), dim < simplexDim, wrong sizes, bad ids or
+ * non-finite coordinates.
+ */
+std::vector<double> SimplexQualityInEmbedding(const std::vector<std::int32_t>& cells,
+  int simplexDim, const std::vector<double>& coords, int dim);
+
+/**
  * The metric at each site: barycentric interpolation of the per-vertex metric of `mesh`
  * (the mesh the sites live on, e.g. the input mesh of the sampler) in the site's cell.
  * Throws InputError on wrong sizes or cell ids.

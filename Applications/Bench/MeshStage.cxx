@@ -217,6 +217,14 @@ MeshStageResult RunMeshStage(const av::SimplexMesh& mesh, const av::MetricField&
       covered += std::abs(av::CellMeasure(dual, c));
     r.DualVolumeRatio = covered / domain;
   }
+  {
+    const std::vector<double> ge = av::SimplexQualityInEmbedding(
+      rdt.Cells, rdt.SimplexDim, sampled.Sites.Coords, sampled.Sites.Dim);
+    double sum = 0.0;
+    for (double g : ge)
+      sum += g;
+    r.GAvgEmbedded = ge.empty() ? 0.0 : sum / static_cast<double>(ge.size());
+  }
   r.GMin = q.Summary.GMin;
   r.GAvg = q.Summary.GAvg;
   r.ThetaMin = q.Summary.ThetaMin;

@@ -64,6 +64,9 @@ struct MeshStageResult
   std::size_t RdtInvertedBeforeRepair = 0;
   std::size_t NonManifoldFacesBeforeRepair = 0;
   double GMin = 0.0, GAvg = 0.0, ThetaMin = 0.0, ThetaAvg = 0.0, PercentBad = 0.0;
+  /// G_avg of the same dual cells measured with the sites' embedded coordinates (no metric):
+  /// GAvgEmbedded - GAvg is what the embedding's departure from the metric costs.
+  double GAvgEmbedded = 0.0;
   std::size_t Inverted = 0;          ///< by the quality evaluator (input-space signed measure)
   std::size_t RdtInverted = 0;       ///< by ComputeRestrictedDelaunay (back-projection), after repair
   std::size_t NonManifoldFaces = 0;

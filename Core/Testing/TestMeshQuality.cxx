@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <limits>
+#include <vector>
 
 namespace
 {
@@ -193,6 +194,68 @@ int main()
     sites.CellIds[0] = 1;
     sites.Bary.pop_back();
     AV_CHECK_THROWS(av::InterpolateMetricAtSites(quad, f, sites));
+  }
+
+  // Quality in an embedding: cells mapped into R^8 by x -> Q A x (Q orthonormal columns, A a
+  // constant metric square root) have the G that EvaluateMeshQuality gives with M = A^2.
+  {
+    Eigen::Matrix<double, 8, 8> raw;
+    for (int i = 0; i < 8; ++i)
+      for (int j = 0; j < 8; ++j)
+        raw(i, j) = std::sin(1.0 + 3.0 * i + 7.0 * j * j);
+    const Eigen::Matrix<double, 8, 8> q = Eigen::HouseholderQR<Eigen::Matrix<double, 8, 8>>(raw).householderQ();
+    Eigen::Matrix3d a;
+    a << 3.0, 0.5, 0.2, 0.5, 1.2, -0.3, 0.2, -0.3, 0.8;
+    av::SimplexMesh mesh;
+    mesh.AmbientDim = 3;
+    mesh.SimplexDim = 3;
+    mesh.Points = { 0, 0, 0, 1, 0.1, 0, 0.2, 0.9, 0.1, 0.3, 0.2, 1.1, 1.0, 1.0, 1.0, 0.5, 0.5, -0.05 };
+    mesh.Cells = { 0, 1, 2, 3, 1, 2, 3, 4, 0, 1, 2, 5 };
+    const auto want = av::EvaluateMeshQuality(mesh, Uniform(mesh.NumPoints(), a * a));
+    std::vector<double> coords;
+    for (std::size_t i = 0; i < mesh.NumPoints(); ++i)
+    {
+      const Eigen::Matrix<double, 8, 1> x =
+        q.leftCols(3) * (a * Eigen::Vector3d(mesh.Point(i))) + Eigen::Matrix<double, 8, 1>::Constant(0.7);
+      coords.insert(coords.end(), x.data(), x.data() + 8);
+    }
+    const std::vector<double> g = av::SimplexQualityInEmbedding(mesh.Cells, 3, coords, 8);
+    AV_CHECK(g.size() == 3);
+    for (std::size_t c = 0; c < g.size(); ++c)
+      AV_CHECK_NEAR(g[c], want.G[c], 1e-12);
+    AV_CHECK(want.G[2] < 0.3); // the flat third cell really is bad
+
+    // Triangles: the same for a 2D mesh mapped into R^5.
+    av::SimplexMesh tri;
+    tri.AmbientDim = 2;
+    tri.SimplexDim = 2;
+    tri.Points = { 0, 0, 1, 0.2, 0.3, 0.8, 1.4, 1.1 };
+    tri.Cells = { 0, 1, 2, 1, 3, 2 };
+    Eigen::Matrix3d a2 = Eigen::Matrix3d::Zero();
+    a2.topLeftCorner<2, 2>() << 2.0, 0.4, 0.4, 0.9;
+    const auto want2 = av::EvaluateMeshQuality(tri, Uniform(tri.NumPoints(), a2 * a2));
+    const Eigen::Matrix<double, 5, 5> q5 =
+      Eigen::HouseholderQR<Eigen::Matrix<double, 5, 5>>(raw.topLeftCorner<5, 5>()).householderQ();
+    std::vector<double> c2;
+    for (std::size_t i = 0; i < tri.NumPoints(); ++i)
+    {
+      const Eigen::Vector2d y = a2.topLeftCorner<2, 2>() * Eigen::Vector2d(tri.Point(i));
+      const Eigen::Matrix<double, 5, 1> x = q5.leftCols<2>() * y;
+      c2.insert(c2.end(), x.data(), x.data() + 5);
+    }
+    const std::vector<double> g2 = av::SimplexQualityInEmbedding(tri.Cells, 2, c2, 5);
+    for (std::size_t c = 0; c < g2.size(); ++c)
+      AV_CHECK_NEAR(g2[c], want2.G[c], 1e-12);
+
+    // Bad input.
+    AV_CHECK_THROWS(av::SimplexQualityInEmbedding(mesh.Cells, 4, coords, 8));
+    AV_CHECK_THROWS(av::SimplexQualityInEmbedding(mesh.Cells, 3, coords, 2));
+    AV_CHECK_THROWS(av::SimplexQualityInEmbedding(mesh.Cells, 3, std::vector<double>(7, 0.0), 8));
+    std::vector<std::int32_t> badIds = mesh.Cells;
+    badIds[5] = 6;
+    AV_CHECK_THROWS(av::SimplexQualityInEmbedding(badIds, 3, coords, 8));
+    coords[9] = std::numeric_limits<double>::infinity();
+    AV_CHECK_THROWS(av::SimplexQualityInEmbedding(mesh.Cells, 3, coords, 8));
   }
 
   // Bad input.
