@@ -1,6 +1,7 @@
 #include "MeshStage.h"
 
 #include "LloydRelaxation.h"
+#include "MeshTopology.h"
 #include "MeshQuality.h"
 #include "ParticleSampler.h"
 #include "RestrictedDelaunay.h"

@@ -1,9 +1,10 @@
-// Shared helpers for the C++ tests of the VTK classes (Testing/Cxx/Test*.cxx): check macros
-// that count failures instead of aborting, an error/warning observer, field-data lookup.
-// Header only and not named Test*.cxx, so the test glob does not turn it into a test; the
-// tests include it with quotes, which finds it next to them.
+// SPDX-License-Identifier: BSD-3-Clause
+// Shared helpers for the C++ tests of the VTK classes (<Stage>/Testing/Cxx/Test*.cxx): an
+// error/warning observer, field-data lookup; the check macros are AnisoTestChecks.h's.
 #ifndef vtkAnisoTestUtilities_h
 #define vtkAnisoTestUtilities_h
+
+#include "AnisoTestChecks.h" // AV_CHECK, AV_TEST_RESULT
 
 #include <vtkAlgorithm.h>
 #include <vtkCommand.h>
@@ -19,25 +20,6 @@
 
 namespace av_vtk_test
 {
-/// Number of failed checks so far in this executable.
-inline int& Failures()
-{
-  static int failures = 0;
-  return failures;
-}
-
-/// Exit code of the test: prints the failure count (or "<name> passed") and returns 0 / 1.
-inline int Result(const char* name)
-{
-  if (Failures())
-  {
-    std::printf("%d check(s) failed\n", Failures());
-    return 1;
-  }
-  std::printf("%s passed\n", name);
-  return 0;
-}
-
 /**
  * Counts the error and warning events it observes (keeps the test output clean) and keeps the
  * last message and all messages concatenated. Attach it with Watch() or AddObserver().
@@ -85,28 +67,5 @@ inline double Seconds(std::chrono::steady_clock::time_point t0)
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 } // namespace av_vtk_test
-
-/// Counts a failure (and prints the line) when `cond` is false; the test goes on.
-#define CHECK(cond)                                                                                \
-  do                                                                                               \
-  {                                                                                                \
-    if (!(cond))                                                                                   \
-    {                                                                                              \
-      std::printf("FAILED line %d: %s\n", __LINE__, #cond);                                        \
-      ++av_vtk_test::Failures();                                                                   \
-    }                                                                                              \
-  } while (0)
-
-/// Counts a failure when |a - b| > tol (or either is NaN).
-#define CHECK_NEAR(a, b, tol)                                                                      \
-  do                                                                                               \
-  {                                                                                                \
-    const double va_ = (a), vb_ = (b);                                                             \
-    if (!(std::abs(va_ - vb_) <= (tol)))                                                           \
-    {                                                                                              \
-      std::printf("FAILED line %d: %s = %.17g, expected %.17g\n", __LINE__, #a, va_, vb_);         \
-      ++av_vtk_test::Failures();                                                                   \
-    }                                                                                              \
-  } while (0)
 
 #endif

@@ -149,41 +149,41 @@ int TestAnisoFRDReader(int, char*[])
   reader->SetStepIndex(1);
   reader->Update();
   vtkUnstructuredGrid* ug = reader->GetOutput();
-  CHECK(ug->GetNumberOfPoints() == 20 && ug->GetNumberOfCells() == 1);
-  CHECK(reader->GetNumberOfSteps() == 2);
-  CHECK(ug->GetNumberOfCells() == 1 && ug->GetCellType(0) == VTK_QUADRATIC_HEXAHEDRON);
-  CHECK(WrongMidEdges(ug, 1e-9) == 0);
+  AV_CHECK(ug->GetNumberOfPoints() == 20 && ug->GetNumberOfCells() == 1);
+  AV_CHECK(reader->GetNumberOfSteps() == 2);
+  AV_CHECK(ug->GetNumberOfCells() == 1 && ug->GetCellType(0) == VTK_QUADRATIC_HEXAHEDRON);
+  AV_CHECK(WrongMidEdges(ug, 1e-9) == 0);
   vtkDataArray* stress = ug->GetPointData()->GetArray("STRESS");
-  CHECK(stress && stress->GetNumberOfComponents() == 6);
+  AV_CHECK(stress && stress->GetNumberOfComponents() == 6);
   if (stress && stress->GetNumberOfComponents() == 6)
   { // step 2: SXX..SZX = 22 44 66 88 110 132 -> XX YY ZZ XY YZ XZ
     const double expect[6] = { 22, 44, 66, 88, 110, 132 };
     for (int c = 0; c < 6; ++c)
     {
-      CHECK(stress->GetComponent(7, c) == expect[c]);
+      AV_CHECK(stress->GetComponent(7, c) == expect[c]);
     }
   }
   vtkDataArray* disp = ug->GetPointData()->GetArray("DISP");
-  CHECK(disp && disp->GetNumberOfComponents() == 3 && disp->GetComponent(3, 2) == 6.0);
-  CHECK(ug->GetPointData()->GetVectors() == disp);
+  AV_CHECK(disp && disp->GetNumberOfComponents() == 3 && disp->GetComponent(3, 2) == 6.0);
+  AV_CHECK(ug->GetPointData()->GetVectors() == disp);
   vtkDataArray* value = ug->GetFieldData()->GetArray("StepValue");
-  CHECK(value && value->GetComponent(0, 0) == 200.0);
+  AV_CHECK(value && value->GetComponent(0, 0) == 200.0);
 
   reader->ReadAllStepsOn();
   reader->Update();
-  CHECK(reader->GetOutput()->GetPointData()->GetArray("STRESS_1") != nullptr);
-  CHECK(reader->GetOutput()->GetPointData()->GetArray("DISP_2") != nullptr);
+  AV_CHECK(reader->GetOutput()->GetPointData()->GetArray("STRESS_1") != nullptr);
+  AV_CHECK(reader->GetOutput()->GetPointData()->GetArray("DISP_2") != nullptr);
   reader->ReadAllStepsOff();
 
   vtkNew<av_vtk_test::EventCounter> errors;
   reader->AddObserver(vtkCommand::ErrorEvent, errors);
   reader->SetStepIndex(5);
   reader->Update();
-  CHECK(errors->Errors == 1);
+  AV_CHECK(errors->Errors == 1);
   reader->SetStepIndex(0);
   reader->SetFileName("/nonexistent/x.frd");
   reader->Update();
-  CHECK(errors->Errors == 2);
+  AV_CHECK(errors->Errors == 2);
   {
     std::ofstream out(file);
     const std::string text = OneHex();
@@ -191,7 +191,7 @@ int TestAnisoFRDReader(int, char*[])
   }
   reader->SetFileName(file.c_str());
   reader->Update();
-  CHECK(errors->Errors == 3);
+  AV_CHECK(errors->Errors == 3);
   std::remove(file.c_str());
 
   const char* example = "/usr/share/doc/calculix-cgx-examples/examples/result.frd";
@@ -202,17 +202,17 @@ int TestAnisoFRDReader(int, char*[])
     real->SetStepIndex(9);
     real->Update();
     vtkUnstructuredGrid* out = real->GetOutput();
-    CHECK(out->GetNumberOfPoints() == 3150 && out->GetNumberOfCells() == 560);
-    CHECK(real->GetNumberOfSteps() == 10);
-    CHECK(WrongMidEdges(out, 0.05) == 0);
+    AV_CHECK(out->GetNumberOfPoints() == 3150 && out->GetNumberOfCells() == 560);
+    AV_CHECK(real->GetNumberOfSteps() == 10);
+    AV_CHECK(WrongMidEdges(out, 0.05) == 0);
     vtkDataArray* s = out->GetPointData()->GetArray("STRESS");
-    CHECK(s && s->GetNumberOfComponents() == 6 && out->GetPointData()->GetTensors() == s);
+    AV_CHECK(s && s->GetNumberOfComponents() == 6 && out->GetPointData()->GetTensors() == s);
     vtkDataArray* v = out->GetFieldData()->GetArray("StepValue");
-    CHECK(v && v->GetComponent(0, 0) == 6.88120E+04); // mode 10 frequency
+    AV_CHECK(v && v->GetComponent(0, 0) == 6.88120E+04); // mode 10 frequency
   }
   else
   {
     std::cout << "skipping " << example << " (apt-get install calculix-cgx-examples)\n";
   }
-  return av_vtk_test::Result("TestAnisoFRDReader");
+  return AV_TEST_RESULT();
 }

@@ -70,40 +70,40 @@ int TestAnisoMeditReaderWriter(int, char*[])
   writer->SetInputData(ug);
   writer->SetFileName(meshFile.c_str());
   writer->SetSolFileName(solFile.c_str());
-  CHECK(writer->Write() == 1);
+  AV_CHECK(writer->Write() == 1);
   // XX YY ZZ XY YZ XZ = 1 2 3 4 5 6 -> m11 m21 m22 m31 m32 m33 = 1 4 2 6 5 3
-  CHECK(Slurp(solFile).find("\n1 4 2 6 5 3\n") != std::string::npos);
+  AV_CHECK(Slurp(solFile).find("\n1 4 2 6 5 3\n") != std::string::npos);
 
   vtkNew<vtkAnisoMeditReader> reader;
   reader->SetFileName(meshFile.c_str());
   reader->SetSolFileName(solFile.c_str());
   reader->Update();
   vtkUnstructuredGrid* out = reader->GetOutput();
-  CHECK(out->GetNumberOfPoints() == 5 && out->GetNumberOfCells() == 2);
+  AV_CHECK(out->GetNumberOfPoints() == 5 && out->GetNumberOfCells() == 2);
   for (vtkIdType i = 0; i < out->GetNumberOfPoints() && i < 5; ++i)
   {
     const double* p = out->GetPoint(i);
-    CHECK(p[0] == xyz[i][0] && p[1] == xyz[i][1] && p[2] == xyz[i][2]);
+    AV_CHECK(p[0] == xyz[i][0] && p[1] == xyz[i][1] && p[2] == xyz[i][2]);
   }
-  CHECK(out->GetCellType(1) == VTK_TETRA);
+  AV_CHECK(out->GetCellType(1) == VTK_TETRA);
   if (out->GetNumberOfCells() == 2)
   {
     const vtkIdType* ids = nullptr;
     vtkIdType n = 0;
     out->GetCellPoints(1, n, ids);
-    CHECK(n == 4 && ids[0] == 1 && ids[3] == 4);
+    AV_CHECK(n == 4 && ids[0] == 1 && ids[3] == 4);
   }
   vtkDataArray* rref = out->GetCellData()->GetArray("Ref");
-  CHECK(rref && rref->GetComponent(1, 0) == -7);
+  AV_CHECK(rref && rref->GetComponent(1, 0) == -7);
   vtkDataArray* rm = out->GetPointData()->GetArray("Metric");
-  CHECK(rm && rm->GetNumberOfComponents() == 6 && rm->GetNumberOfTuples() == 5);
+  AV_CHECK(rm && rm->GetNumberOfComponents() == 6 && rm->GetNumberOfTuples() == 5);
   if (rm && rm->GetNumberOfComponents() == 6 && rm->GetNumberOfTuples() == 5)
   {
     for (vtkIdType i = 0; i < 5; ++i)
     {
       for (int c = 0; c < 6; ++c)
       {
-        CHECK(rm->GetComponent(i, c) == metric->GetComponent(i, c)); // exact
+        AV_CHECK(rm->GetComponent(i, c) == metric->GetComponent(i, c)); // exact
       }
     }
   }
@@ -118,8 +118,8 @@ int TestAnisoMeditReaderWriter(int, char*[])
   tri->InsertNextCell(VTK_TRIANGLE, 3, t0);
   writer->SetInputData(tri);
   writer->SetSolFileName("");
-  CHECK(writer->Write() == 1);
-  CHECK(Slurp(meshFile).find("Dimension 2") != std::string::npos);
+  AV_CHECK(writer->Write() == 1);
+  AV_CHECK(Slurp(meshFile).find("Dimension 2") != std::string::npos);
   {
     std::ofstream sol(solFile);
     sol << "MeshVersionFormatted 2\nDimension 2\nSolAtVertices\n3\n1 1\n0.5\n0.25\n1\nEnd\n";
@@ -127,17 +127,17 @@ int TestAnisoMeditReaderWriter(int, char*[])
   reader->Modified();
   reader->Update();
   rm = reader->GetOutput()->GetPointData()->GetArray("Metric");
-  CHECK(rm && rm->GetComponent(0, 0) == 4.0 && rm->GetComponent(1, 1) == 16.0 &&
+  AV_CHECK(rm && rm->GetComponent(0, 0) == 4.0 && rm->GetComponent(1, 1) == 16.0 &&
         rm->GetComponent(1, 3) == 0.0);
-  CHECK(reader->GetOutput()->GetPointData()->GetArray("Size") != nullptr);
-  CHECK(reader->GetOutput()->GetCellType(0) == VTK_TRIANGLE);
+  AV_CHECK(reader->GetOutput()->GetPointData()->GetArray("Size") != nullptr);
+  AV_CHECK(reader->GetOutput()->GetCellType(0) == VTK_TRIANGLE);
 
   // errors: reported, not crashed
   vtkNew<av_vtk_test::EventCounter> errors;
   reader->AddObserver(vtkCommand::ErrorEvent, errors);
   reader->SetFileName("/nonexistent/x.mesh");
   reader->Update();
-  CHECK(errors->Errors >= 1 && reader->GetOutput()->GetNumberOfPoints() == 0);
+  AV_CHECK(errors->Errors >= 1 && reader->GetOutput()->GetNumberOfPoints() == 0);
   {
     std::ofstream bad(meshFile);
     bad << "MeshVersionFormatted 2\nDimension 3\nVertices\n1\n0 0 zz 0\nEnd\n";
@@ -146,12 +146,12 @@ int TestAnisoMeditReaderWriter(int, char*[])
   reader->SetFileName(meshFile.c_str());
   reader->SetSolFileName("");
   reader->Update();
-  CHECK(errors->Errors > before);
+  AV_CHECK(errors->Errors > before);
   writer->AddObserver(vtkCommand::ErrorEvent, errors);
   writer->SetFileName("/nonexistent/dir/x.mesh");
-  CHECK(writer->Write() == 0);
+  AV_CHECK(writer->Write() == 0);
 
   std::remove(meshFile.c_str());
   std::remove(solFile.c_str());
-  return av_vtk_test::Result("TestAnisoMeditReaderWriter");
+  return AV_TEST_RESULT();
 }

@@ -1,0 +1,68 @@
+// Kuhn tet grid / triangle grid: positive orientation, exact volume partition, conformity
+// (every interior face shared by two cells), edge and boundary counts.
+#include "MeshTopology.h"
+#include "StructuredMeshes.h"
+#include "AnisoTestChecks.h"
+
+#include <cmath>
+
+int TestStructuredMeshes(int, char*[])
+{
+  using namespace av;
+  {
+    const double lo[3] = { -1.0, 0.5, 2.0 }, hi[3] = { 2.0, 1.5, 4.5 };
+    const int nx = 5, ny = 4, nz = 3;
+    const SimplexMesh m = MakeKuhnTetGrid(nx, ny, nz, lo, hi);
+    AV_CHECK(m.NumPoints() == 60u);
+    AV_CHECK(m.NumCells() == 6u * 4 * 3 * 2);
+    double vol = 0.0, minVol = 1e300;
+    for (std::size_t c = 0; c < m.NumCells(); ++c)
+    {
+      const double v = CellMeasure(m, c);
+      vol += v;
+      minVol = std::min(minVol, v);
+    }
+    AV_CHECK_NEAR(vol, 3.0 * 1.0 * 2.5, 1e-12);
+    // All 6 tets of a cube have the same volume (cube volume / 6).
+    AV_CHECK_NEAR(minVol, 3.0 / 4 * 1.0 / 3 * 2.5 / 2 / 6.0, 1e-12);
+    // Euler characteristic of a ball: V - E + F - T = 1 (checks conformity of the split).
+    const std::size_t ne = UniqueEdges(m).size() / 2;
+    // Faces: 4T = 2F_int + F_bnd, F_bnd = 2 triangles per boundary square.
+    const std::size_t fb = 2 * 2 * ((nx - 1) * (ny - 1) + (ny - 1) * (nz - 1) + (nx - 1) * (nz - 1));
+    const std::size_t nf = (4 * m.NumCells() + fb) / 2;
+    AV_CHECK(static_cast<long>(m.NumPoints()) - static_cast<long>(ne) + static_cast<long>(nf) -
+        static_cast<long>(m.NumCells()) ==
+      1);
+    const std::vector<char> bnd = BoundaryVertexMask(m);
+    int nb = 0;
+    for (char b : bnd)
+    {
+      nb += b;
+    }
+    AV_CHECK(nb == 60 - (nx - 2) * (ny - 2) * (nz - 2));
+    AV_CHECK(m.Point(59)[0] == hi[0] && m.Point(59)[1] == hi[1] && m.Point(59)[2] == hi[2]);
+  }
+  {
+    const double lo[2] = { 0.0, 0.0 }, hi[2] = { 2.0, 1.0 };
+    const SimplexMesh m = MakeTriangleGrid(4, 3, lo, hi);
+    AV_CHECK(m.AmbientDim == 2 && m.SimplexDim == 2);
+    AV_CHECK(m.NumCells() == 12u);
+    double area = 0.0;
+    bool allPositive = true;
+    for (std::size_t c = 0; c < m.NumCells(); ++c)
+    {
+      area += CellMeasure(m, c);
+      allPositive = allPositive && CellMeasure(m, c) > 0.0;
+    }
+    AV_CHECK(allPositive);
+    AV_CHECK_NEAR(area, 2.0, 1e-12);
+    // V - E + F = 1 for a disk.
+    AV_CHECK(12 - static_cast<long>(UniqueEdges(m).size() / 2) + 12 == 1);
+    const std::vector<char> bnd = BoundaryVertexMask(m);
+    AV_CHECK(bnd[5] == 0 && bnd[6] == 0 && bnd[0] == 1 && bnd[4] == 1);
+  }
+  const double z3[3] = { 0, 0, 0 }, o3[3] = { 1, 1, 1 };
+  AV_CHECK_THROWS(MakeKuhnTetGrid(1, 3, 3, z3, o3));
+  AV_CHECK_THROWS(MakeKuhnTetGrid(3, 3, 3, o3, z3));
+  return AV_TEST_RESULT();
+}

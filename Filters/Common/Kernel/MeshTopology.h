@@ -1,0 +1,41 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// MeshTopology: connectivity and measures of any SimplexMesh (element adjacency, unique edges,
+// boundary vertices, cell measures), shared by every stage.
+#ifndef av_MeshTopology_h
+#define av_MeshTopology_h
+
+#include "SimplexMesh.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace av
+{
+
+/// Neighbour element across each facet: NumCells x (SimplexDim+1), -1 on the domain boundary.
+/// Facet a of a cell is the one opposite its local vertex a. Throws InputError when a facet is
+/// shared by more than two cells (non-manifold mesh).
+std::vector<std::int32_t> ComputeElementAdjacency(const SimplexMesh& mesh);
+
+/// Unique edges of the mesh as a flat list (a0, b0, a1, b1, ...) with a < b, sorted.
+std::vector<std::int32_t> UniqueEdges(const SimplexMesh& mesh);
+
+/**
+ * Per-vertex flag (1 = on the boundary): vertices of the faces used by exactly one tetrahedron
+ * (volumes) or of the edges used by exactly one triangle (2D domains and surfaces).
+ */
+std::vector<char> BoundaryVertexMask(const SimplexMesh& mesh);
+
+/**
+ * Signed measure of a cell: the volume of a tet (positive for positive orientation), the signed
+ * area of a triangle in 2D, or the (unsigned) area of a triangle in 3D.
+ */
+double CellMeasure(const SimplexMesh& mesh, std::size_t cell);
+
+/// Area (triangles) / volume (tets) of every cell with its vertices at the embedded coords.
+std::vector<double> EmbeddedCellMeasures(const SimplexMesh& mesh, const Embedding& embedding);
+
+} // namespace av
+
+#endif

@@ -1,0 +1,160 @@
+/**
+ * @class vtkAnisoEmbedding
+ * @brief The paper's core step: a self-intersection free embedding of a mesh in R^m̄ whose
+ * pull-back metric matches a given metric field (paper §3, Alg. 1).
+ *
+ * Input: a triangle 2D domain (z = 0), a triangle surface or a tetrahedral volume, with a
+ * symmetric metric point array (6 components XX, YY, ZZ, XY, YZ, XZ, or 9), chosen with
+ * SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, name); by default
+ * the active point tensors, else an array named "Metric". Metrics must be SPD (positive
+ * semi-definite rank 2 on surfaces); eigenvalues below 1 cannot be matched by an embedding
+ * that only adds coordinates, so with AutoScaleMetric (default on) the whole field is
+ * multiplied by c = 1 / (smallest eigenvalue) as in the paper §6 and c is reported.
+ *
+ * Output 0 (vtkUnstructuredGrid): the input mesh and its point data, plus
+ * - "Embedding": m̄-component point array, the embedded coordinates (first m = input coords);
+ * - "EdgeLengthError": per-cell largest relative edge length error (%) of the paper §5.1;
+ * - field data "L_avg", "L_max" (%), "MetricScale" (c), "EmbeddingDimension",
+ *   "EmbeddingIterations", "FactorSeconds", "SolveSeconds", "DoublePrecisionRetries",
+ *   "EmbeddingSeconds".
+ * Output 1 (vtkTable): per iteration (0 = initial state) E_em, E_reg, E_total — chartable.
+ *
+ * Solver: local step per element (polar factor of a small SVD, parallel), global step with
+ * one sparse Cholesky factorisation (CHOLMOD) and one multi-right-hand-side solve per
+ * iteration; a smooth random start and energy-safeguarded Anderson acceleration (the energy
+ * never increases). Documentation/embedding.md gives the details and measured figures.
+ *
+ * Distributed runs (mpiexec pvbatch, pvserver): needs the whole mesh, so it asks its inputs
+ * for the whole dataset and runs redundantly on every process that needs its output (the cost
+ * is not divided); the whole result goes to piece 0 and the other pieces are empty, so that
+ * gathering the pieces gives one copy. See Documentation/parallel.md.
+ */
+#ifndef vtkAnisoEmbedding_h
+#define vtkAnisoEmbedding_h
+
+#include "AnisoVoronoiFiltersEmbeddingModule.h" // export macro
+#include <vtkUnstructuredGridAlgorithm.h>
+
+class ANISOVORONOIFILTERSEMBEDDING_EXPORT vtkAnisoEmbedding : public vtkUnstructuredGridAlgorithm
+{
+public:
+  static vtkAnisoEmbedding* New();
+  vtkTypeMacro(vtkAnisoEmbedding, vtkUnstructuredGridAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  enum Initialisations
+  {
+    SMOOTH = 0,
+    RANDOM = 1
+  };
+
+  ///@{
+  /// Target dimension m̄ (default 8; 3 is enough for the Gaussian 2D case). Range 3..20 and
+  /// larger than the input's dimension.
+  vtkSetClampMacro(TargetDimension, int, 3, 20);
+  vtkGetMacro(TargetDimension, int);
+  ///@}
+
+  ///@{
+  /// Local/global iterations (default 50 as the paper).
+  vtkSetClampMacro(Iterations, int, 0, 100000);
+  vtkGetMacro(Iterations, int);
+  ///@}
+
+  ///@{
+  /// Regularisation weight μ (default 100 as the paper).
+  vtkSetClampMacro(Mu, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(Mu, double);
+  ///@}
+
+  ///@{
+  /// Seed of the random initial field (default 1): same seed, same result.
+  vtkSetMacro(Seed, int);
+  vtkGetMacro(Seed, int);
+  ///@}
+
+  ///@{
+  /// Stop early when the relative energy decrease of an iteration is below this (0 = off).
+  vtkSetClampMacro(RelativeEnergyTolerance, double, 0.0, 1.0);
+  vtkGetMacro(RelativeEnergyTolerance, double);
+  ///@}
+
+  ///@{
+  /// Weight each element's term by its measure (off = the paper's unweighted Eq. 11).
+  vtkSetMacro(ElementMeasureWeighting, bool);
+  vtkGetMacro(ElementMeasureWeighting, bool);
+  vtkBooleanMacro(ElementMeasureWeighting, bool);
+  ///@}
+
+  ///@{
+  /// Initial extra coordinates: SMOOTH low-frequency random field (default) or the paper's
+  /// i.i.d. small RANDOM perturbation.
+  vtkSetClampMacro(Initialisation, int, SMOOTH, RANDOM);
+  vtkGetMacro(Initialisation, int);
+  ///@}
+
+  ///@{
+  /// Anderson acceleration window (default 5; 0 = plain local/global iterations).
+  vtkSetClampMacro(AndersonWindow, int, 0, 20);
+  vtkGetMacro(AndersonWindow, int);
+  ///@}
+
+  ///@{
+  /// Global-step solves with a single-precision, multi-threaded copy of the Cholesky factor
+  /// (default on: about half the memory traffic of the solves, which dominate an iteration).
+  /// A step whose energy would rise from the float rounding is redone in double, so the energy
+  /// still never increases. Off: CHOLMOD's double-precision solve throughout.
+  vtkSetMacro(SinglePrecisionSolve, bool);
+  vtkGetMacro(SinglePrecisionSolve, bool);
+  vtkBooleanMacro(SinglePrecisionSolve, bool);
+  ///@}
+
+  ///@{
+  /// Multiply the metric by c = 1/λmin when λmin < 1 (paper §6). Default on; when off, such a
+  /// metric is an error.
+  vtkSetMacro(AutoScaleMetric, bool);
+  vtkGetMacro(AutoScaleMetric, bool);
+  vtkBooleanMacro(AutoScaleMetric, bool);
+  ///@}
+
+  ///@{
+  /// Name of the output embedding array (default "Embedding").
+  vtkSetStringMacro(EmbeddingArrayName);
+  vtkGetStringMacro(EmbeddingArrayName);
+  ///@}
+
+  /// Figures of the last run (also in the output's field data).
+  vtkGetMacro(AverageEdgeLengthError, double);
+  vtkGetMacro(MaximumEdgeLengthError, double);
+  vtkGetMacro(MetricScale, double);
+
+protected:
+  vtkAnisoEmbedding();
+  ~vtkAnisoEmbedding() override;
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int FillOutputPortInformation(int port, vtkInformation* info) override;
+  int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  int TargetDimension = 8;
+  int Iterations = 50;
+  double Mu = 100.0;
+  int Seed = 1;
+  double RelativeEnergyTolerance = 0.0;
+  bool ElementMeasureWeighting = false;
+  int Initialisation = SMOOTH;
+  int AndersonWindow = 5;
+  bool SinglePrecisionSolve = true;
+  bool AutoScaleMetric = true;
+  char* EmbeddingArrayName = nullptr;
+
+  double AverageEdgeLengthError = 0.0;
+  double MaximumEdgeLengthError = 0.0;
+  double MetricScale = 1.0;
+
+private:
+  vtkAnisoEmbedding(const vtkAnisoEmbedding&) = delete;
+  void operator=(const vtkAnisoEmbedding&) = delete;
+};
+
+#endif

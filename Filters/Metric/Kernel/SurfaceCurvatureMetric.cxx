@@ -1,0 +1,291 @@
+#include "SurfaceCurvatureMetric.h"
+
+#include "MetricAlgebra.h"
+#include "MeshTopology.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+namespace av
+{
+namespace
+{
+using Vec3 = Eigen::Vector3d;
+using Mat3 = Eigen::Matrix3d;
+
+/// Some unit vector orthogonal to the unit vector n.
+Vec3 AnyTangent(const Vec3& n)
+{
+  const Vec3 a = std::abs(n[0]) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
+  return (a - a.dot(n) * n).normalized();
+}
+
+/// CSR adjacency from a flat list of index pairs.
+void BuildAdjacency(std::size_t n, const std::vector<std::int32_t>& pairs,
+  std::vector<std::int32_t>& offset, std::vector<std::int32_t>& nbr)
+{
+  offset.assign(n + 1, 0);
+  for (std::int32_t e : pairs)
+  {
+    ++offset[static_cast<std::size_t>(e) + 1];
+  }
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    offset[i + 1] += offset[i];
+  }
+  nbr.resize(pairs.size());
+  std::vector<std::int32_t> fill(offset.begin(), offset.end() - 1);
+  for (std::size_t e = 0; e + 1 < pairs.size(); e += 2)
+  {
+    nbr[static_cast<std::size_t>(fill[pairs[e]]++)] = pairs[e + 1];
+    nbr[static_cast<std::size_t>(fill[pairs[e + 1]]++)] = pairs[e];
+  }
+}
+
+/// One Jacobi step of x_i <- (x_i + mean of the neighbours' x) / 2.
+template <class T>
+void SmoothStep(const std::vector<std::int32_t>& offset, const std::vector<std::int32_t>& nbr,
+  const std::vector<T>& in, std::vector<T>& out)
+{
+  const std::size_t n = in.size();
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1024),
+    [&](const tbb::blocked_range<std::size_t>& range) {
+      for (std::size_t i = range.begin(); i != range.end(); ++i)
+      {
+        const std::int32_t b = offset[i], e = offset[i + 1];
+        if (b == e)
+        {
+          out[i] = in[i];
+          continue;
+        }
+        T sum = in[static_cast<std::size_t>(nbr[static_cast<std::size_t>(b)])];
+        for (std::int32_t k = b + 1; k < e; ++k)
+        {
+          sum += in[static_cast<std::size_t>(nbr[static_cast<std::size_t>(k)])];
+        }
+        out[i] = 0.5 * in[i] + (0.5 / (e - b)) * sum;
+      }
+    });
+}
+} // namespace
+
+SurfaceCurvatureMetricResult SurfaceCurvatureMetric(
+  const SimplexMesh& s, const SurfaceCurvatureMetricOptions& opt)
+{
+  const std::string who = "SurfaceCurvatureMetric: ";
+  if (s.AmbientDim != 3 || s.SimplexDim != 2)
+  {
+    throw InputError(who + "expected a triangle surface in 3D (AmbientDim 3, SimplexDim 2)");
+  }
+  if (s.Points.size() % 3 != 0 || s.Cells.size() % 3 != 0 || s.NumCells() == 0)
+  {
+    throw InputError(who + "the surface is empty or its arrays have inconsistent sizes");
+  }
+  if (!(opt.CurvatureThreshold > 0.0) || !std::isfinite(opt.CurvatureThreshold))
+  {
+    throw InputError(who + "CurvatureThreshold must be positive");
+  }
+  if (opt.SmoothingIterations < 0 || !(opt.MaxStretch == 0.0 || opt.MaxStretch >= 1.0))
+  {
+    throw InputError(who + "SmoothingIterations must be >= 0 and MaxStretch 0 or >= 1");
+  }
+  const std::size_t np = s.NumPoints(), nc = s.NumCells();
+  Vec3 lo = Vec3::Constant(1e300), hi = -lo;
+  for (std::size_t i = 0; i < np; ++i)
+  {
+    const Eigen::Map<const Vec3> p(s.Point(i));
+    if (!p.allFinite())
+    {
+      throw InputError(who + "point " + std::to_string(i) + " has a NaN or infinite coordinate");
+    }
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  const double diag = (hi - lo).norm();
+  std::vector<Vec3> normal(np, Vec3::Zero());
+  for (std::size_t c = 0; c < nc; ++c)
+  {
+    const std::int32_t* t = s.Cell(c);
+    for (int k = 0; k < 3; ++k)
+    {
+      if (t[k] < 0 || static_cast<std::size_t>(t[k]) >= np)
+      {
+        throw InputError(who + "triangle " + std::to_string(c) + " references point " +
+          std::to_string(t[k]) + ", outside [0, " + std::to_string(np) + ")");
+      }
+    }
+    const Eigen::Map<const Vec3> a(s.Point(t[0])), b(s.Point(t[1])), d(s.Point(t[2]));
+    const Vec3 n2 = (b - a).cross(d - a); // twice the area times the unit normal
+    if (!(n2.norm() > 1e-14 * diag * diag))
+    {
+      throw InputError(who + "triangle " + std::to_string(c) + " has zero area");
+    }
+    for (int k = 0; k < 3; ++k)
+    {
+      normal[static_cast<std::size_t>(t[k])] += n2;
+    }
+  }
+  for (std::size_t i = 0; i < np; ++i)
+  {
+    const double len = normal[i].norm();
+    if (!(len > 0.0))
+    {
+      throw InputError(who + "point " + std::to_string(i) +
+        " is used by no triangle (or its triangles cancel out); remove unused points");
+    }
+    normal[i] /= len;
+  }
+
+  // Per face: second fundamental form in 3D (tangent to the face) from normal differences.
+  std::vector<Mat3> faceForm(nc);
+  std::vector<double> faceWeight(nc);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nc, 512),
+    [&](const tbb::blocked_range<std::size_t>& range) {
+      for (std::size_t c = range.begin(); c != range.end(); ++c)
+      {
+        const std::int32_t* t = s.Cell(c);
+        const Eigen::Map<const Vec3> x[3] = { Eigen::Map<const Vec3>(s.Point(t[0])),
+          Eigen::Map<const Vec3>(s.Point(t[1])), Eigen::Map<const Vec3>(s.Point(t[2])) };
+        const Vec3 n2 = (x[1] - x[0]).cross(x[2] - x[0]);
+        const Vec3 nf = n2.normalized();
+        const Vec3 tu = (x[1] - x[0]).normalized();
+        const Vec3 tv = nf.cross(tu);
+        Mat3 A = Mat3::Zero();
+        Vec3 rhs = Vec3::Zero();
+        for (int k = 0; k < 3; ++k)
+        {
+          const int p = (k + 1) % 3, q = (k + 2) % 3;
+          const Vec3 e = x[q] - x[p];
+          const Vec3 dn = normal[static_cast<std::size_t>(t[q])] - normal[static_cast<std::size_t>(t[p])];
+          const double u = e.dot(tu), v = e.dot(tv);
+          const Vec3 r1(u, v, 0.0), r2(0.0, u, v);
+          A += r1 * r1.transpose() + r2 * r2.transpose();
+          rhs += r1 * dn.dot(tu) + r2 * dn.dot(tv);
+        }
+        const Vec3 efg = A.ldlt().solve(rhs);
+        faceForm[c] = efg[0] * tu * tu.transpose() + efg[1] * (tu * tv.transpose() + tv * tu.transpose()) +
+          efg[2] * tv * tv.transpose();
+        faceWeight[c] = n2.norm() / 6.0; // a third of the area
+      }
+    });
+
+  std::vector<std::int32_t> vfOffset(np + 1, 0), vfList(3 * nc);
+  for (std::size_t c = 0; c < nc; ++c)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      ++vfOffset[static_cast<std::size_t>(s.Cell(c)[k]) + 1];
+    }
+  }
+  for (std::size_t i = 0; i < np; ++i)
+  {
+    vfOffset[i + 1] += vfOffset[i];
+  }
+  {
+    std::vector<std::int32_t> fill(vfOffset.begin(), vfOffset.end() - 1);
+    for (std::size_t c = 0; c < nc; ++c)
+    {
+      for (int k = 0; k < 3; ++k)
+      {
+        vfList[static_cast<std::size_t>(fill[s.Cell(c)[k]]++)] = static_cast<std::int32_t>(c);
+      }
+    }
+  }
+
+  SurfaceCurvatureMetricResult r;
+  r.CurvatureFloor = opt.CurvatureThreshold / diag;
+  r.MinCurvature.resize(np);
+  r.MaxCurvature.resize(np);
+  std::vector<Eigen::Vector2d> stretch(np); // (s1, s2)
+  std::vector<Mat3> lineField(np);          // confidence * v_max v_max^T
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, np, 512),
+    [&](const tbb::blocked_range<std::size_t>& range) {
+      for (std::size_t i = range.begin(); i != range.end(); ++i)
+      {
+        Mat3 T = Mat3::Zero();
+        double w = 0.0;
+        for (std::int32_t k = vfOffset[i]; k < vfOffset[i + 1]; ++k)
+        {
+          const auto f = static_cast<std::size_t>(vfList[static_cast<std::size_t>(k)]);
+          T += faceWeight[f] * faceForm[f];
+          w += faceWeight[f];
+        }
+        T /= w;
+        const Vec3& n = normal[i];
+        const Vec3 t1 = AnyTangent(n), t2 = n.cross(t1);
+        Eigen::Matrix2d T2;
+        T2 << t1.dot(T * t1), t1.dot(T * t2), t2.dot(T * t1), t2.dot(T * t2);
+        const SymmetricEigen2 e = EigenDecompose(T2);
+        // Order by magnitude: v_min belongs to the curvature closer to zero.
+        const int small = std::abs(e.Values[0]) <= std::abs(e.Values[1]) ? 0 : 1;
+        const int large = 1 - small;
+        r.MinCurvature[i] = e.Values[small];
+        r.MaxCurvature[i] = e.Values[large];
+        const Vec3 vmax = e.Vectors(0, large) * t1 + e.Vectors(1, large) * t2;
+        const double s1 = std::sqrt(std::max(std::abs(e.Values[small]), r.CurvatureFloor));
+        const double s2 = std::sqrt(std::max(std::abs(e.Values[large]), r.CurvatureFloor));
+        stretch[i] = Eigen::Vector2d(s1, s2);
+        // Umbilic points have arbitrary directions: let anisotropic neighbours decide.
+        const double confidence = (s2 - s1) / (s2 + s1) + 1e-6;
+        lineField[i] = confidence * vmax * vmax.transpose();
+      }
+    });
+
+  if (opt.SmoothingIterations > 0)
+  {
+    std::vector<std::int32_t> offset, nbr;
+    BuildAdjacency(np, UniqueEdges(s), offset, nbr);
+    std::vector<Eigen::Vector2d> s2(np);
+    std::vector<Mat3> l2(np);
+    for (int it = 0; it < opt.SmoothingIterations; ++it)
+    {
+      SmoothStep(offset, nbr, stretch, s2);
+      stretch.swap(s2);
+      SmoothStep(offset, nbr, lineField, l2);
+      lineField.swap(l2);
+    }
+  }
+
+  r.Metric.Values.resize(6 * np);
+  r.MinDirection.resize(3 * np);
+  r.MaxDirection.resize(3 * np);
+  r.Normals.resize(3 * np);
+  r.StretchRatio.resize(np);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, np, 512),
+    [&](const tbb::blocked_range<std::size_t>& range) {
+      for (std::size_t i = range.begin(); i != range.end(); ++i)
+      {
+        const Vec3& n = normal[i];
+        const Vec3 t1 = AnyTangent(n), t2 = n.cross(t1);
+        Eigen::Matrix2d D;
+        const Mat3& L = lineField[i];
+        D << t1.dot(L * t1), t1.dot(L * t2), t2.dot(L * t1), t2.dot(L * t2);
+        const SymmetricEigen2 e = EigenDecompose(D);
+        const Vec3 vmax = (e.Vectors(0, 1) * t1 + e.Vectors(1, 1) * t2).normalized();
+        const Vec3 vmin = n.cross(vmax);
+        double ratio = stretch[i][1] / stretch[i][0];
+        if (opt.MaxStretch > 0.0)
+        {
+          ratio = std::min(ratio, opt.MaxStretch);
+        }
+        r.StretchRatio[i] = ratio;
+        const Mat3 M = vmin * vmin.transpose() + ratio * ratio * vmax * vmax.transpose();
+        PackSymmetric(M, r.Metric.Values.data() + 6 * i);
+        for (int d = 0; d < 3; ++d)
+        {
+          r.MinDirection[3 * i + d] = vmin[d];
+          r.MaxDirection[3 * i + d] = vmax[d];
+          r.Normals[3 * i + d] = n[d];
+        }
+      }
+    });
+  return r;
+}
+
+} // namespace av

@@ -1,0 +1,169 @@
+/**
+ * @class vtkAnisoTensorPipeline
+ * @brief Abstract base of the one-click filters (vtkAnisoVoronoiCells, vtkAnisoAnisotropicMesh):
+ * the common front of the paper's pipeline, from a tensor field to isotropic sites in R^m̄.
+ *
+ * Input: any vtkDataSet of 2D or 3D cells (hexahedra, quadratic cells, ... are split into
+ * simplices) with a tensor array chosen with SetInputArrayToProcess(0, 0, 0, association,
+ * name): 6 components (XX, YY, ZZ, XY, YZ, XZ) or 9. Default: the active point tensors.
+ * - FieldMode TENSOR_FIELD (default): a point or cell physical tensor (stress, strain, ...)
+ *   turned into a metric by vtkAnisoTensorToMetric (paper Eq. 20) with MinimumEigenvalue,
+ *   MaximumAnisotropy and SmoothingIterations;
+ * - FieldMode METRIC_FIELD: the point array already is an SPD metric (e.g. "Metric" of
+ *   vtkAnisoAnalyticMetric) and is used as is (those three knobs are ignored).
+ * Front (run internally on a shallow copy of the input, never modifying it):
+ * vtkAnisoSimplexMesh -> vtkAnisoTensorToMetric (TENSOR_FIELD) -> vtkAnisoEmbedding
+ * (TargetDimension, Iterations, Seed) -> vtkAnisoParticleSampler (NumberOfCells sites,
+ * SamplingIterations, Seed). Subclasses add the back end in RequestBackEnd. Progress of the
+ * stages is forwarded; an error of any stage becomes this filter's error (RequestData
+ * returns 0) naming the stage.
+ */
+#ifndef vtkAnisoTensorPipeline_h
+#define vtkAnisoTensorPipeline_h
+
+#include "AnisoVoronoiFiltersPipelinesModule.h" // export macro
+#include <vtkUnstructuredGridAlgorithm.h>
+
+#include <string> // std::string
+
+class vtkAlgorithm;
+class vtkFieldData;
+class vtkPolyData;
+class vtkTable;
+
+class ANISOVORONOIFILTERSPIPELINES_EXPORT vtkAnisoTensorPipeline : public vtkUnstructuredGridAlgorithm
+{
+public:
+  vtkTypeMacro(vtkAnisoTensorPipeline, vtkUnstructuredGridAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  enum FieldModes
+  {
+    TENSOR_FIELD = 0, ///< physical tensor -> metric with vtkAnisoTensorToMetric
+    METRIC_FIELD = 1  ///< the point array is the metric
+  };
+
+  ///@{
+  /// How the chosen array is read (default TENSOR_FIELD).
+  vtkSetClampMacro(FieldMode, int, TENSOR_FIELD, METRIC_FIELD);
+  vtkGetMacro(FieldMode, int);
+  void SetFieldModeToTensorField() { this->SetFieldMode(TENSOR_FIELD); }
+  void SetFieldModeToMetricField() { this->SetFieldMode(METRIC_FIELD); }
+  ///@}
+
+  ///@{
+  /// Number of sites, i.e. of Voronoi cells / mesh vertices (default 2000; at most 8 x the
+  /// number of points of the simplicial mesh).
+  vtkSetClampMacro(NumberOfCells, int, 1, VTK_INT_MAX);
+  vtkGetMacro(NumberOfCells, int);
+  ///@}
+
+  ///@{
+  /// Embedding dimension m̄ (default 8, range 3..20, larger than the input's dimension).
+  vtkSetClampMacro(TargetDimension, int, 3, 20);
+  vtkGetMacro(TargetDimension, int);
+  ///@}
+
+  ///@{
+  /// Embedding local/global iterations (default 50 as the paper).
+  vtkSetClampMacro(Iterations, int, 0, 100000);
+  vtkGetMacro(Iterations, int);
+  ///@}
+
+  ///@{
+  /// Particle sampler L-BFGS iterations (default 150; the paper: 50).
+  vtkSetClampMacro(SamplingIterations, int, 0, 100000);
+  vtkGetMacro(SamplingIterations, int);
+  ///@}
+
+  ///@{
+  /// Particle sampler warm-up iterations at a narrower kernel, run first (default 100; see
+  /// vtkAnisoParticleSampler::WarmupIterations: 0 with 1000 or more SamplingIterations).
+  vtkSetClampMacro(SamplingWarmupIterations, int, 0, 100000);
+  vtkGetMacro(SamplingWarmupIterations, int);
+  ///@}
+
+  ///@{
+  /// Sharp features (default on; see vtkAnisoParticleSampler::PreserveSharpFeatures): a fixed
+  /// site at every corner, sites kept on the feature lines (dihedral angle > FeatureAngle).
+  vtkSetMacro(PreserveSharpFeatures, bool);
+  vtkGetMacro(PreserveSharpFeatures, bool);
+  vtkBooleanMacro(PreserveSharpFeatures, bool);
+  vtkSetClampMacro(FeatureAngle, double, 1e-3, 180.0);
+  vtkGetMacro(FeatureAngle, double);
+  ///@}
+
+  ///@{
+  /// TENSOR_FIELD: largest stretch ratio of the metric (default 10).
+  vtkSetClampMacro(MaximumAnisotropy, double, 1.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(MaximumAnisotropy, double);
+  ///@}
+
+  ///@{
+  /// TENSOR_FIELD: eigenvalue floor relative to the field's largest |eigenvalue| (default
+  /// 0.1). Smaller floors give size contrasts that coarse FE meshes cannot embed well.
+  vtkSetClampMacro(MinimumEigenvalue, double, 1e-15, 1.0);
+  vtkGetMacro(MinimumEigenvalue, double);
+  ///@}
+
+  ///@{
+  /// TENSOR_FIELD: log-Euclidean smoothing passes of the metric (default 10).
+  vtkSetClampMacro(SmoothingIterations, int, 0, 10000);
+  vtkGetMacro(SmoothingIterations, int);
+  ///@}
+
+  ///@{
+  /// Seed of the embedding's initial field and of the sampling (default 1).
+  vtkSetMacro(Seed, int);
+  vtkGetMacro(Seed, int);
+  ///@}
+
+  /// Figures of the last run: average / largest edge length error (%) of the embedding and
+  /// the total metric scale (tensor-to-metric scale x embedding scale).
+  vtkGetMacro(AverageEdgeLengthError, double);
+  vtkGetMacro(MaximumEdgeLengthError, double);
+  vtkGetMacro(MetricScale, double);
+
+protected:
+  vtkAnisoTensorPipeline();
+  ~vtkAnisoTensorPipeline() override;
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  /// The back end: `embedded` (simplices + "Embedding" + "Metric"), `sites` (sampler
+  /// output with "Metric"), `energy` (embedding energy table). Progress from 0.85 to 1.
+  /// Returns 0 after vtkErrorMacro on failure.
+  virtual int RequestBackEnd(vtkUnstructuredGrid* embedded, vtkPolyData* sites, vtkTable* energy,
+    vtkInformationVector* outputVector) = 0;
+
+  /// Runs `stage` (inputs already set) with progress mapped to [begin, end] of this filter
+  /// and its errors captured; false (message in `error`, prefixed by `what`) on failure.
+  bool RunStage(vtkAlgorithm* stage, const char* what, double begin, double end, std::string& error);
+
+  /// Adds the front's figures (L_avg, L_max, MetricScale) to a field data.
+  void AddFrontFieldData(vtkFieldData* fd) const;
+
+  int FieldMode = TENSOR_FIELD;
+  int NumberOfCells = 2000;
+  int TargetDimension = 8;
+  int Iterations = 50;
+  int SamplingIterations = 150;
+  int SamplingWarmupIterations = 100;
+  bool PreserveSharpFeatures = true;
+  double FeatureAngle = 30.0;
+  double MaximumAnisotropy = 10.0;
+  double MinimumEigenvalue = 0.1;
+  int SmoothingIterations = 10;
+  int Seed = 1;
+
+  double AverageEdgeLengthError = 0.0;
+  double MaximumEdgeLengthError = 0.0;
+  double MetricScale = 1.0;
+
+private:
+  vtkAnisoTensorPipeline(const vtkAnisoTensorPipeline&) = delete;
+  void operator=(const vtkAnisoTensorPipeline&) = delete;
+};
+
+#endif

@@ -1,0 +1,22 @@
+# SPDX-License-Identifier: BSD-3-Clause
+# Fails when a file under a Kernel/ folder includes a VTK header (the kernels must build and be
+# tested without VTK). Run: cmake -DROOT=<source dir> -P CheckKernelsVtkFree.cmake
+file(GLOB_RECURSE files ${ROOT}/Filters/*/Kernel/* ${ROOT}/IO/Kernel/*)
+set(bad "")
+foreach(f IN LISTS files)
+  if(f MATCHES "\\.(h|hxx|cxx|txx|inl)$")
+    file(STRINGS ${f} lines REGEX "^[ \t]*#[ \t]*include[ \t]*[<\"](vtk|VTK)")
+    if(lines)
+      list(APPEND bad "${f}: ${lines}")
+    endif()
+  endif()
+endforeach()
+list(LENGTH files n)
+if(n EQUAL 0)
+  message(FATAL_ERROR "no kernel file found under ${ROOT}: wrong ROOT?")
+endif()
+if(bad)
+  string(REPLACE ";" "\n" bad "${bad}")
+  message(FATAL_ERROR "VTK headers in the VTK-free kernels:\n${bad}")
+endif()
+message(STATUS "${n} kernel files, none includes a VTK header")
