@@ -1,6 +1,7 @@
 #include "vtkAnisoTensorToMetric.h"
 
 #include "TensorToMetric.h"
+#include "vtkAnisoFilterUtilities.h"
 
 #include <vtkCell.h>
 #include <vtkCellData.h>
@@ -26,14 +27,6 @@ vtkStandardNewMacro(vtkAnisoTensorToMetric);
 
 namespace
 {
-void AddFieldValue(vtkFieldData* fd, const char* name, double value)
-{
-  vtkNew<vtkDoubleArray> a;
-  a->SetName(name);
-  a->InsertNextValue(value);
-  fd->AddArray(a);
-}
-
 /// Unique point pairs joined by a cell edge, for any cell type (quadratic edges are chained
 /// through their mid-edge nodes; 1D cells give consecutive pairs). Flat (a, b), a < b, sorted.
 std::vector<std::int32_t> ExtractEdges(vtkDataSet* input)
@@ -98,6 +91,64 @@ std::vector<std::int32_t> ExtractEdges(vtkDataSet* input)
   }
   return flat;
 }
+/// The tensor tuples the kernel converts: point tensors as they are, or cell tensors averaged
+/// to the points that cells use (`Used` maps tuples to points, `PointToTuple` back).
+struct TensorTuples
+{
+  std::vector<double> Values;
+  std::vector<vtkIdType> Used; // empty = every point, in order
+  std::vector<std::int32_t> PointToTuple;
+  vtkIdType Count = 0;
+};
+
+/// Averages the cell tensors to the points (NaN/Inf rejected with the cell id in `error`).
+bool AverageCellTensors(vtkDataSet* input, vtkDataArray* tensors, const std::string& name,
+  TensorTuples& out, std::string& error)
+{
+  const int nc = tensors->GetNumberOfComponents();
+  const vtkIdType numPoints = input->GetNumberOfPoints();
+  const vtkIdType numCells = input->GetNumberOfCells();
+  std::vector<double> sum(static_cast<std::size_t>(numPoints) * nc, 0.0);
+  std::vector<int> count(static_cast<std::size_t>(numPoints), 0);
+  std::vector<double> t(nc);
+  vtkNew<vtkIdList> ids;
+  for (vtkIdType c = 0; c < numCells; ++c)
+  {
+    tensors->GetTuple(c, t.data());
+    for (int k = 0; k < nc; ++k)
+    {
+      if (!std::isfinite(t[k]))
+      {
+        error = "tensor array '" + name + "' has a NaN or infinite value at cell " +
+          std::to_string(c);
+        return false;
+      }
+    }
+    input->GetCellPoints(c, ids);
+    for (vtkIdType k = 0; k < ids->GetNumberOfIds(); ++k)
+    {
+      const vtkIdType p = ids->GetId(k);
+      double* s = sum.data() + static_cast<std::size_t>(p) * nc;
+      for (int j = 0; j < nc; ++j)
+        s[j] += t[j];
+      ++count[p];
+    }
+  }
+  out.PointToTuple.assign(static_cast<std::size_t>(numPoints), -1);
+  for (vtkIdType p = 0; p < numPoints; ++p)
+  {
+    if (count[p] == 0)
+      continue;
+    out.PointToTuple[p] = static_cast<std::int32_t>(out.Used.size());
+    out.Used.push_back(p);
+    const double* s = sum.data() + static_cast<std::size_t>(p) * nc;
+    for (int j = 0; j < nc; ++j)
+      out.Values.push_back(s[j] / count[p]);
+  }
+  out.Count = static_cast<vtkIdType>(out.Used.size());
+  return true;
+}
+
 }
 
 vtkAnisoTensorToMetric::vtkAnisoTensorToMetric()
@@ -110,6 +161,83 @@ vtkAnisoTensorToMetric::vtkAnisoTensorToMetric()
 vtkAnisoTensorToMetric::~vtkAnisoTensorToMetric()
 {
   this->SetMetricArrayName(nullptr);
+}
+
+/// The tensor array: the chosen one, else the active point tensors, else the active cell
+/// tensors. Null with `error` set when there is none or it is unusable.
+vtkDataArray* vtkAnisoTensorToMetric::FindTensors(
+  vtkInformationVector** inputVector, vtkDataSet* input, bool& cellTensors, std::string& error)
+{
+  int association = -1;
+  vtkDataArray* tensors = this->GetInputArrayToProcess(0, inputVector, association);
+  vtkInformation* arrayInfo = this->GetInputArrayInformation(0);
+  if (!tensors && arrayInfo && arrayInfo->Has(vtkDataObject::FIELD_NAME()) &&
+    arrayInfo->Get(vtkDataObject::FIELD_NAME()) && *arrayInfo->Get(vtkDataObject::FIELD_NAME()))
+  {
+    error = std::string("the input has no array named '") +
+      arrayInfo->Get(vtkDataObject::FIELD_NAME()) + "'";
+    return nullptr;
+  }
+  if (!tensors)
+  {
+    if ((tensors = input->GetPointData()->GetTensors()))
+      association = vtkDataObject::FIELD_ASSOCIATION_POINTS;
+    else if ((tensors = input->GetCellData()->GetTensors()))
+      association = vtkDataObject::FIELD_ASSOCIATION_CELLS;
+  }
+  if (!tensors)
+  {
+    error = "no tensor array was found: choose one with SetInputArrayToProcess (ParaView: "
+            "the 'Tensors' property) or make one the active point/cell tensors";
+    return nullptr;
+  }
+  const std::string name = tensors->GetName() ? tensors->GetName() : "(unnamed)";
+  if (association != vtkDataObject::FIELD_ASSOCIATION_POINTS &&
+    association != vtkDataObject::FIELD_ASSOCIATION_CELLS)
+  {
+    error = "tensor array '" + name + "' must be a point or a cell array";
+    return nullptr;
+  }
+  const int nc = tensors->GetNumberOfComponents();
+  if (nc != 6 && nc != 9)
+  {
+    error = "tensor array '" + name + "' has " + std::to_string(nc) +
+      " components; expected 6 (symmetric, XX YY ZZ XY YZ XZ) or 9 (3x3, row-major)";
+    return nullptr;
+  }
+  cellTensors = association == vtkDataObject::FIELD_ASSOCIATION_CELLS;
+  return tensors;
+}
+
+/// The kernel options from the filter's properties; false with `error` on a bad Dimension.
+bool vtkAnisoTensorToMetric::BuildOptions(
+  vtkDataSet* input, av::TensorToMetricOptions& options, std::string& error)
+{
+  options.Interpretation = this->Interpretation == TENSOR_AS_METRIC
+    ? av::TensorInterpretation::TensorAsMetric
+    : av::TensorInterpretation::EigenvaluesAsStretch;
+  options.Eigenvalues = this->EigenvalueMode == CLAMP ? av::EigenvalueHandling::Clamp
+                                                      : av::EigenvalueHandling::Absolute;
+  options.MinimumEigenvalue = this->MinimumEigenvalue;
+  options.MaximumAnisotropy = this->MaximumAnisotropy;
+  options.SmoothingIterations = this->SmoothingIterations;
+  options.ApplyGlobalScale = this->ApplyGlobalScale;
+  if (this->Dimension == DIMENSION_AUTO)
+  {
+    double bounds[6];
+    input->GetBounds(bounds);
+    options.Dimension = bounds[4] == bounds[5] ? 2 : 3;
+  }
+  else if (this->Dimension == DIMENSION_2D || this->Dimension == DIMENSION_3D)
+  {
+    options.Dimension = this->Dimension;
+  }
+  else
+  {
+    error = "Dimension must be 0 (auto), 2 or 3, not " + std::to_string(this->Dimension);
+    return false;
+  }
+  return true;
 }
 
 int vtkAnisoTensorToMetric::RequestData(vtkInformation*,
@@ -133,129 +261,40 @@ int vtkAnisoTensorToMetric::RequestData(vtkInformation*,
     vtkErrorMacro("too many points for 32-bit ids");
     return 0;
   }
-
-  // The tensor array: the chosen one, else active point tensors, else active cell tensors.
-  int association = -1;
-  vtkDataArray* tensors = this->GetInputArrayToProcess(0, inputVector, association);
-  vtkInformation* arrayInfo = this->GetInputArrayInformation(0);
-  if (!tensors && arrayInfo && arrayInfo->Has(vtkDataObject::FIELD_NAME()) &&
-    arrayInfo->Get(vtkDataObject::FIELD_NAME()) && *arrayInfo->Get(vtkDataObject::FIELD_NAME()))
-  {
-    vtkErrorMacro(
-      "the input has no array named '" << arrayInfo->Get(vtkDataObject::FIELD_NAME()) << "'");
-    return 0;
-  }
+  std::string error;
+  bool cellTensors = false;
+  vtkDataArray* tensors = this->FindTensors(inputVector, input, cellTensors, error);
   if (!tensors)
   {
-    if ((tensors = input->GetPointData()->GetTensors()))
-      association = vtkDataObject::FIELD_ASSOCIATION_POINTS;
-    else if ((tensors = input->GetCellData()->GetTensors()))
-      association = vtkDataObject::FIELD_ASSOCIATION_CELLS;
-  }
-  if (!tensors)
-  {
-    vtkErrorMacro("no tensor array was found: choose one with SetInputArrayToProcess (ParaView: "
-                  "the 'Tensors' property) or make one the active point/cell tensors");
+    vtkErrorMacro(<< error);
     return 0;
   }
   const std::string name = tensors->GetName() ? tensors->GetName() : "(unnamed)";
-  if (association != vtkDataObject::FIELD_ASSOCIATION_POINTS &&
-    association != vtkDataObject::FIELD_ASSOCIATION_CELLS)
-  {
-    vtkErrorMacro("tensor array '" << name << "' must be a point or a cell array");
-    return 0;
-  }
   const int nc = tensors->GetNumberOfComponents();
-  if (nc != 6 && nc != 9)
-  {
-    vtkErrorMacro("tensor array '" << name << "' has " << nc
-                                   << " components; expected 6 (symmetric, XX YY ZZ XY YZ XZ) "
-                                      "or 9 (3x3, row-major)");
-    return 0;
-  }
-  const bool cellTensors = association == vtkDataObject::FIELD_ASSOCIATION_CELLS;
-  const vtkIdType numCells = input->GetNumberOfCells();
-  if (cellTensors && numCells == 0)
+  if (cellTensors && input->GetNumberOfCells() == 0)
   {
     return 1;
   }
 
-  // Point tensors (cell tensors averaged to the points); `used` maps kernel tuples to points.
-  std::vector<double> values;
-  std::vector<vtkIdType> used; // empty = every point, in order
-  std::vector<std::int32_t> pointToTuple;
-  vtkIdType numTuples = numPoints;
+  TensorTuples tuples;
   if (!cellTensors)
   {
-    values.resize(static_cast<std::size_t>(numPoints) * nc);
+    tuples.Count = numPoints;
+    tuples.Values.resize(static_cast<std::size_t>(numPoints) * nc);
     for (vtkIdType i = 0; i < numPoints; ++i)
-      tensors->GetTuple(i, values.data() + static_cast<std::size_t>(i) * nc);
+      tensors->GetTuple(i, tuples.Values.data() + static_cast<std::size_t>(i) * nc);
   }
-  else
+  else if (!AverageCellTensors(input, tensors, name, tuples, error))
   {
-    std::vector<double> sum(static_cast<std::size_t>(numPoints) * nc, 0.0);
-    std::vector<int> count(static_cast<std::size_t>(numPoints), 0);
-    std::vector<double> t(nc);
-    vtkNew<vtkIdList> ids;
-    for (vtkIdType c = 0; c < numCells; ++c)
-    {
-      tensors->GetTuple(c, t.data());
-      for (int k = 0; k < nc; ++k)
-      {
-        if (!std::isfinite(t[k]))
-        {
-          vtkErrorMacro("tensor array '" << name << "' has a NaN or infinite value at cell " << c);
-          return 0;
-        }
-      }
-      input->GetCellPoints(c, ids);
-      for (vtkIdType k = 0; k < ids->GetNumberOfIds(); ++k)
-      {
-        const vtkIdType p = ids->GetId(k);
-        double* s = sum.data() + static_cast<std::size_t>(p) * nc;
-        for (int j = 0; j < nc; ++j)
-          s[j] += t[j];
-        ++count[p];
-      }
-    }
-    pointToTuple.assign(static_cast<std::size_t>(numPoints), -1);
-    for (vtkIdType p = 0; p < numPoints; ++p)
-    {
-      if (count[p] == 0)
-        continue;
-      pointToTuple[p] = static_cast<std::int32_t>(used.size());
-      used.push_back(p);
-      const double* s = sum.data() + static_cast<std::size_t>(p) * nc;
-      for (int j = 0; j < nc; ++j)
-        values.push_back(s[j] / count[p]);
-    }
-    numTuples = static_cast<vtkIdType>(used.size());
+    vtkErrorMacro(<< error);
+    return 0;
   }
   this->UpdateProgress(0.2);
 
   av::TensorToMetricOptions options;
-  options.Interpretation = this->Interpretation == TENSOR_AS_METRIC
-    ? av::TensorInterpretation::TensorAsMetric
-    : av::TensorInterpretation::EigenvaluesAsStretch;
-  options.Eigenvalues = this->EigenvalueMode == CLAMP ? av::EigenvalueHandling::Clamp
-                                                      : av::EigenvalueHandling::Absolute;
-  options.MinimumEigenvalue = this->MinimumEigenvalue;
-  options.MaximumAnisotropy = this->MaximumAnisotropy;
-  options.SmoothingIterations = this->SmoothingIterations;
-  options.ApplyGlobalScale = this->ApplyGlobalScale;
-  if (this->Dimension == DIMENSION_AUTO)
+  if (!this->BuildOptions(input, options, error))
   {
-    double bounds[6];
-    input->GetBounds(bounds);
-    options.Dimension = bounds[4] == bounds[5] ? 2 : 3;
-  }
-  else if (this->Dimension == DIMENSION_2D || this->Dimension == DIMENSION_3D)
-  {
-    options.Dimension = this->Dimension;
-  }
-  else
-  {
-    vtkErrorMacro("Dimension must be 0 (auto), 2 or 3, not " << this->Dimension);
+    vtkErrorMacro(<< error);
     return 0;
   }
   this->UsedDimension = options.Dimension;
@@ -264,10 +303,10 @@ int vtkAnisoTensorToMetric::RequestData(vtkInformation*,
   if (this->SmoothingIterations > 0)
   {
     edges = ExtractEdges(input);
-    if (!pointToTuple.empty())
+    if (!tuples.PointToTuple.empty())
     {
       for (auto& e : edges)
-        e = pointToTuple[e]; // edges come from cells, so every end point has a tuple
+        e = tuples.PointToTuple[e]; // edges come from cells, so every end point has a tuple
     }
     if (edges.empty())
     {
@@ -278,19 +317,18 @@ int vtkAnisoTensorToMetric::RequestData(vtkInformation*,
   this->UpdateProgress(0.3);
 
   av::TensorToMetricResult result;
-  try
+  if (!vtkAnisoFilterUtilities::RunKernel(this, "tensor to metric conversion", [&] {
+        try
+        {
+          result = av::TensorToMetric(
+            tuples.Values.data(), static_cast<std::size_t>(tuples.Count), nc, options, edges);
+        }
+        catch (const av::InputError& e)
+        {
+          throw av::InputError("tensor array '" + name + "': " + e.what());
+        }
+      }))
   {
-    result =
-      av::TensorToMetric(values.data(), static_cast<std::size_t>(numTuples), nc, options, edges);
-  }
-  catch (const av::InputError& e)
-  {
-    vtkErrorMacro("tensor array '" << name << "': " << e.what());
-    return 0;
-  }
-  catch (const std::exception& e)
-  {
-    vtkErrorMacro("tensor to metric conversion failed: " << e.what());
     return 0;
   }
   this->UpdateProgress(0.9);
@@ -304,7 +342,16 @@ int vtkAnisoTensorToMetric::RequestData(vtkInformation*,
                                      << result.MaxAsymmetry
                                      << "); its symmetric part (T + T^T) / 2 was used");
   }
+  this->WriteOutput(result, tuples.Used, cellTensors, options.Dimension, output);
+  this->UpdateProgress(1.0);
+  return 1;
+}
 
+/// The Metric and Stretch point arrays and the field data of the conversion.
+void vtkAnisoTensorToMetric::WriteOutput(const av::TensorToMetricResult& result,
+  const std::vector<vtkIdType>& used, bool cellTensors, int dimension, vtkDataSet* output)
+{
+  const vtkIdType numPoints = output->GetNumberOfPoints();
   vtkNew<vtkDoubleArray> metric;
   metric->SetName(this->MetricArrayName ? this->MetricArrayName : "Metric");
   metric->SetNumberOfComponents(6);
@@ -324,7 +371,7 @@ int vtkAnisoTensorToMetric::RequestData(vtkInformation*,
     const double identity3[6] = { 1, 1, 1, 0, 0, 0 };
     for (vtkIdType p = 0; p < numPoints; ++p)
     {
-      metric->SetTypedTuple(p, options.Dimension == 2 ? identity2 : identity3);
+      metric->SetTypedTuple(p, dimension == 2 ? identity2 : identity3);
       stretch->SetValue(p, 1.0);
     }
     for (std::size_t k = 0; k < used.size(); ++k)
@@ -351,6 +398,7 @@ int vtkAnisoTensorToMetric::RequestData(vtkInformation*,
   this->StretchMin = result.MinStretch;
   this->StretchMax = result.MaxStretch;
   vtkFieldData* fd = output->GetFieldData();
+  using vtkAnisoFilterUtilities::AddFieldValue;
   AddFieldValue(fd, "MetricScale", result.GlobalScale);
   AddFieldValue(fd, "MaxAsymmetry", result.MaxAsymmetry);
   AddFieldValue(fd, "NumNegative", static_cast<double>(result.NumNegative));
@@ -358,8 +406,6 @@ int vtkAnisoTensorToMetric::RequestData(vtkInformation*,
   AddFieldValue(fd, "NumCapped", static_cast<double>(result.NumCapped));
   AddFieldValue(fd, "StretchMin", result.MinStretch);
   AddFieldValue(fd, "StretchMax", result.MaxStretch);
-  this->UpdateProgress(1.0);
-  return 1;
 }
 
 void vtkAnisoTensorToMetric::PrintSelf(ostream& os, vtkIndent indent)

@@ -38,6 +38,17 @@
 #include "AnisoVoronoiFiltersMetricModule.h" // export macro
 #include <vtkDataSetAlgorithm.h>
 
+#include <string> // private helpers
+#include <vector> // private helpers
+
+#ifndef __VTK_WRAP__
+namespace av
+{
+struct TensorToMetricOptions;
+struct TensorToMetricResult;
+}
+#endif
+
 class ANISOVORONOIFILTERSMETRIC_EXPORT vtkAnisoTensorToMetric : public vtkDataSetAlgorithm
 {
 public:
@@ -161,6 +172,13 @@ protected:
   int UsedDimension = 3;
 
 private:
+#ifndef __VTK_WRAP__
+  vtkDataArray* FindTensors(
+    vtkInformationVector** inputVector, vtkDataSet* input, bool& cellTensors, std::string& error);
+  bool BuildOptions(vtkDataSet* input, av::TensorToMetricOptions& options, std::string& error);
+  void WriteOutput(const av::TensorToMetricResult& result, const std::vector<vtkIdType>& used,
+    bool cellTensors, int dimension, vtkDataSet* output);
+#endif
   vtkAnisoTensorToMetric(const vtkAnisoTensorToMetric&) = delete;
   void operator=(const vtkAnisoTensorToMetric&) = delete;
 };
