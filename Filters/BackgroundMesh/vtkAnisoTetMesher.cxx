@@ -2,6 +2,7 @@
 
 #include "TetMesher.h"
 #include "vtkAnisoDataConversion.h"
+#include "vtkAnisoFilterUtilities.h"
 
 #include <vtkAlgorithm.h>
 #include <vtkInformation.h>
@@ -29,83 +30,72 @@ int vtkAnisoTetMesher::RequestData(
 {
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
   vtkUnstructuredGrid* output = vtkUnstructuredGrid::GetData(outputVector);
-  av::SimplexMesh tets;
-  try
+  const bool haveInput = input && input->GetNumberOfPoints() > 0;
+  if (this->Shape == BALL && this->TargetVertices < 20)
   {
-    if (this->Shape == BALL)
+    vtkErrorMacro("a ball needs TargetVertices >= 20");
+    return 0;
+  }
+  if (this->Shape == BOX && this->TargetVertices < 8)
+  {
+    vtkErrorMacro("a box needs TargetVertices >= 8");
+    return 0;
+  }
+  if (this->Shape != BALL && this->Shape != BOX && !haveInput)
+  {
+    return 1; // empty in, empty out
+  }
+  av::SimplexMesh surface;
+  if (this->Shape != BALL && this->Shape != BOX)
+  {
+    std::string error, note;
+    if (!vtkAnisoDataConversion::ToSimplexMesh(input, surface, error, &note))
     {
-      if (this->TargetVertices < 20)
-      {
-        vtkErrorMacro("a ball needs TargetVertices >= 20");
-        return 0;
-      }
-      tets = av::TetrahedralizeSphere(this->Radius, static_cast<std::size_t>(this->TargetVertices));
-      for (std::size_t i = 0; i < tets.NumPoints(); ++i)
-        for (int d = 0; d < 3; ++d)
-          tets.Points[3 * i + d] += this->Center[d];
+      vtkErrorMacro("input surface: " << error);
+      return 0;
     }
-    else if (this->Shape == BOX)
+    if (surface.SimplexDim != 2 || surface.AmbientDim != 3)
     {
-      double lo[3] = { 0, 0, 0 }, hi[3] = { 1, 1, 1 };
-      if (input && input->GetNumberOfPoints() > 0)
-      {
-        double b[6];
-        input->GetBounds(b);
-        for (int d = 0; d < 3; ++d)
-        {
-          lo[d] = b[2 * d];
-          hi[d] = b[2 * d + 1];
-        }
-      }
-      if (this->TargetVertices < 8)
-      {
-        vtkErrorMacro("a box needs TargetVertices >= 8");
-        return 0;
-      }
-      tets = av::TetrahedralizeBox(lo, hi, static_cast<std::size_t>(this->TargetVertices));
-    }
-    else
-    {
-      if (!input || input->GetNumberOfPoints() == 0)
-      {
-        return 1; // empty in, empty out
-      }
-      av::SimplexMesh surface;
-      std::string error, note;
-      if (!vtkAnisoDataConversion::ToSimplexMesh(input, surface, error, &note))
-      {
-        vtkErrorMacro("input surface: " << error);
-        return 0;
-      }
-      if (surface.SimplexDim != 2 || surface.AmbientDim != 3)
-      {
-        vtkErrorMacro("the input must be a closed triangle surface in 3D");
-        return 0;
-      }
-      av::TetMeshOptions options;
-      options.RadiusEdgeRatio = this->RadiusEdgeRatio;
-      options.MaxVolume = this->MaxVolume;
-      if (this->TargetVertices > 0)
-      {
-        // Volume enclosed (divergence theorem) / target count ~ volume of one vertex's share
-        // (about 6 tets per vertex in a quality mesh).
-        double volume = 0;
-        for (std::size_t c = 0; c < surface.NumCells(); ++c)
-        {
-          const double* a = surface.Point(surface.Cell(c)[0]);
-          const double* b = surface.Point(surface.Cell(c)[1]);
-          const double* d = surface.Point(surface.Cell(c)[2]);
-          volume += (a[0] * (b[1] * d[2] - b[2] * d[1]) - a[1] * (b[0] * d[2] - b[2] * d[0]) +
-                      a[2] * (b[0] * d[1] - b[1] * d[0])) / 6.0;
-        }
-        options.MaxVolume = std::abs(volume) / (5.0 * this->TargetVertices);
-      }
-      tets = av::TetrahedralizeClosedSurface(surface, options);
+      vtkErrorMacro("the input must be a closed triangle surface in 3D");
+      return 0;
     }
   }
-  catch (const av::InputError& e)
+  av::SimplexMesh tets;
+  if (!vtkAnisoFilterUtilities::RunKernel(this, "tetrahedral meshing", [&] {
+        if (this->Shape == BALL)
+        {
+          tets =
+            av::TetrahedralizeSphere(this->Radius, static_cast<std::size_t>(this->TargetVertices));
+          for (std::size_t i = 0; i < tets.NumPoints(); ++i)
+            for (int d = 0; d < 3; ++d)
+              tets.Points[3 * i + d] += this->Center[d];
+        }
+        else if (this->Shape == BOX)
+        {
+          double lo[3] = { 0, 0, 0 }, hi[3] = { 1, 1, 1 };
+          if (haveInput)
+          {
+            double b[6];
+            input->GetBounds(b);
+            for (int d = 0; d < 3; ++d)
+            {
+              lo[d] = b[2 * d];
+              hi[d] = b[2 * d + 1];
+            }
+          }
+          tets = av::TetrahedralizeBox(lo, hi, static_cast<std::size_t>(this->TargetVertices));
+        }
+        else
+        {
+          av::TetMeshOptions options;
+          options.RadiusEdgeRatio = this->RadiusEdgeRatio;
+          options.MaxVolume = this->TargetVertices > 0
+            ? av::MaxVolumeForVertexCount(surface, static_cast<std::size_t>(this->TargetVertices))
+            : this->MaxVolume;
+          tets = av::TetrahedralizeClosedSurface(surface, options);
+        }
+      }))
   {
-    vtkErrorMacro(<< e.what());
     return 0;
   }
   output->ShallowCopy(vtkAnisoDataConversion::FromSimplexMesh(tets));

@@ -34,41 +34,10 @@ double SegmentDistance(const double p[2], const double a[2], const double b[2])
   const double dx = a[0] + t * ab[0] - p[0], dy = a[1] + t * ab[1] - p[1];
   return std::sqrt(dx * dx + dy * dy);
 }
-}
-
-vtkAnisoTriangulateDomain::vtkAnisoTriangulateDomain() = default;
-
-int vtkAnisoTriangulateDomain::RequestData(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+/// Boundary loops of the domain: the input's polygons, else its closed polylines, else the
+/// bounding rectangle `b`.
+std::vector<Loop> CollectLoops(vtkPolyData* input, const double b[6])
 {
-  vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
-  vtkPolyData* output = vtkPolyData::GetData(outputVector);
-  if (!input || input->GetNumberOfPoints() == 0)
-  {
-    return 1; // empty in, empty out
-  }
-  double b[6];
-  input->GetBounds(b);
-  if (b[4] != b[5])
-  {
-    vtkErrorMacro("the domain must lie in a plane z = constant; its z range is [" << b[4] << ", "
-                                                                                  << b[5] << "]");
-    return 0;
-  }
-  const double dx = b[1] - b[0], dy = b[3] - b[2];
-  if (!(dx > 0) || !(dy > 0) || !std::isfinite(dx) || !std::isfinite(dy))
-  {
-    vtkErrorMacro("the domain has zero area or non-finite bounds");
-    return 0;
-  }
-  double h = this->TargetEdgeLength > 0 ? this->TargetEdgeLength : std::hypot(dx, dy) / 50.0;
-  if (std::max(dx, dy) / h > 4000)
-  {
-    vtkErrorMacro("TargetEdgeLength " << h << " would give more than ~10^7 triangles");
-    return 0;
-  }
-
-  // Boundary loops: polygons, else closed polylines, else the bounding rectangle.
   std::vector<Loop> loops;
   auto addCells = [&](vtkCellArray* cells, bool needClosed) {
     auto it = vtk::TakeSmartPointer(cells->NewIterator());
@@ -103,8 +72,13 @@ int vtkAnisoTriangulateDomain::RequestData(
     loops.push_back(Loop{ { b[0], b[2], b[1], b[2], b[1], b[3], b[0], b[3] } });
   }
 
-  // vtkDelaunay2D keeps what is left of a counter-clockwise loop: outer loops (inside an
-  // even number of other loops) must be counter-clockwise, holes clockwise.
+  return loops;
+}
+
+/// vtkDelaunay2D keeps what is left of a counter-clockwise loop: outer loops (inside an even
+/// number of other loops) must be counter-clockwise, holes clockwise.
+void OrientLoops(std::vector<Loop>& loops)
+{
   for (std::size_t l = 0; l < loops.size(); ++l)
   {
     std::vector<double>& xy = loops[l].XY;
@@ -142,11 +116,13 @@ int vtkAnisoTriangulateDomain::RequestData(
     }
   }
 
-  // Resample the boundary at spacing <= h.
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToDouble();
-  vtkNew<vtkCellArray> boundaryPolys;
-  std::vector<vtkSmartPointer<vtkPolygon>> polygons;
+}
+
+/// The boundary resampled at spacing <= h: its points go into `points`, one polygon per loop
+/// into `boundaryPolys` and `polygons` (for the inside tests).
+void ResampleBoundary(const std::vector<Loop>& loops, double h, vtkPoints* points,
+  vtkCellArray* boundaryPolys, std::vector<vtkSmartPointer<vtkPolygon>>& polygons)
+{
   for (const Loop& loop : loops)
   {
     const std::size_t n = loop.XY.size() / 2;
@@ -174,8 +150,13 @@ int vtkAnisoTriangulateDomain::RequestData(
     polygons.push_back(polygon);
   }
 
-  // Interior points: equilateral lattice, kept inside an odd number of loops and away from
-  // the boundary (so that no sliver triangles appear next to it).
+}
+
+/// Interior points on an equilateral lattice of spacing h, kept inside an odd number of loops
+/// and away from the boundary (so that no sliver triangles appear next to it).
+void AddInteriorLattice(const double b[6], double h,
+  const std::vector<vtkSmartPointer<vtkPolygon>>& polygons, vtkPoints* points)
+{
   const double rowH = h * std::sqrt(3.0) / 2.0;
   int row = 0;
   for (double y = b[2] + rowH * 0.5; y < b[3]; y += rowH, ++row)
@@ -208,25 +189,12 @@ int vtkAnisoTriangulateDomain::RequestData(
     }
   }
 
-  vtkNew<vtkPolyData> cloud;
-  cloud->SetPoints(points);
-  vtkNew<vtkPolyData> boundary;
-  boundary->SetPoints(points);
-  boundary->SetPolys(boundaryPolys);
-  vtkNew<vtkDelaunay2D> delaunay;
-  delaunay->SetInputData(cloud);
-  delaunay->SetSourceData(boundary);
-  delaunay->SetTolerance(1e-9);
-  delaunay->Update();
-  vtkPolyData* tri = delaunay->GetOutput();
-  if (tri->GetNumberOfPolys() == 0)
-  {
-    vtkErrorMacro("the triangulation of the domain is empty (is the boundary a valid, "
-                  "non-self-intersecting polygon?)");
-    return 0;
-  }
-  // Keep counter-clockwise triangles only, reorienting any clockwise one.
-  vtkNew<vtkCellArray> triangles;
+}
+
+/// The counter-clockwise triangles of `tri` (clockwise ones reoriented, flat ones dropped).
+vtkSmartPointer<vtkCellArray> CounterClockwiseTriangles(vtkPolyData* tri, double h)
+{
+  auto triangles = vtkSmartPointer<vtkCellArray>::New();
   auto it = vtk::TakeSmartPointer(tri->GetPolys()->NewIterator());
   for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell())
   {
@@ -245,6 +213,69 @@ int vtkAnisoTriangulateDomain::RequestData(
       std::swap(t[1], t[2]);
     triangles->InsertNextCell(3, t);
   }
+  return triangles;
+}
+}
+
+vtkAnisoTriangulateDomain::vtkAnisoTriangulateDomain() = default;
+
+int vtkAnisoTriangulateDomain::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
+  vtkPolyData* output = vtkPolyData::GetData(outputVector);
+  if (!input || input->GetNumberOfPoints() == 0)
+  {
+    return 1; // empty in, empty out
+  }
+  double b[6];
+  input->GetBounds(b);
+  if (b[4] != b[5])
+  {
+    vtkErrorMacro("the domain must lie in a plane z = constant; its z range is [" << b[4] << ", "
+                                                                                  << b[5] << "]");
+    return 0;
+  }
+  const double dx = b[1] - b[0], dy = b[3] - b[2];
+  if (!(dx > 0) || !(dy > 0) || !std::isfinite(dx) || !std::isfinite(dy))
+  {
+    vtkErrorMacro("the domain has zero area or non-finite bounds");
+    return 0;
+  }
+  double h = this->TargetEdgeLength > 0 ? this->TargetEdgeLength : std::hypot(dx, dy) / 50.0;
+  if (std::max(dx, dy) / h > 4000)
+  {
+    vtkErrorMacro("TargetEdgeLength " << h << " would give more than ~10^7 triangles");
+    return 0;
+  }
+
+  std::vector<Loop> loops = CollectLoops(input, b);
+  OrientLoops(loops);
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  vtkNew<vtkCellArray> boundaryPolys;
+  std::vector<vtkSmartPointer<vtkPolygon>> polygons;
+  ResampleBoundary(loops, h, points, boundaryPolys, polygons);
+  AddInteriorLattice(b, h, polygons, points);
+
+  vtkNew<vtkPolyData> cloud;
+  cloud->SetPoints(points);
+  vtkNew<vtkPolyData> boundary;
+  boundary->SetPoints(points);
+  boundary->SetPolys(boundaryPolys);
+  vtkNew<vtkDelaunay2D> delaunay;
+  delaunay->SetInputData(cloud);
+  delaunay->SetSourceData(boundary);
+  delaunay->SetTolerance(1e-9);
+  delaunay->Update();
+  vtkPolyData* tri = delaunay->GetOutput();
+  if (tri->GetNumberOfPolys() == 0)
+  {
+    vtkErrorMacro("the triangulation of the domain is empty (is the boundary a valid, "
+                  "non-self-intersecting polygon?)");
+    return 0;
+  }
+  vtkSmartPointer<vtkCellArray> triangles = CounterClockwiseTriangles(tri, h);
   output->SetPoints(tri->GetPoints());
   output->SetPolys(triangles);
   return 1;

@@ -1,6 +1,7 @@
 #include "vtkAnisoAnalyticMetric.h"
 
 #include "AnalyticMetrics.h"
+#include "vtkAnisoFilterUtilities.h"
 #include "MetricAlgebra.h"
 
 #include <vtkDataSet.h>
@@ -28,17 +29,8 @@ vtkAnisoAnalyticMetric::~vtkAnisoAnalyticMetric()
 
 bool vtkAnisoAnalyticMetric::SetPresetByName(const char* name)
 {
-  try
-  {
-    const av::AnalyticPreset p = av::AnalyticPresetFromName(name ? name : "");
-    this->SetPreset(static_cast<int>(p));
-    return true;
-  }
-  catch (const av::InputError& e)
-  {
-    vtkErrorMacro(<< e.what());
-    return false;
-  }
+  return vtkAnisoFilterUtilities::RunKernel(this, "SetPresetByName",
+    [&] { this->SetPreset(static_cast<int>(av::AnalyticPresetFromName(name ? name : ""))); });
 }
 
 int vtkAnisoAnalyticMetric::RequestData(

@@ -1,6 +1,7 @@
 #include "vtkAnisoCurvatureMetric.h"
 
 #include "SurfaceCurvatureMetric.h"
+#include "vtkAnisoFilterUtilities.h"
 
 #include <vtkCellType.h>
 #include <vtkDataSet.h>
@@ -14,6 +15,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <string>
 #include <vector>
 
 vtkStandardNewMacro(vtkAnisoCurvatureMetric);
@@ -42,6 +44,87 @@ vtkSmartPointer<vtkDoubleArray> Scatter(const char* name,
     std::copy(
       values.begin() + k * comps, values.begin() + (k + 1) * comps, a->GetPointer(used[k] * comps));
   return a;
+}
+/// The point ids of the input's triangles (vertex and line cells are skipped); false with
+/// `error` when another cell type is present or there is no triangle.
+bool ExtractTriangles(vtkDataSet* input, std::vector<vtkIdType>& triangles, std::string& error)
+{
+  vtkNew<vtkIdList> ids;
+  const vtkIdType numCells = input->GetNumberOfCells();
+  for (vtkIdType c = 0; c < numCells; ++c)
+  {
+    const int type = input->GetCellType(c);
+    if (type == VTK_VERTEX || type == VTK_POLY_VERTEX || type == VTK_LINE ||
+      type == VTK_POLY_LINE || type == VTK_EMPTY_CELL)
+    {
+      continue;
+    }
+    input->GetCellPoints(c, ids);
+    if (type != VTK_TRIANGLE)
+    {
+      if (type == VTK_POLYGON || type == VTK_QUAD || type == VTK_TRIANGLE_STRIP ||
+        type == VTK_PIXEL)
+      {
+        error = "cell " + std::to_string(c) + " is not a triangle (" +
+          std::to_string(ids->GetNumberOfIds()) +
+          " points): triangulate the surface first with vtkTriangleFilter (ParaView: "
+          "Triangulate)";
+      }
+      else
+      {
+        error = "cell " + std::to_string(c) +
+          " is not a surface triangle: the curvature metric needs a triangle surface (extract "
+          "it with vtkDataSetSurfaceFilter and vtkTriangleFilter)";
+      }
+      return false;
+    }
+    for (int k = 0; k < 3; ++k)
+      triangles.push_back(ids->GetId(k));
+  }
+  if (triangles.empty())
+  {
+    error = "the input has no triangle";
+    return false;
+  }
+  return true;
+}
+
+/// The triangle mesh of the points that triangles use (the kernel rejects unused points);
+/// `used` maps its vertices to input points, left empty when every point is used.
+av::SimplexMesh CompactTriangleMesh(
+  vtkDataSet* input, const std::vector<vtkIdType>& triangles, std::vector<vtkIdType>& used)
+{
+  const vtkIdType numPoints = input->GetNumberOfPoints();
+  std::vector<std::int32_t> pointToVertex(static_cast<std::size_t>(numPoints), -1);
+  av::SimplexMesh mesh;
+  mesh.AmbientDim = 3;
+  mesh.SimplexDim = 2;
+  for (vtkIdType p : triangles)
+  {
+    if (pointToVertex[p] < 0)
+    {
+      pointToVertex[p] = 0; // mark
+    }
+  }
+  for (vtkIdType p = 0; p < numPoints; ++p)
+  {
+    if (pointToVertex[p] == 0)
+    {
+      pointToVertex[p] = static_cast<std::int32_t>(used.size());
+      used.push_back(p);
+    }
+  }
+  mesh.Points.resize(3 * used.size());
+  for (std::size_t k = 0; k < used.size(); ++k)
+    input->GetPoint(used[k], mesh.Points.data() + 3 * k);
+  mesh.Cells.reserve(triangles.size());
+  for (vtkIdType p : triangles)
+    mesh.Cells.push_back(pointToVertex[p]);
+  if (used.size() == static_cast<std::size_t>(numPoints))
+  {
+    used.clear(); // identity map
+  }
+  return mesh;
 }
 }
 
@@ -78,81 +161,20 @@ int vtkAnisoCurvatureMetric::RequestData(vtkInformation*,
     return 0;
   }
 
-  // Triangles only; vertex/line cells are skipped, anything else is an error.
-  std::vector<std::int32_t> pointToVertex(static_cast<std::size_t>(numPoints), -1);
+  std::string error;
   std::vector<vtkIdType> triangles;
-  vtkNew<vtkIdList> ids;
-  for (vtkIdType c = 0; c < numCells; ++c)
+  if (!ExtractTriangles(input, triangles, error))
   {
-    const int type = input->GetCellType(c);
-    if (type == VTK_VERTEX || type == VTK_POLY_VERTEX || type == VTK_LINE ||
-      type == VTK_POLY_LINE || type == VTK_EMPTY_CELL)
-    {
-      continue;
-    }
-    input->GetCellPoints(c, ids);
-    if (type != VTK_TRIANGLE)
-    {
-      if (type == VTK_POLYGON || type == VTK_QUAD || type == VTK_TRIANGLE_STRIP ||
-        type == VTK_PIXEL)
-      {
-        vtkErrorMacro("cell " << c << " is not a triangle (" << ids->GetNumberOfIds()
-                              << " points): triangulate the surface first with "
-                                 "vtkTriangleFilter (ParaView: Triangulate)");
-      }
-      else
-      {
-        vtkErrorMacro("cell " << c
-                              << " is not a surface triangle: the curvature metric needs a "
-                                 "triangle surface (extract it with vtkDataSetSurfaceFilter "
-                                 "and vtkTriangleFilter)");
-      }
-      return 0;
-    }
-    for (int k = 0; k < 3; ++k)
-      triangles.push_back(ids->GetId(k));
-  }
-  if (triangles.empty())
-  {
-    vtkErrorMacro("the input has no triangle");
+    vtkErrorMacro(<< error);
     return 0;
   }
-
-  // Compact away points used by no triangle (the kernel rejects them).
-  av::SimplexMesh mesh;
-  mesh.AmbientDim = 3;
-  mesh.SimplexDim = 2;
   std::vector<vtkIdType> used;
-  for (vtkIdType p : triangles)
-  {
-    if (pointToVertex[p] < 0)
-    {
-      pointToVertex[p] = 0; // mark
-    }
-  }
-  for (vtkIdType p = 0; p < numPoints; ++p)
-  {
-    if (pointToVertex[p] == 0)
-    {
-      pointToVertex[p] = static_cast<std::int32_t>(used.size());
-      used.push_back(p);
-    }
-  }
-  mesh.Points.resize(3 * used.size());
-  for (std::size_t k = 0; k < used.size(); ++k)
-    input->GetPoint(used[k], mesh.Points.data() + 3 * k);
-  mesh.Cells.reserve(triangles.size());
-  for (vtkIdType p : triangles)
-    mesh.Cells.push_back(pointToVertex[p]);
-  const bool compacted = used.size() < static_cast<std::size_t>(numPoints);
+  const av::SimplexMesh mesh = CompactTriangleMesh(input, triangles, used);
+  const bool compacted = !used.empty();
   if (compacted)
   {
     vtkWarningMacro(<< (numPoints - static_cast<vtkIdType>(used.size()))
                     << " point(s) are used by no triangle: they get a zero metric");
-  }
-  else
-  {
-    used.clear(); // identity map
   }
   this->UpdateProgress(0.2);
 
@@ -161,19 +183,18 @@ int vtkAnisoCurvatureMetric::RequestData(vtkInformation*,
   options.SmoothingIterations = this->SmoothingIterations;
   options.MaxStretch = this->MaxStretch;
   av::SurfaceCurvatureMetricResult result;
-  try
+  if (!vtkAnisoFilterUtilities::RunKernel(this, "curvature metric", [&] {
+        try
+        {
+          result = av::SurfaceCurvatureMetric(mesh, options);
+        }
+        catch (const av::InputError& e)
+        {
+          throw av::InputError(std::string(e.what()) +
+            (compacted ? " (point/triangle ids count only the triangles' points)" : ""));
+        }
+      }))
   {
-    result = av::SurfaceCurvatureMetric(mesh, options);
-  }
-  catch (const av::InputError& e)
-  {
-    vtkErrorMacro(<< e.what()
-                  << (compacted ? " (point/triangle ids count only the triangles' points)" : ""));
-    return 0;
-  }
-  catch (const std::exception& e)
-  {
-    vtkErrorMacro("curvature metric failed: " << e.what());
     return 0;
   }
   this->UpdateProgress(0.9);
@@ -187,10 +208,8 @@ int vtkAnisoCurvatureMetric::RequestData(vtkInformation*,
   pd->AddArray(Scatter("VMin", result.MinDirection, 3, numPoints, used));
   pd->AddArray(Scatter("VMax", result.MaxDirection, 3, numPoints, used));
   pd->SetActiveTensors(metricName);
-  vtkNew<vtkDoubleArray> floor;
-  floor->SetName("CurvatureFloor");
-  floor->InsertNextValue(result.CurvatureFloor);
-  output->GetFieldData()->AddArray(floor);
+  vtkAnisoFilterUtilities::AddFieldValue(
+    output->GetFieldData(), "CurvatureFloor", result.CurvatureFloor);
   this->UpdateProgress(1.0);
   return 1;
 }

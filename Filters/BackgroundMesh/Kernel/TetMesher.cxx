@@ -384,4 +384,24 @@ SimplexMesh TetrahedralizeSphere(double radius, std::size_t targetVertices)
     });
 }
 
+double EnclosedVolume(const SimplexMesh& surface)
+{
+  double volume = 0;
+  for (std::size_t c = 0; c < surface.NumCells(); ++c)
+  {
+    const double* a = surface.Point(surface.Cell(c)[0]);
+    const double* b = surface.Point(surface.Cell(c)[1]);
+    const double* d = surface.Point(surface.Cell(c)[2]);
+    volume += (a[0] * (b[1] * d[2] - b[2] * d[1]) - a[1] * (b[0] * d[2] - b[2] * d[0]) +
+                a[2] * (b[0] * d[1] - b[1] * d[0])) /
+      6.0;
+  }
+  return volume;
+}
+
+double MaxVolumeForVertexCount(const SimplexMesh& surface, std::size_t targetVertices)
+{
+  return std::abs(EnclosedVolume(surface)) / (5.0 * static_cast<double>(targetVertices));
+}
+
 } // namespace av

@@ -45,6 +45,18 @@ SimplexMesh TetrahedralizeClosedSurface(
   const SimplexMesh& triangleSurface, const TetMeshOptions& options);
 
 /**
+ * Signed volume enclosed by a closed triangle surface (divergence theorem; positive when the
+ * triangles are oriented outwards).
+ */
+double EnclosedVolume(const SimplexMesh& triangleSurface);
+
+/**
+ * TetGen's volume bound (-a) that gives about `targetVertices` vertices inside the closed
+ * `triangleSurface`: a quality mesh has about 5 tetrahedra per vertex.
+ */
+double MaxVolumeForVertexCount(const SimplexMesh& triangleSurface, std::size_t targetVertices);
+
+/**
  * @brief Quality tet mesh of the box [lo, hi] with about `targetVertices` vertices
  * (typically within 15 %). targetVertices >= 8.
  */
