@@ -1,6 +1,7 @@
 #include "vtkAnisoFRDReader.h"
 
-#include "AnisoIOArrays.h"
+#include "vtkAnisoDataConversion.h"
+#include "vtkAnisoFilterUtilities.h"
 
 #include "FrdReader.h"
 
@@ -66,8 +67,8 @@ int CellTypeOfFrd(int frdType)
 } // namespace
 
 int vtkAnisoFRDReader::RequestData(vtkInformation*,
-                                   vtkInformationVector**,
-                                   vtkInformationVector* outputVector)
+  vtkInformationVector**,
+  vtkInformationVector* outputVector)
 {
   vtkUnstructuredGrid* output = vtkUnstructuredGrid::GetData(outputVector);
   if (this->FileName.empty())
@@ -76,18 +77,9 @@ int vtkAnisoFRDReader::RequestData(vtkInformation*,
     return 0;
   }
   av::FrdData d;
-  try
+  if (!vtkAnisoFilterUtilities::RunKernel(
+        this, ("reading " + this->FileName).c_str(), [&] { d = av::ReadFrd(this->FileName); }))
   {
-    d = av::ReadFrd(this->FileName);
-  }
-  catch (const av::InputError& e)
-  {
-    vtkErrorMacro(<< e.what());
-    return 0;
-  }
-  catch (const std::bad_alloc&)
-  {
-    vtkErrorMacro("Out of memory while reading " << this->FileName);
     return 0;
   }
   const std::vector<int> steps = d.Steps();
@@ -104,8 +96,8 @@ int vtkAnisoFRDReader::RequestData(vtkInformation*,
   points->SetDataTypeToDouble();
   points->SetNumberOfPoints(np);
   std::copy(d.Points.begin(),
-            d.Points.end(),
-            static_cast<vtkDoubleArray*>(points->GetData())->GetPointer(0));
+    d.Points.end(),
+    static_cast<vtkDoubleArray*>(points->GetData())->GetPointer(0));
 
   const vtkIdType ne = static_cast<vtkIdType>(d.NumElements());
   auto cells = vtkSmartPointer<vtkCellArray>::New();
@@ -128,15 +120,16 @@ int vtkAnisoFRDReader::RequestData(vtkInformation*,
   output->SetPoints(points);
   output->SetCells(types.data(), cells);
 
-  output->GetPointData()->AddArray(AnisoIOArrays::Int("NodeId", d.NodeIds));
+  output->GetPointData()->AddArray(vtkAnisoDataConversion::MakeIntArray("NodeId", d.NodeIds));
   auto corner = vtkSmartPointer<vtkUnsignedCharArray>::New();
   corner->SetName("IsCornerNode");
   corner->SetNumberOfTuples(np);
   std::copy(d.IsCornerNode.begin(), d.IsCornerNode.end(), corner->GetPointer(0));
   output->GetPointData()->AddArray(corner);
-  output->GetCellData()->AddArray(AnisoIOArrays::Int("ElementId", d.ElementIds));
-  output->GetCellData()->AddArray(AnisoIOArrays::Int("Material", d.ElementMaterials));
-  output->GetCellData()->AddArray(AnisoIOArrays::Int("Group", d.ElementGroups));
+  output->GetCellData()->AddArray(vtkAnisoDataConversion::MakeIntArray("ElementId", d.ElementIds));
+  output->GetCellData()->AddArray(
+    vtkAnisoDataConversion::MakeIntArray("Material", d.ElementMaterials));
+  output->GetCellData()->AddArray(vtkAnisoDataConversion::MakeIntArray("Group", d.ElementGroups));
 
   for (const av::FrdResult& r : d.Results)
   {

@@ -1,7 +1,8 @@
 #include "vtkAnisoMeditReader.h"
 
-#include "AnisoIOArrays.h"
 #include "MeditIO.h"
+#include "vtkAnisoDataConversion.h"
+#include "vtkAnisoFilterUtilities.h"
 
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
@@ -22,8 +23,8 @@ vtkAnisoMeditReader::vtkAnisoMeditReader()
 }
 
 int vtkAnisoMeditReader::RequestData(vtkInformation*,
-                                     vtkInformationVector**,
-                                     vtkInformationVector* outputVector)
+  vtkInformationVector**,
+  vtkInformationVector* outputVector)
 {
   vtkUnstructuredGrid* output = vtkUnstructuredGrid::GetData(outputVector);
   if (this->FileName.empty())
@@ -31,87 +32,84 @@ int vtkAnisoMeditReader::RequestData(vtkInformation*,
     vtkErrorMacro("FileName is not set.");
     return 0;
   }
-  try
-  {
-    const av::MeditMesh m = av::ReadMeditMesh(this->FileName);
-    const av::SimplexMesh& mesh = m.Mesh;
-    const vtkIdType np = static_cast<vtkIdType>(mesh.NumPoints());
-    auto points = vtkSmartPointer<vtkPoints>::New();
-    points->SetDataTypeToDouble();
-    points->SetNumberOfPoints(np);
-    for (vtkIdType i = 0; i < np; ++i)
+  const bool ok = vtkAnisoFilterUtilities::RunKernel(this,
+    ("reading " + this->FileName).c_str(),
+    [&]
     {
-      const double* p = mesh.Point(static_cast<std::size_t>(i));
-      points->SetPoint(i, p[0], p[1], mesh.AmbientDim == 3 ? p[2] : 0.0);
-    }
-    const int k = mesh.VerticesPerCell();
-    const vtkIdType nc = static_cast<vtkIdType>(mesh.NumCells());
-    auto cells = vtkSmartPointer<vtkCellArray>::New();
-    cells->AllocateExact(nc, nc * k);
-    vtkIdType ids[4];
-    for (vtkIdType c = 0; c < nc; ++c)
-    {
-      const std::int32_t* cell = mesh.Cell(static_cast<std::size_t>(c));
-      std::copy(cell, cell + k, ids);
-      cells->InsertNextCell(k, ids);
-    }
-    output->SetPoints(points);
-    output->SetCells(mesh.SimplexDim == 3 ? VTK_TETRA : VTK_TRIANGLE, cells);
-    output->GetPointData()->AddArray(AnisoIOArrays::Int("Ref", m.PointRefs));
-    output->GetCellData()->AddArray(AnisoIOArrays::Int("Ref", m.CellRefs));
+      const av::MeditMesh m = av::ReadMeditMesh(this->FileName);
+      const av::SimplexMesh& mesh = m.Mesh;
+      const vtkIdType np = static_cast<vtkIdType>(mesh.NumPoints());
+      auto points = vtkSmartPointer<vtkPoints>::New();
+      points->SetDataTypeToDouble();
+      points->SetNumberOfPoints(np);
+      for (vtkIdType i = 0; i < np; ++i)
+      {
+        const double* p = mesh.Point(static_cast<std::size_t>(i));
+        points->SetPoint(i, p[0], p[1], mesh.AmbientDim == 3 ? p[2] : 0.0);
+      }
+      const int k = mesh.VerticesPerCell();
+      const vtkIdType nc = static_cast<vtkIdType>(mesh.NumCells());
+      auto cells = vtkSmartPointer<vtkCellArray>::New();
+      cells->AllocateExact(nc, nc * k);
+      vtkIdType ids[4];
+      for (vtkIdType c = 0; c < nc; ++c)
+      {
+        const std::int32_t* cell = mesh.Cell(static_cast<std::size_t>(c));
+        std::copy(cell, cell + k, ids);
+        cells->InsertNextCell(k, ids);
+      }
+      output->SetPoints(points);
+      output->SetCells(mesh.SimplexDim == 3 ? VTK_TETRA : VTK_TRIANGLE, cells);
+      output->GetPointData()->AddArray(vtkAnisoDataConversion::MakeIntArray("Ref", m.PointRefs));
+      output->GetCellData()->AddArray(vtkAnisoDataConversion::MakeIntArray("Ref", m.CellRefs));
 
-    if (!this->SolFileName.empty())
-    {
-      const av::MeditSol sol = av::ReadMeditSol(this->SolFileName);
-      if (sol.NumVertices != mesh.NumPoints())
+      if (!this->SolFileName.empty())
       {
-        vtkErrorMacro("The .sol file " << this->SolFileName << " has " << sol.NumVertices
-                                       << " vertices but the mesh has " << np << ".");
-        return 0;
-      }
-      int metricField = -1, sizeField = -1;
-      for (std::size_t f = 0; f < sol.FieldTypes.size(); ++f)
-      {
-        if (sol.FieldTypes[f] == 3 && metricField < 0)
+        const av::MeditSol sol = av::ReadMeditSol(this->SolFileName);
+        if (sol.NumVertices != mesh.NumPoints())
         {
-          metricField = static_cast<int>(f);
+          throw av::InputError("The .sol file " + this->SolFileName + " has " +
+            std::to_string(sol.NumVertices) + " vertices but the mesh has " + std::to_string(np) +
+            ".");
         }
-        if (sol.FieldTypes[f] == 1 && sizeField < 0)
+        int metricField = -1, sizeField = -1;
+        for (std::size_t f = 0; f < sol.FieldTypes.size(); ++f)
         {
-          sizeField = static_cast<int>(f);
+          if (sol.FieldTypes[f] == 3 && metricField < 0)
+          {
+            metricField = static_cast<int>(f);
+          }
+          if (sol.FieldTypes[f] == 1 && sizeField < 0)
+          {
+            sizeField = static_cast<int>(f);
+          }
         }
-      }
-      const int fromField = metricField >= 0 ? metricField : sizeField;
-      if (fromField >= 0)
-      {
-        const av::MetricField metric =
-          av::MetricFromMeditSol(sol, static_cast<std::size_t>(fromField));
-        output->GetPointData()->AddArray(AnisoIOArrays::Double("Metric", 6, metric.Values));
-        output->GetPointData()->SetActiveTensors("Metric");
-      }
-      for (std::size_t f = 0; f < sol.FieldTypes.size(); ++f)
-      {
-        const int fi = static_cast<int>(f);
-        if (fi == metricField)
+        const int fromField = metricField >= 0 ? metricField : sizeField;
+        if (fromField >= 0)
         {
-          continue;
+          const av::MetricField metric =
+            av::MetricFromMeditSol(sol, static_cast<std::size_t>(fromField));
+          output->GetPointData()->AddArray(vtkAnisoDataConversion::MakeArray(
+            "Metric", metric.Values.data(), metric.NumPoints(), 6));
+          output->GetPointData()->SetActiveTensors("Metric");
         }
-        const std::string name =
-          fi == sizeField ? std::string("Size") : "SolField" + std::to_string(f);
-        output->GetPointData()->AddArray(
-          AnisoIOArrays::Double(name.c_str(), sol.FieldComponents(sol.FieldTypes[f]), sol.Fields[f]));
+        for (std::size_t f = 0; f < sol.FieldTypes.size(); ++f)
+        {
+          const int fi = static_cast<int>(f);
+          if (fi == metricField)
+          {
+            continue;
+          }
+          const std::string name =
+            fi == sizeField ? std::string("Size") : "SolField" + std::to_string(f);
+          const int nc = sol.FieldComponents(sol.FieldTypes[f]);
+          output->GetPointData()->AddArray(vtkAnisoDataConversion::MakeArray(
+            name.c_str(), sol.Fields[f].data(), sol.Fields[f].size() / nc, nc));
+        }
       }
-    }
-  }
-  catch (const av::InputError& e)
+    });
+  if (!ok)
   {
-    vtkErrorMacro(<< e.what());
-    output->Initialize();
-    return 0;
-  }
-  catch (const std::bad_alloc&)
-  {
-    vtkErrorMacro("Out of memory while reading " << this->FileName);
     output->Initialize();
     return 0;
   }

@@ -1,6 +1,8 @@
 #include "vtkAnisoMeditWriter.h"
 
 #include "MeditIO.h"
+#include "vtkAnisoDataConversion.h"
+#include "vtkAnisoFilterUtilities.h"
 
 #include <vtkCellData.h>
 #include <vtkCellType.h>
@@ -25,32 +27,18 @@ int vtkAnisoMeditWriter::FillInputPortInformation(int, vtkInformation* info)
   return 1;
 }
 
-void vtkAnisoMeditWriter::WriteData()
+namespace
 {
-  vtkDataSet* input = vtkDataSet::SafeDownCast(this->GetInput());
-  if (!input)
-  {
-    vtkErrorMacro("No vtkDataSet input.");
-    this->SetErrorCode(vtkErrorCode::UnknownError);
-    return;
-  }
-  if (this->FileName.empty())
-  {
-    vtkErrorMacro("FileName is not set.");
-    this->SetErrorCode(vtkErrorCode::NoFileNameError);
-    return;
-  }
-  const vtkIdType np = input->GetNumberOfPoints();
+/// The tetrahedra (or, without them, the triangles) of `input` as Medit cells with their
+/// references; with tetrahedra, triangles become boundary faces. Returns the skipped cells.
+vtkIdType ToMeditCells(vtkDataSet* input, vtkDataArray* cellRefs, av::MeditMesh& m)
+{
   const vtkIdType nc = input->GetNumberOfCells();
-  vtkDataArray* cellRefs = input->GetCellData()->GetArray(this->RefArrayName.c_str());
-  vtkDataArray* pointRefs = input->GetPointData()->GetArray(this->RefArrayName.c_str());
-
   bool hasTets = false;
   for (vtkIdType c = 0; c < nc && !hasTets; ++c)
   {
     hasTets = input->GetCellType(c) == VTK_TETRA;
   }
-  av::MeditMesh m;
   m.Mesh.SimplexDim = hasTets ? 3 : 2;
   vtkIdType skipped = 0;
   auto pts = vtkSmartPointer<vtkIdList>::New();
@@ -73,6 +61,44 @@ void vtkAnisoMeditWriter::WriteData()
     }
     refs.push_back(ref);
   }
+  return skipped;
+}
+
+/// The points in `dim` coordinates, with their references.
+void ToMeditPoints(vtkDataSet* input, vtkDataArray* pointRefs, int dim, av::MeditMesh& m)
+{
+  const vtkIdType np = input->GetNumberOfPoints();
+  m.Mesh.AmbientDim = dim;
+  m.Mesh.Points.resize(static_cast<std::size_t>(np) * dim);
+  m.PointRefs.resize(static_cast<std::size_t>(np));
+  for (vtkIdType i = 0; i < np; ++i)
+  {
+    const double* p = input->GetPoint(i);
+    std::copy(p, p + dim, m.Mesh.Points.data() + i * dim);
+    m.PointRefs[i] = pointRefs ? static_cast<int>(pointRefs->GetComponent(i, 0)) : 0;
+  }
+}
+}
+
+void vtkAnisoMeditWriter::WriteData()
+{
+  vtkDataSet* input = vtkDataSet::SafeDownCast(this->GetInput());
+  if (!input)
+  {
+    vtkErrorMacro("No vtkDataSet input.");
+    this->SetErrorCode(vtkErrorCode::UnknownError);
+    return;
+  }
+  if (this->FileName.empty())
+  {
+    vtkErrorMacro("FileName is not set.");
+    this->SetErrorCode(vtkErrorCode::NoFileNameError);
+    return;
+  }
+  const vtkIdType np = input->GetNumberOfPoints();
+  av::MeditMesh m;
+  const vtkIdType skipped =
+    ToMeditCells(input, input->GetCellData()->GetArray(this->RefArrayName.c_str()), m);
   if (skipped > 0)
   {
     vtkWarningMacro("Skipped " << skipped << " cells that are neither tetrahedra nor triangles.");
@@ -83,7 +109,7 @@ void vtkAnisoMeditWriter::WriteData()
     this->SetErrorCode(vtkErrorCode::UnknownError);
     return;
   }
-
+  const bool hasTets = m.Mesh.SimplexDim == 3;
   bool flat = !hasTets;
   for (vtkIdType i = 0; i < np && flat; ++i)
   {
@@ -100,62 +126,37 @@ void vtkAnisoMeditWriter::WriteData()
     this->SetErrorCode(vtkErrorCode::UnknownError);
     return;
   }
-  m.Mesh.AmbientDim = dim;
-  m.Mesh.Points.resize(static_cast<std::size_t>(np) * dim);
-  m.PointRefs.resize(static_cast<std::size_t>(np));
-  for (vtkIdType i = 0; i < np; ++i)
-  {
-    const double* p = input->GetPoint(i);
-    std::copy(p, p + dim, m.Mesh.Points.data() + i * dim);
-    m.PointRefs[i] = pointRefs ? static_cast<int>(pointRefs->GetComponent(i, 0)) : 0;
-  }
+  ToMeditPoints(input, input->GetPointData()->GetArray(this->RefArrayName.c_str()), dim, m);
 
-  try
+  av::MetricField field;
+  if (!this->SolFileName.empty())
   {
-    av::MeditSol sol;
-    if (!this->SolFileName.empty())
+    vtkDataArray* metric = input->GetPointData()->GetArray(this->MetricArrayName.c_str());
+    std::string error;
+    if (!metric)
     {
-      vtkDataArray* metric = input->GetPointData()->GetArray(this->MetricArrayName.c_str());
-      if (!metric || (metric->GetNumberOfComponents() != 6 && metric->GetNumberOfComponents() != 9))
-      {
-        vtkErrorMacro(
-          "SolFileName is set but the input has no 6- or 9-component point array named '"
-          << this->MetricArrayName << "'.");
-        this->SetErrorCode(vtkErrorCode::UnknownError);
-        return;
-      }
-      av::MetricField field;
-      field.Values.resize(static_cast<std::size_t>(np) * 6);
-      double t[9];
-      for (vtkIdType i = 0; i < np; ++i)
-      {
-        metric->GetTuple(i, t);
-        double* v = field.Values.data() + 6 * i;
-        if (metric->GetNumberOfComponents() == 6)
-        {
-          std::copy(t, t + 6, v);
-        }
-        else
-        { // symmetric part of a row-major 3x3 tensor
-          v[0] = t[0];
-          v[1] = t[4];
-          v[2] = t[8];
-          v[3] = 0.5 * (t[1] + t[3]);
-          v[4] = 0.5 * (t[5] + t[7]);
-          v[5] = 0.5 * (t[2] + t[6]);
-        }
-      }
-      sol = av::MeditSolFromMetric(field, dim);
+      error = "SolFileName is set but the input has no 6- or 9-component point array named '" +
+        this->MetricArrayName + "'.";
     }
-    av::WriteMeditMesh(this->FileName, m);
-    if (!this->SolFileName.empty())
+    if (!error.empty() ||
+      !vtkAnisoDataConversion::ToMetricField(metric, static_cast<std::size_t>(np), field, error))
     {
-      av::WriteMeditSol(this->SolFileName, sol);
+      vtkErrorMacro(<< error);
+      this->SetErrorCode(vtkErrorCode::UnknownError);
+      return;
     }
   }
-  catch (const av::InputError& e)
+  if (!vtkAnisoFilterUtilities::RunKernel(this,
+        ("writing " + this->FileName).c_str(),
+        [&]
+        {
+          av::WriteMeditMesh(this->FileName, m);
+          if (!this->SolFileName.empty())
+          {
+            av::WriteMeditSol(this->SolFileName, av::MeditSolFromMetric(field, dim));
+          }
+        }))
   {
-    vtkErrorMacro(<< e.what());
     this->SetErrorCode(vtkErrorCode::CannotOpenFileError);
   }
 }

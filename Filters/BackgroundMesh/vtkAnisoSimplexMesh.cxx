@@ -193,8 +193,10 @@ KernelCells ToKernelCells(vtkDataSet* input)
 
 /// Points (added ones interpolated with their parent weights), cells and cell data (copied
 /// from the parent) of the split mesh. Returns the number of simplices cut from non-simplices.
-vtkIdType WriteSplitMesh(vtkDataSet* input, const av::SimplexSplitResult& split,
-  const std::vector<vtkIdType>& kernelToInput, vtkUnstructuredGrid* output)
+vtkIdType WriteSplitMesh(vtkDataSet* input,
+  const av::SimplexSplitResult& split,
+  const std::vector<vtkIdType>& kernelToInput,
+  vtkUnstructuredGrid* output)
 {
   const av::SimplexMesh& mesh = split.Mesh;
   const vtkIdType numOut = static_cast<vtkIdType>(mesh.NumPoints());
@@ -252,7 +254,9 @@ vtkIdType WriteSplitMesh(vtkDataSet* input, const av::SimplexSplitResult& split,
 
 /// "split 560 hexahedra into 3360 tetrahedra (... centre points added ...)".
 std::string SplitSummaryText(const std::vector<std::uint8_t>& types,
-  const av::SimplexSplitResult& split, vtkIdType piecesOfSplitCells, vtkIdType dropped,
+  const av::SimplexSplitResult& split,
+  vtkIdType piecesOfSplitCells,
+  vtkIdType dropped,
   vtkIdType keptSimplices)
 {
   std::map<int, vtkIdType> splitCellsByType;
@@ -322,9 +326,8 @@ int vtkAnisoSimplexMesh::RequestData(vtkInformation*,
     PassThrough(input, census, output);
     this->NumberOfOutputSimplices = output->GetNumberOfCells();
     std::ostringstream os;
-    os << "nothing split: the input is already "
-       << (census.Tetras > 0 ? "tetrahedra" : "triangles") << " ("
-       << this->NumberOfOutputSimplices << " cells)";
+    os << "nothing split: the input is already " << (census.Tetras > 0 ? "tetrahedra" : "triangles")
+       << " (" << this->NumberOfOutputSimplices << " cells)";
     this->SplitSummary = os.str();
     AddSummary(output->GetFieldData(), this->SplitSummary);
     return 1;
@@ -337,21 +340,28 @@ int vtkAnisoSimplexMesh::RequestData(vtkInformation*,
     return 1;
   }
   av::SimplexSplitResult split;
-  if (!vtkAnisoFilterUtilities::RunKernel(this, "splitting into simplices", [&] {
-        try
+  if (!vtkAnisoFilterUtilities::RunKernel(this,
+        "splitting into simplices",
+        [&]
         {
-          split = av::SplitIntoSimplices(cells.Coords.data(), static_cast<std::size_t>(numPoints),
-            cells.Types.data(), cells.Offsets.data(), cells.Connectivity.data(),
-            cells.Types.size(), 3);
-        }
-        catch (const av::InputError& e)
-        {
-          throw av::InputError(std::string(e.what()) +
-            (census.Polygons ? " (triangulate polygons and strips first with "
-                               "vtkTriangleFilter, ParaView: Triangulate)"
-                             : ""));
-        }
-      }))
+          try
+          {
+            split = av::SplitIntoSimplices(cells.Coords.data(),
+              static_cast<std::size_t>(numPoints),
+              cells.Types.data(),
+              cells.Offsets.data(),
+              cells.Connectivity.data(),
+              cells.Types.size(),
+              3);
+          }
+          catch (const av::InputError& e)
+          {
+            throw av::InputError(std::string(e.what()) +
+              (census.Polygons ? " (triangulate polygons and strips first with "
+                                 "vtkTriangleFilter, ParaView: Triangulate)"
+                               : ""));
+          }
+        }))
   {
     return 0;
   }
@@ -361,8 +371,8 @@ int vtkAnisoSimplexMesh::RequestData(vtkInformation*,
   this->NumberOfSplitCells = census.Others;
   this->NumberOfOutputSimplices = static_cast<vtkIdType>(split.Mesh.NumCells());
   this->NumberOfAddedPoints = static_cast<vtkIdType>(split.NumAddedPoints);
-  const vtkIdType dropped = numPoints -
-    (static_cast<vtkIdType>(split.Mesh.NumPoints()) - this->NumberOfAddedPoints);
+  const vtkIdType dropped =
+    numPoints - (static_cast<vtkIdType>(split.Mesh.NumPoints()) - this->NumberOfAddedPoints);
   this->SplitSummary =
     SplitSummaryText(cells.Types, split, pieces, dropped, census.Triangles + census.Tetras);
   AddSummary(output->GetFieldData(), this->SplitSummary);

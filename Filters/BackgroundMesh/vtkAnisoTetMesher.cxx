@@ -25,8 +25,9 @@ int vtkAnisoTetMesher::FillInputPortInformation(int, vtkInformation* info)
   return 1;
 }
 
-int vtkAnisoTetMesher::RequestData(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+int vtkAnisoTetMesher::RequestData(vtkInformation*,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
 {
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
   vtkUnstructuredGrid* output = vtkUnstructuredGrid::GetData(outputVector);
@@ -61,40 +62,43 @@ int vtkAnisoTetMesher::RequestData(
     }
   }
   av::SimplexMesh tets;
-  if (!vtkAnisoFilterUtilities::RunKernel(this, "tetrahedral meshing", [&] {
-        if (this->Shape == BALL)
+  if (!vtkAnisoFilterUtilities::RunKernel(this,
+        "tetrahedral meshing",
+        [&]
         {
-          tets =
-            av::TetrahedralizeSphere(this->Radius, static_cast<std::size_t>(this->TargetVertices));
-          for (std::size_t i = 0; i < tets.NumPoints(); ++i)
-            for (int d = 0; d < 3; ++d)
-              tets.Points[3 * i + d] += this->Center[d];
-        }
-        else if (this->Shape == BOX)
-        {
-          double lo[3] = { 0, 0, 0 }, hi[3] = { 1, 1, 1 };
-          if (haveInput)
+          if (this->Shape == BALL)
           {
-            double b[6];
-            input->GetBounds(b);
-            for (int d = 0; d < 3; ++d)
-            {
-              lo[d] = b[2 * d];
-              hi[d] = b[2 * d + 1];
-            }
+            tets = av::TetrahedralizeSphere(
+              this->Radius, static_cast<std::size_t>(this->TargetVertices));
+            for (std::size_t i = 0; i < tets.NumPoints(); ++i)
+              for (int d = 0; d < 3; ++d)
+                tets.Points[3 * i + d] += this->Center[d];
           }
-          tets = av::TetrahedralizeBox(lo, hi, static_cast<std::size_t>(this->TargetVertices));
-        }
-        else
-        {
-          av::TetMeshOptions options;
-          options.RadiusEdgeRatio = this->RadiusEdgeRatio;
-          options.MaxVolume = this->TargetVertices > 0
-            ? av::MaxVolumeForVertexCount(surface, static_cast<std::size_t>(this->TargetVertices))
-            : this->MaxVolume;
-          tets = av::TetrahedralizeClosedSurface(surface, options);
-        }
-      }))
+          else if (this->Shape == BOX)
+          {
+            double lo[3] = { 0, 0, 0 }, hi[3] = { 1, 1, 1 };
+            if (haveInput)
+            {
+              double b[6];
+              input->GetBounds(b);
+              for (int d = 0; d < 3; ++d)
+              {
+                lo[d] = b[2 * d];
+                hi[d] = b[2 * d + 1];
+              }
+            }
+            tets = av::TetrahedralizeBox(lo, hi, static_cast<std::size_t>(this->TargetVertices));
+          }
+          else
+          {
+            av::TetMeshOptions options;
+            options.RadiusEdgeRatio = this->RadiusEdgeRatio;
+            options.MaxVolume = this->TargetVertices > 0
+              ? av::MaxVolumeForVertexCount(surface, static_cast<std::size_t>(this->TargetVertices))
+              : this->MaxVolume;
+            tets = av::TetrahedralizeClosedSurface(surface, options);
+          }
+        }))
   {
     return 0;
   }

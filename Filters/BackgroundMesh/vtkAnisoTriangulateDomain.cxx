@@ -39,7 +39,8 @@ double SegmentDistance(const double p[2], const double a[2], const double b[2])
 std::vector<Loop> CollectLoops(vtkPolyData* input, const double b[6])
 {
   std::vector<Loop> loops;
-  auto addCells = [&](vtkCellArray* cells, bool needClosed) {
+  auto addCells = [&](vtkCellArray* cells, bool needClosed)
+  {
     auto it = vtk::TakeSmartPointer(cells->NewIterator());
     for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell())
     {
@@ -115,13 +116,15 @@ void OrientLoops(std::vector<Loop>& loops)
       }
     }
   }
-
 }
 
 /// The boundary resampled at spacing <= h: its points go into `points`, one polygon per loop
 /// into `boundaryPolys` and `polygons` (for the inside tests).
-void ResampleBoundary(const std::vector<Loop>& loops, double h, vtkPoints* points,
-  vtkCellArray* boundaryPolys, std::vector<vtkSmartPointer<vtkPolygon>>& polygons)
+void ResampleBoundary(const std::vector<Loop>& loops,
+  double h,
+  vtkPoints* points,
+  vtkCellArray* boundaryPolys,
+  std::vector<vtkSmartPointer<vtkPolygon>>& polygons)
 {
   for (const Loop& loop : loops)
   {
@@ -149,13 +152,14 @@ void ResampleBoundary(const std::vector<Loop>& loops, double h, vtkPoints* point
     boundaryPolys->InsertNextCell(static_cast<vtkIdType>(ids.size()), ids.data());
     polygons.push_back(polygon);
   }
-
 }
 
 /// Interior points on an equilateral lattice of spacing h, kept inside an odd number of loops
 /// and away from the boundary (so that no sliver triangles appear next to it).
-void AddInteriorLattice(const double b[6], double h,
-  const std::vector<vtkSmartPointer<vtkPolygon>>& polygons, vtkPoints* points)
+void AddInteriorLattice(const double b[6],
+  double h,
+  const std::vector<vtkSmartPointer<vtkPolygon>>& polygons,
+  vtkPoints* points)
 {
   const double rowH = h * std::sqrt(3.0) / 2.0;
   int row = 0;
@@ -188,7 +192,6 @@ void AddInteriorLattice(const double b[6], double h,
         points->InsertNextPoint(p);
     }
   }
-
 }
 
 /// The counter-clockwise triangles of `tri` (clockwise ones reoriented, flat ones dropped).
@@ -219,8 +222,9 @@ vtkSmartPointer<vtkCellArray> CounterClockwiseTriangles(vtkPolyData* tri, double
 
 vtkAnisoTriangulateDomain::vtkAnisoTriangulateDomain() = default;
 
-int vtkAnisoTriangulateDomain::RequestData(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+int vtkAnisoTriangulateDomain::RequestData(vtkInformation*,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
 {
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
   vtkPolyData* output = vtkPolyData::GetData(outputVector);

@@ -2,18 +2,19 @@
 
 #include <vtkAlgorithm.h>
 #include <vtkCell.h>
-#include <vtkPointData.h>
 #include <vtkCellLocator.h>
 #include <vtkCellTypes.h>
 #include <vtkDataArray.h>
 #include <vtkDataSet.h>
 #include <vtkDoubleArray.h>
-#include <vtkGenericCell.h>
 #include <vtkExecutive.h>
+#include <vtkGenericCell.h>
 #include <vtkIdList.h>
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
+#include <vtkIntArray.h>
 #include <vtkNew.h>
+#include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkStreamingDemandDrivenPipeline.h>
 #include <vtkUnstructuredGrid.h>
@@ -127,8 +128,10 @@ bool ToSimplexMesh(vtkDataSet* input, av::SimplexMesh& mesh, std::string& error,
   return true;
 }
 
-vtkDataArray* FindPointTensorArray(
-  vtkDataArray* chosen, int chosenAssociation, vtkDataSet* input, const char* fallbackName)
+vtkDataArray* FindPointTensorArray(vtkDataArray* chosen,
+  int chosenAssociation,
+  vtkDataSet* input,
+  const char* fallbackName)
 {
   if (!input)
     return nullptr;
@@ -141,8 +144,10 @@ vtkDataArray* FindPointTensorArray(
   return fallbackName ? input->GetPointData()->GetArray(fallbackName) : nullptr;
 }
 
-bool ToMetricField(
-  vtkDataArray* array, std::size_t numPoints, av::MetricField& metric, std::string& error)
+bool ToMetricField(vtkDataArray* array,
+  std::size_t numPoints,
+  av::MetricField& metric,
+  std::string& error)
 {
   if (!array)
   {
@@ -202,8 +207,10 @@ bool ToMetricField(
   return true;
 }
 
-bool ToEmbedding(
-  vtkDataArray* array, const av::SimplexMesh& mesh, av::Embedding& embedding, std::string& error)
+bool ToEmbedding(vtkDataArray* array,
+  const av::SimplexMesh& mesh,
+  av::Embedding& embedding,
+  std::string& error)
 {
   if (!array)
   {
@@ -224,8 +231,8 @@ bool ToEmbedding(
   if (static_cast<std::size_t>(array->GetNumberOfTuples()) != n)
   {
     std::ostringstream os;
-    os << "embedding array has " << array->GetNumberOfTuples() << " tuples but the mesh has "
-       << n << " points";
+    os << "embedding array has " << array->GetNumberOfTuples() << " tuples but the mesh has " << n
+       << " points";
     error = os.str();
     return false;
   }
@@ -264,8 +271,129 @@ bool ToEmbedding(
   return true;
 }
 
-bool ToSiteSet(vtkDataSet* sites, vtkDataSet* meshData, const av::SimplexMesh& mesh,
-  const av::Embedding& embedding, av::SiteSet& out, std::string& error, std::string* note)
+namespace
+{
+/// Sites without CellId / Barycentric: each point located in `meshData` (input space), in
+/// the cell where it is most inside; false with `error` for a point outside the mesh.
+bool LocateSites(vtkDataSet* sites,
+  vtkDataSet* meshData,
+  int nv,
+  av::SiteSet& out,
+  std::string& error)
+{
+  const vtkIdType n = sites->GetNumberOfPoints();
+  // vtk cell id -> simplex index (ToSimplexMesh skips vertex/line cells).
+  std::vector<std::int32_t> simplexOf(static_cast<std::size_t>(meshData->GetNumberOfCells()), -1);
+  std::int32_t next = 0;
+  for (vtkIdType c = 0; c < meshData->GetNumberOfCells(); ++c)
+  {
+    const int type = meshData->GetCellType(c);
+    if (type == VTK_TRIANGLE || type == VTK_TETRA)
+      simplexOf[c] = next++;
+  }
+  vtkNew<vtkCellLocator> locator;
+  locator->SetDataSet(meshData);
+  locator->BuildLocator();
+  const double diag = std::max(meshData->GetLength(), 1e-300);
+  const double tol = 1e-6 * diag;
+  vtkNew<vtkGenericCell> cell;
+  vtkNew<vtkIdList> candidates;
+  double pcoords[3], weights[8], best[8], closest[3], dist2;
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    double x[3];
+    sites->GetPoint(i, x);
+    // VTK's cells accept points slightly outside (parametric tolerance): among the cells
+    // near x keep the one where x is most inside (largest smallest weight), so that a point
+    // on a shared face does not get the neighbour's clamped weights.
+    double box[6] = { x[0] - tol, x[0] + tol, x[1] - tol, x[1] + tol, x[2] - tol, x[2] + tol };
+    locator->FindCellsWithinBounds(box, candidates);
+    vtkIdType cid = -1;
+    double bestMin = -std::numeric_limits<double>::infinity();
+    for (vtkIdType k = 0; k < candidates->GetNumberOfIds(); ++k)
+    {
+      const vtkIdType c = candidates->GetId(k);
+      if (simplexOf[c] < 0)
+        continue;
+      meshData->GetCell(c, cell);
+      int subId = 0;
+      if (cell->EvaluatePosition(x, closest, subId, pcoords, dist2, weights) < 0 ||
+        dist2 > tol * tol)
+        continue;
+      double wmin = weights[0];
+      for (int a = 1; a < nv; ++a)
+        wmin = std::min(wmin, weights[a]);
+      if (wmin > bestMin)
+      {
+        bestMin = wmin;
+        cid = c;
+        std::copy(weights, weights + nv, best);
+      }
+    }
+    // A point outside every cell by more than round-off is outside the mesh.
+    if (cid >= 0 && bestMin < -1e-6)
+      cid = -1;
+    if (cid < 0 || simplexOf[cid] < 0)
+    {
+      std::ostringstream os;
+      os << "site " << i << " at (" << x[0] << ", " << x[1] << ", " << x[2]
+         << ") is outside the mesh; give sites inside the domain or the CellId/Barycentric "
+            "arrays of the particle sampler";
+      error = os.str();
+      return false;
+    }
+    std::copy(best, best + nv, weights);
+    out.CellIds[i] = simplexOf[cid];
+    // Clamp round-off and renormalise: the kernels require weights >= 0 summing to 1.
+    double sum = 0.0;
+    for (int a = 0; a < nv; ++a)
+      sum += (weights[a] = std::max(0.0, weights[a]));
+    for (int a = 0; a < nv; ++a)
+      out.Bary[4 * i + a] = weights[a] / sum;
+  }
+  return true;
+}
+
+/// Embedded position of every site: barycentric combination of its cell's embedded vertices.
+bool EmbedSites(const av::SimplexMesh& mesh,
+  const av::Embedding& embedding,
+  av::SiteSet& out,
+  std::string& error)
+{
+  const int nv = mesh.VerticesPerCell();
+  const auto n = static_cast<vtkIdType>(out.CellIds.size());
+  const int dim = embedding.Dim;
+  out.Coords.assign(static_cast<std::size_t>(n) * dim, 0.0);
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    const std::int32_t* c = mesh.Cell(out.CellIds[i]);
+    double* x = out.Coords.data() + i * dim;
+    for (int a = 0; a < nv; ++a)
+    {
+      const double w = out.Bary[4 * i + a];
+      if (!std::isfinite(w))
+      {
+        std::ostringstream os;
+        os << "site " << i << " has a NaN/Inf barycentric coordinate";
+        error = os.str();
+        return false;
+      }
+      const double* e = embedding.At(c[a]);
+      for (int d = 0; d < dim; ++d)
+        x[d] += w * e[d];
+    }
+  }
+  return true;
+}
+} // namespace
+
+bool ToSiteSet(vtkDataSet* sites,
+  vtkDataSet* meshData,
+  const av::SimplexMesh& mesh,
+  const av::Embedding& embedding,
+  av::SiteSet& out,
+  std::string& error,
+  std::string* note)
 {
   out = av::SiteSet();
   out.Dim = embedding.Dim;
@@ -281,8 +409,8 @@ bool ToSiteSet(vtkDataSet* sites, vtkDataSet* meshData, const av::SimplexMesh& m
   out.Bary.assign(static_cast<std::size_t>(n) * 4, 0.0);
   vtkDataArray* cellIds = sites->GetPointData()->GetArray("CellId");
   vtkDataArray* bary = sites->GetPointData()->GetArray("Barycentric");
-  const bool given = cellIds && bary && cellIds->GetNumberOfComponents() == 1 &&
-    bary->GetNumberOfComponents() == 4;
+  const bool given =
+    cellIds && bary && cellIds->GetNumberOfComponents() == 1 && bary->GetNumberOfComponents() == 4;
   if (given)
   {
     for (vtkIdType i = 0; i < n; ++i)
@@ -307,102 +435,14 @@ bool ToSiteSet(vtkDataSet* sites, vtkDataSet* meshData, const av::SimplexMesh& m
       error = "the sites have no CellId/Barycentric arrays and no mesh to locate them in";
       return false;
     }
-    // vtk cell id -> simplex index (ToSimplexMesh skips vertex/line cells).
-    std::vector<std::int32_t> simplexOf(static_cast<std::size_t>(meshData->GetNumberOfCells()), -1);
-    std::int32_t next = 0;
-    for (vtkIdType c = 0; c < meshData->GetNumberOfCells(); ++c)
+    if (!LocateSites(sites, meshData, nv, out, error))
     {
-      const int type = meshData->GetCellType(c);
-      if (type == VTK_TRIANGLE || type == VTK_TETRA)
-        simplexOf[c] = next++;
-    }
-    vtkNew<vtkCellLocator> locator;
-    locator->SetDataSet(meshData);
-    locator->BuildLocator();
-    const double diag = std::max(meshData->GetLength(), 1e-300);
-    const double tol = 1e-6 * diag;
-    vtkNew<vtkGenericCell> cell;
-    vtkNew<vtkIdList> candidates;
-    double pcoords[3], weights[8], best[8], closest[3], dist2;
-    for (vtkIdType i = 0; i < n; ++i)
-    {
-      double x[3];
-      sites->GetPoint(i, x);
-      // VTK's cells accept points slightly outside (parametric tolerance): among the cells
-      // near x keep the one where x is most inside (largest smallest weight), so that a point
-      // on a shared face does not get the neighbour's clamped weights.
-      double box[6] = { x[0] - tol, x[0] + tol, x[1] - tol, x[1] + tol, x[2] - tol,
-        x[2] + tol };
-      locator->FindCellsWithinBounds(box, candidates);
-      vtkIdType cid = -1;
-      double bestMin = -std::numeric_limits<double>::infinity();
-      for (vtkIdType k = 0; k < candidates->GetNumberOfIds(); ++k)
-      {
-        const vtkIdType c = candidates->GetId(k);
-        if (simplexOf[c] < 0)
-          continue;
-        meshData->GetCell(c, cell);
-        int subId = 0;
-        if (cell->EvaluatePosition(x, closest, subId, pcoords, dist2, weights) < 0 ||
-          dist2 > tol * tol)
-          continue;
-        double wmin = weights[0];
-        for (int a = 1; a < nv; ++a)
-          wmin = std::min(wmin, weights[a]);
-        if (wmin > bestMin)
-        {
-          bestMin = wmin;
-          cid = c;
-          std::copy(weights, weights + nv, best);
-        }
-      }
-      // A point outside every cell by more than round-off is outside the mesh.
-      if (cid >= 0 && bestMin < -1e-6)
-        cid = -1;
-      if (cid < 0 || simplexOf[cid] < 0)
-      {
-        std::ostringstream os;
-        os << "site " << i << " at (" << x[0] << ", " << x[1] << ", " << x[2]
-           << ") is outside the mesh; give sites inside the domain or the CellId/Barycentric "
-              "arrays of the particle sampler";
-        error = os.str();
-        return false;
-      }
-      std::copy(best, best + nv, weights);
-      out.CellIds[i] = simplexOf[cid];
-      // Clamp round-off and renormalise: the kernels require weights >= 0 summing to 1.
-      double sum = 0.0;
-      for (int a = 0; a < nv; ++a)
-        sum += (weights[a] = std::max(0.0, weights[a]));
-      for (int a = 0; a < nv; ++a)
-        out.Bary[4 * i + a] = weights[a] / sum;
+      return false;
     }
     if (note)
       *note = "the sites have no CellId/Barycentric arrays: located them in the mesh";
   }
-  // Embedded position: barycentric combination of the cell's embedded vertices.
-  const int dim = embedding.Dim;
-  out.Coords.assign(static_cast<std::size_t>(n) * dim, 0.0);
-  for (vtkIdType i = 0; i < n; ++i)
-  {
-    const std::int32_t* c = mesh.Cell(out.CellIds[i]);
-    double* x = out.Coords.data() + i * dim;
-    for (int a = 0; a < nv; ++a)
-    {
-      const double w = out.Bary[4 * i + a];
-      if (!std::isfinite(w))
-      {
-        std::ostringstream os;
-        os << "site " << i << " has a NaN/Inf barycentric coordinate";
-        error = os.str();
-        return false;
-      }
-      const double* e = embedding.At(c[a]);
-      for (int d = 0; d < dim; ++d)
-        x[d] += w * e[d];
-    }
-  }
-  return true;
+  return EmbedSites(mesh, embedding, out, error);
 }
 
 vtkSmartPointer<vtkUnstructuredGrid> FromSimplexMesh(const av::SimplexMesh& mesh)
@@ -415,8 +455,7 @@ vtkSmartPointer<vtkUnstructuredGrid> FromSimplexMesh(const av::SimplexMesh& mesh
   for (std::size_t i = 0; i < n; ++i)
   {
     const double* p = mesh.Point(i);
-    points->SetPoint(
-      static_cast<vtkIdType>(i), p[0], p[1], mesh.AmbientDim == 3 ? p[2] : 0.0);
+    points->SetPoint(static_cast<vtkIdType>(i), p[0], p[1], mesh.AmbientDim == 3 ? p[2] : 0.0);
   }
   grid->SetPoints(points);
   const int nv = mesh.VerticesPerCell();
@@ -433,8 +472,13 @@ vtkSmartPointer<vtkUnstructuredGrid> FromSimplexMesh(const av::SimplexMesh& mesh
   return grid;
 }
 
-bool ToVoronoiInputs(vtkDataSet* meshInput, vtkDataArray* embeddingArray, vtkDataSet* sitesInput,
-  av::SimplexMesh& mesh, av::Embedding& embedding, av::SiteSet& sites, std::string& error,
+bool ToVoronoiInputs(vtkDataSet* meshInput,
+  vtkDataArray* embeddingArray,
+  vtkDataSet* sitesInput,
+  av::SimplexMesh& mesh,
+  av::Embedding& embedding,
+  av::SiteSet& sites,
+  std::string& error,
   std::string* note)
 {
   if (!ToSimplexMesh(meshInput, mesh, error, note) ||
@@ -450,8 +494,10 @@ bool ToVoronoiInputs(vtkDataSet* meshInput, vtkDataArray* embeddingArray, vtkDat
   return true;
 }
 
-vtkSmartPointer<vtkDataArray> MakeArray(
-  const char* name, const double* values, std::size_t tuples, int components)
+vtkSmartPointer<vtkDataArray> MakeArray(const char* name,
+  const double* values,
+  std::size_t tuples,
+  int components)
 {
   auto array = vtkSmartPointer<vtkDoubleArray>::New();
   array->SetName(name);
@@ -461,6 +507,15 @@ vtkSmartPointer<vtkDataArray> MakeArray(
   return array;
 }
 
+vtkSmartPointer<vtkDataArray> MakeIntArray(const char* name,
+  const std::vector<std::int32_t>& values)
+{
+  auto array = vtkSmartPointer<vtkIntArray>::New();
+  array->SetName(name);
+  array->SetNumberOfTuples(static_cast<vtkIdType>(values.size()));
+  std::copy(values.begin(), values.end(), array->GetPointer(0));
+  return array;
+}
 
 void RequestWholeInputs(vtkInformationVector** inputVector, int numberOfInputPorts)
 {
@@ -475,8 +530,10 @@ void RequestWholeInputs(vtkInformationVector** inputVector, int numberOfInputPor
     }
 }
 
-void RequestedPiece(
-  vtkInformation* request, vtkInformationVector* outputVector, int& piece, int& numberOfPieces)
+void RequestedPiece(vtkInformation* request,
+  vtkInformationVector* outputVector,
+  int& piece,
+  int& numberOfPieces)
 {
   using SDDP = vtkStreamingDemandDrivenPipeline;
   piece = 0;

@@ -12,7 +12,9 @@
 #include "AnisoVoronoiFiltersCommonModule.h" // export macro
 #include "SimplexMesh.h"                     // av:: kernel types
 
+#include <cstdint>
 #include <string>
+#include <vector>
 #include <vtkSmartPointer.h> // return values
 
 class vtkAlgorithm;
@@ -98,6 +100,10 @@ ANISOVORONOIFILTERSCOMMON_EXPORT vtkSmartPointer<vtkDataArray> MakeArray(const c
   const double* values,
   std::size_t tuples,
   int components);
+
+/// A vtkIntArray holding `values` (one component).
+ANISOVORONOIFILTERSCOMMON_EXPORT vtkSmartPointer<vtkDataArray> MakeIntArray(const char* name,
+  const std::vector<std::int32_t>& values);
 
 /**
  * Distributed runs (mpiexec pvbatch, pvserver): asks every connection of every input port for

@@ -1,8 +1,8 @@
 #include "vtkAnisoAnalyticMetric.h"
 
 #include "AnalyticMetrics.h"
-#include "vtkAnisoFilterUtilities.h"
 #include "MetricAlgebra.h"
+#include "vtkAnisoFilterUtilities.h"
 
 #include <vtkDataSet.h>
 #include <vtkDoubleArray.h>
@@ -29,12 +29,14 @@ vtkAnisoAnalyticMetric::~vtkAnisoAnalyticMetric()
 
 bool vtkAnisoAnalyticMetric::SetPresetByName(const char* name)
 {
-  return vtkAnisoFilterUtilities::RunKernel(this, "SetPresetByName",
+  return vtkAnisoFilterUtilities::RunKernel(this,
+    "SetPresetByName",
     [&] { this->SetPreset(static_cast<int>(av::AnalyticPresetFromName(name ? name : ""))); });
 }
 
-int vtkAnisoAnalyticMetric::RequestData(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+int vtkAnisoAnalyticMetric::RequestData(vtkInformation*,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
 {
   vtkDataSet* input = vtkDataSet::GetData(inputVector[0]);
   vtkDataSet* output = vtkDataSet::GetData(outputVector);
@@ -56,24 +58,27 @@ int vtkAnisoAnalyticMetric::RequestData(
   double p0[3];
   input->GetPoint(0, p0);
   std::atomic<vtkIdType> badPoint{ -1 };
-  vtkSMPTools::For(0, n, [&](vtkIdType begin, vtkIdType end) {
-    for (vtkIdType i = begin; i < end; ++i)
+  vtkSMPTools::For(0,
+    n,
+    [&](vtkIdType begin, vtkIdType end)
     {
-      double p[3];
-      input->GetPoint(i, p);
-      if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
+      for (vtkIdType i = begin; i < end; ++i)
       {
-        badPoint = i;
-        continue;
+        double p[3];
+        input->GetPoint(i, p);
+        if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
+        {
+          badPoint = i;
+          continue;
+        }
+        double s;
+        Eigen::Vector3d u;
+        av::AnalyticStretchAt(preset, p, s, u);
+        const Eigen::Matrix3d m = av::AnalyticMetricAt(preset, p);
+        av::PackSymmetric(m, metric->GetPointer(6 * i));
+        stretch->SetValue(i, s);
       }
-      double s;
-      Eigen::Vector3d u;
-      av::AnalyticStretchAt(preset, p, s, u);
-      const Eigen::Matrix3d m = av::AnalyticMetricAt(preset, p);
-      av::PackSymmetric(m, metric->GetPointer(6 * i));
-      stretch->SetValue(i, s);
-    }
-  });
+    });
   if (badPoint >= 0)
   {
     vtkErrorMacro("point " << badPoint << " has a non-finite coordinate");
@@ -88,8 +93,8 @@ int vtkAnisoAnalyticMetric::RequestData(
 void vtkAnisoAnalyticMetric::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "Preset: "
-     << av::AnalyticPresetName(static_cast<av::AnalyticPreset>(this->Preset)) << "\n";
+  os << indent
+     << "Preset: " << av::AnalyticPresetName(static_cast<av::AnalyticPreset>(this->Preset)) << "\n";
   os << indent << "MetricArrayName: " << (this->MetricArrayName ? this->MetricArrayName : "")
      << "\n";
 }

@@ -91,8 +91,9 @@ bool ExtractTriangles(vtkDataSet* input, std::vector<vtkIdType>& triangles, std:
 
 /// The triangle mesh of the points that triangles use (the kernel rejects unused points);
 /// `used` maps its vertices to input points, left empty when every point is used.
-av::SimplexMesh CompactTriangleMesh(
-  vtkDataSet* input, const std::vector<vtkIdType>& triangles, std::vector<vtkIdType>& used)
+av::SimplexMesh CompactTriangleMesh(vtkDataSet* input,
+  const std::vector<vtkIdType>& triangles,
+  std::vector<vtkIdType>& used)
 {
   const vtkIdType numPoints = input->GetNumberOfPoints();
   std::vector<std::int32_t> pointToVertex(static_cast<std::size_t>(numPoints), -1);
@@ -183,17 +184,20 @@ int vtkAnisoCurvatureMetric::RequestData(vtkInformation*,
   options.SmoothingIterations = this->SmoothingIterations;
   options.MaxStretch = this->MaxStretch;
   av::SurfaceCurvatureMetricResult result;
-  if (!vtkAnisoFilterUtilities::RunKernel(this, "curvature metric", [&] {
-        try
+  if (!vtkAnisoFilterUtilities::RunKernel(this,
+        "curvature metric",
+        [&]
         {
-          result = av::SurfaceCurvatureMetric(mesh, options);
-        }
-        catch (const av::InputError& e)
-        {
-          throw av::InputError(std::string(e.what()) +
-            (compacted ? " (point/triangle ids count only the triangles' points)" : ""));
-        }
-      }))
+          try
+          {
+            result = av::SurfaceCurvatureMetric(mesh, options);
+          }
+          catch (const av::InputError& e)
+          {
+            throw av::InputError(std::string(e.what()) +
+              (compacted ? " (point/triangle ids count only the triangles' points)" : ""));
+          }
+        }))
   {
     return 0;
   }

@@ -102,8 +102,11 @@ struct TensorTuples
 };
 
 /// Averages the cell tensors to the points (NaN/Inf rejected with the cell id in `error`).
-bool AverageCellTensors(vtkDataSet* input, vtkDataArray* tensors, const std::string& name,
-  TensorTuples& out, std::string& error)
+bool AverageCellTensors(vtkDataSet* input,
+  vtkDataArray* tensors,
+  const std::string& name,
+  TensorTuples& out,
+  std::string& error)
 {
   const int nc = tensors->GetNumberOfComponents();
   const vtkIdType numPoints = input->GetNumberOfPoints();
@@ -119,8 +122,8 @@ bool AverageCellTensors(vtkDataSet* input, vtkDataArray* tensors, const std::str
     {
       if (!std::isfinite(t[k]))
       {
-        error = "tensor array '" + name + "' has a NaN or infinite value at cell " +
-          std::to_string(c);
+        error =
+          "tensor array '" + name + "' has a NaN or infinite value at cell " + std::to_string(c);
         return false;
       }
     }
@@ -165,8 +168,10 @@ vtkAnisoTensorToMetric::~vtkAnisoTensorToMetric()
 
 /// The tensor array: the chosen one, else the active point tensors, else the active cell
 /// tensors. Null with `error` set when there is none or it is unusable.
-vtkDataArray* vtkAnisoTensorToMetric::FindTensors(
-  vtkInformationVector** inputVector, vtkDataSet* input, bool& cellTensors, std::string& error)
+vtkDataArray* vtkAnisoTensorToMetric::FindTensors(vtkInformationVector** inputVector,
+  vtkDataSet* input,
+  bool& cellTensors,
+  std::string& error)
 {
   int association = -1;
   vtkDataArray* tensors = this->GetInputArrayToProcess(0, inputVector, association);
@@ -210,8 +215,9 @@ vtkDataArray* vtkAnisoTensorToMetric::FindTensors(
 }
 
 /// The kernel options from the filter's properties; false with `error` on a bad Dimension.
-bool vtkAnisoTensorToMetric::BuildOptions(
-  vtkDataSet* input, av::TensorToMetricOptions& options, std::string& error)
+bool vtkAnisoTensorToMetric::BuildOptions(vtkDataSet* input,
+  av::TensorToMetricOptions& options,
+  std::string& error)
 {
   options.Interpretation = this->Interpretation == TENSOR_AS_METRIC
     ? av::TensorInterpretation::TensorAsMetric
@@ -317,17 +323,20 @@ int vtkAnisoTensorToMetric::RequestData(vtkInformation*,
   this->UpdateProgress(0.3);
 
   av::TensorToMetricResult result;
-  if (!vtkAnisoFilterUtilities::RunKernel(this, "tensor to metric conversion", [&] {
-        try
+  if (!vtkAnisoFilterUtilities::RunKernel(this,
+        "tensor to metric conversion",
+        [&]
         {
-          result = av::TensorToMetric(
-            tuples.Values.data(), static_cast<std::size_t>(tuples.Count), nc, options, edges);
-        }
-        catch (const av::InputError& e)
-        {
-          throw av::InputError("tensor array '" + name + "': " + e.what());
-        }
-      }))
+          try
+          {
+            result = av::TensorToMetric(
+              tuples.Values.data(), static_cast<std::size_t>(tuples.Count), nc, options, edges);
+          }
+          catch (const av::InputError& e)
+          {
+            throw av::InputError("tensor array '" + name + "': " + e.what());
+          }
+        }))
   {
     return 0;
   }
@@ -349,7 +358,10 @@ int vtkAnisoTensorToMetric::RequestData(vtkInformation*,
 
 /// The Metric and Stretch point arrays and the field data of the conversion.
 void vtkAnisoTensorToMetric::WriteOutput(const av::TensorToMetricResult& result,
-  const std::vector<vtkIdType>& used, bool cellTensors, int dimension, vtkDataSet* output)
+  const std::vector<vtkIdType>& used,
+  bool cellTensors,
+  int dimension,
+  vtkDataSet* output)
 {
   const vtkIdType numPoints = output->GetNumberOfPoints();
   vtkNew<vtkDoubleArray> metric;

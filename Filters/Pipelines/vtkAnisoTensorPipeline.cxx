@@ -2,6 +2,7 @@
 
 #include "vtkAnisoDataConversion.h"
 #include "vtkAnisoEmbedding.h"
+#include "vtkAnisoFilterUtilities.h"
 #include "vtkAnisoParticleSampler.h"
 #include "vtkAnisoSimplexMesh.h"
 #include "vtkAnisoTensorToMetric.h"
@@ -54,14 +55,6 @@ public:
   std::string Error;
 };
 
-void AddFieldValue(vtkFieldData* fd, const char* name, double value)
-{
-  vtkNew<vtkDoubleArray> a;
-  a->SetName(name);
-  a->InsertNextValue(value);
-  fd->AddArray(a);
-}
-
 // VTK error text looks like "ERROR: In file, line N\nvtkX (0x..): message": keep the message.
 std::string StripLocation(const std::string& text)
 {
@@ -87,16 +80,20 @@ int vtkAnisoTensorPipeline::FillInputPortInformation(int, vtkInformation* info)
   return 1;
 }
 
-int vtkAnisoTensorPipeline::RequestUpdateExtent(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
+int vtkAnisoTensorPipeline::RequestUpdateExtent(vtkInformation*,
+  vtkInformationVector** inputVector,
+  vtkInformationVector*)
 {
   // The embedding is global: always the whole input.
   vtkAnisoDataConversion::RequestWholeInputs(inputVector, this->GetNumberOfInputPorts());
   return 1;
 }
 
-bool vtkAnisoTensorPipeline::RunStage(
-  vtkAlgorithm* stage, const char* what, double begin, double end, std::string& error)
+bool vtkAnisoTensorPipeline::RunStage(vtkAlgorithm* stage,
+  const char* what,
+  double begin,
+  double end,
+  std::string& error)
 {
   vtkNew<StageObserver> observer;
   observer->Owner = this;
@@ -128,24 +125,20 @@ bool vtkAnisoTensorPipeline::RunStage(
 
 void vtkAnisoTensorPipeline::AddFrontFieldData(vtkFieldData* fd) const
 {
+  using vtkAnisoFilterUtilities::AddFieldValue;
   AddFieldValue(fd, "L_avg", this->AverageEdgeLengthError);
   AddFieldValue(fd, "L_max", this->MaximumEdgeLengthError);
   AddFieldValue(fd, "MetricScale", this->MetricScale);
 }
 
-int vtkAnisoTensorPipeline::RequestData(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+bool vtkAnisoTensorPipeline::ChooseFieldArray(vtkInformationVector** inputVector,
+  vtkDataSet* input,
+  vtkSmartPointer<vtkDataSet>& copy,
+  std::string& arrayName,
+  int& association)
 {
-  vtkDataSet* input = vtkDataSet::GetData(inputVector[0]);
-  if (!input || input->GetNumberOfPoints() == 0 || input->GetNumberOfCells() == 0)
-  {
-    return 1; // empty in, empty out
-  }
-  this->AverageEdgeLengthError = this->MaximumEdgeLengthError = 0.0;
-  this->MetricScale = 1.0;
-
   // The chosen array, by name on a shallow copy (an unnamed one gets a name there).
-  int association = -1;
+  association = -1;
   vtkDataArray* chosen = this->GetInputArrayToProcess(0, inputVector, association);
   vtkInformation* arrayInfo = this->GetInputArrayInformation(0);
   if (!chosen && arrayInfo && arrayInfo->Has(vtkDataObject::FIELD_NAME()) &&
@@ -153,18 +146,17 @@ int vtkAnisoTensorPipeline::RequestData(
   {
     vtkErrorMacro(
       "the input has no array named '" << arrayInfo->Get(vtkDataObject::FIELD_NAME()) << "'");
-    return 0;
+    return false;
   }
-  vtkSmartPointer<vtkDataSet> copy = vtk::TakeSmartPointer(input->NewInstance());
+  copy = vtk::TakeSmartPointer(input->NewInstance());
   copy->ShallowCopy(input);
-  std::string arrayName;
   if (chosen)
   {
     if (association != vtkDataObject::FIELD_ASSOCIATION_POINTS &&
       association != vtkDataObject::FIELD_ASSOCIATION_CELLS)
     {
       vtkErrorMacro("the tensor array must be a point or a cell array");
-      return 0;
+      return false;
     }
     arrayName = chosen->GetName() && *chosen->GetName() ? chosen->GetName() : "AnisoTensor";
     if (!chosen->GetName() || !*chosen->GetName())
@@ -185,27 +177,35 @@ int vtkAnisoTensorPipeline::RequestData(
     {
       vtkErrorMacro("FieldMode MetricField needs a point metric array (6 or 9 components); "
                     "use TensorField for cell tensors");
-      return 0;
+      return false;
     }
     arrayName = metric->GetName() && *metric->GetName() ? metric->GetName() : arrayName;
     association = vtkDataObject::FIELD_ASSOCIATION_POINTS;
   }
+  return true;
+}
 
+vtkSmartPointer<vtkDataSet> vtkAnisoTensorPipeline::RunMetricStages(vtkDataSet* input,
+  const std::string& arrayName,
+  int association,
+  std::string& metricName,
+  double& tensorScale)
+{
   std::string error;
   vtkNew<vtkAnisoSimplexMesh> simplexMesh;
-  simplexMesh->SetInputData(copy);
+  simplexMesh->SetInputData(input);
   simplexMesh->ReportSplitOff();
   if (!this->RunStage(simplexMesh, "simplex mesh", 0.0, 0.02, error))
   {
     vtkErrorMacro(<< error);
-    return 0;
+    return nullptr;
   }
   vtkSmartPointer<vtkDataSet> withMetric = simplexMesh->GetOutput();
-  std::string metricName = arrayName;
-  double tensorScale = 1.0;
-  vtkNew<vtkAnisoTensorToMetric> tensorToMetric;
+  metricName = arrayName;
+  tensorScale = 1.0;
   if (this->FieldMode == TENSOR_FIELD)
   {
+    vtkNew<vtkAnisoTensorToMetric> tensorToMetric;
     tensorToMetric->SetInputData(withMetric);
     if (!arrayName.empty())
       tensorToMetric->SetInputArrayToProcess(0, 0, 0, association, arrayName.c_str());
@@ -216,11 +216,9 @@ int vtkAnisoTensorPipeline::RequestData(
     if (!this->RunStage(tensorToMetric, "tensor to metric", 0.02, 0.05, error))
     {
       vtkErrorMacro(<< error);
-      return 0;
+      return nullptr;
     }
-    withMetric = tensorToMetric->GetOutputDataObject(0) ? vtkDataSet::SafeDownCast(
-                                                            tensorToMetric->GetOutputDataObject(0))
-                                                        : nullptr;
+    withMetric = vtkDataSet::SafeDownCast(tensorToMetric->GetOutputDataObject(0));
     tensorScale = tensorToMetric->GetMetricScale();
     metricName = "Metric";
   }
@@ -233,12 +231,42 @@ int vtkAnisoTensorPipeline::RequestData(
       active->GetPointData()->SetActiveTensors(metricName.c_str());
     withMetric = active;
   }
-  if (!withMetric || (!metricName.empty() && !withMetric->GetPointData()->GetArray(metricName.c_str())))
+  if (!withMetric ||
+    (!metricName.empty() && !withMetric->GetPointData()->GetArray(metricName.c_str())))
   {
     vtkErrorMacro("the metric point array is missing after the simplex split");
+    return nullptr;
+  }
+  return withMetric;
+}
+
+int vtkAnisoTensorPipeline::RequestData(vtkInformation*,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
+{
+  vtkDataSet* input = vtkDataSet::GetData(inputVector[0]);
+  if (!input || input->GetNumberOfPoints() == 0 || input->GetNumberOfCells() == 0)
+  {
+    return 1; // empty in, empty out
+  }
+  this->AverageEdgeLengthError = this->MaximumEdgeLengthError = 0.0;
+  this->MetricScale = 1.0;
+  vtkSmartPointer<vtkDataSet> copy;
+  std::string arrayName, metricName;
+  int association = -1;
+  double tensorScale = 1.0;
+  if (!this->ChooseFieldArray(inputVector, input, copy, arrayName, association))
+  {
+    return 0;
+  }
+  vtkSmartPointer<vtkDataSet> withMetric =
+    this->RunMetricStages(copy, arrayName, association, metricName, tensorScale);
+  if (!withMetric)
+  {
     return 0;
   }
 
+  std::string error;
   vtkNew<vtkAnisoEmbedding> embedding;
   embedding->SetInputData(withMetric);
   if (!metricName.empty())
@@ -286,8 +314,7 @@ int vtkAnisoTensorPipeline::RequestData(
 void vtkAnisoTensorPipeline::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent
-     << "FieldMode: " << (this->FieldMode == METRIC_FIELD ? "MetricField" : "TensorField")
+  os << indent << "FieldMode: " << (this->FieldMode == METRIC_FIELD ? "MetricField" : "TensorField")
      << "\n";
   os << indent << "NumberOfCells: " << this->NumberOfCells << "\n";
   os << indent << "TargetDimension: " << this->TargetDimension << "\n";

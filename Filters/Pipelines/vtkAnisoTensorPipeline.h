@@ -22,11 +22,13 @@
 #define vtkAnisoTensorPipeline_h
 
 #include "AnisoVoronoiFiltersPipelinesModule.h" // export macro
+#include <vtkSmartPointer.h> // RunMetricStages result
 #include <vtkUnstructuredGridAlgorithm.h>
 
 #include <string> // std::string
 
 class vtkAlgorithm;
+class vtkDataSet;
 class vtkFieldData;
 class vtkPolyData;
 class vtkTable;
@@ -140,6 +142,18 @@ protected:
   /// Runs `stage` (inputs already set) with progress mapped to [begin, end] of this filter
   /// and its errors captured; false (message in `error`, prefixed by `what`) on failure.
   bool RunStage(vtkAlgorithm* stage, const char* what, double begin, double end, std::string& error);
+
+  /// The field array of the run, looked up on a shallow copy of `input` (an unnamed one gets a
+  /// name there): its name and association (points for MetricField). False after
+  /// vtkErrorMacro when it is missing or of the wrong kind.
+  bool ChooseFieldArray(vtkInformationVector** inputVector, vtkDataSet* input,
+    vtkSmartPointer<vtkDataSet>& copy, std::string& arrayName, int& association);
+
+  /// Simplex split, then (TensorField) tensor to metric: the simplicial mesh with the point
+  /// metric `metricName` active; `tensorScale` is the tensor-to-metric scale. Null after
+  /// vtkErrorMacro on failure.
+  vtkSmartPointer<vtkDataSet> RunMetricStages(vtkDataSet* input, const std::string& arrayName,
+    int association, std::string& metricName, double& tensorScale);
 
   /// Adds the front's figures (L_avg, L_max, MetricScale) to a field data.
   void AddFrontFieldData(vtkFieldData* fd) const;

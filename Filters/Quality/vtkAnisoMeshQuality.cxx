@@ -2,6 +2,7 @@
 
 #include "MeshQuality.h"
 #include "vtkAnisoDataConversion.h"
+#include "vtkAnisoFilterUtilities.h"
 
 #include <vtkCellData.h>
 #include <vtkDataSet.h>
@@ -21,12 +22,52 @@ vtkStandardNewMacro(vtkAnisoMeshQuality);
 
 namespace
 {
-void AddFieldValue(vtkFieldData* fd, const char* name, double value)
+/// The input's simplices (vertex / line cells dropped) on its exact points, with its point,
+/// cell and field data, and the per-cell quality arrays.
+void WriteQualityMesh(vtkDataSet* input,
+  const av::SimplexMesh& mesh,
+  const av::MeshQualityResult& q,
+  vtkUnstructuredGrid* output)
 {
-  vtkNew<vtkDoubleArray> a;
-  a->SetName(name);
-  a->InsertNextValue(value);
-  fd->AddArray(a);
+  output->ShallowCopy(vtkAnisoDataConversion::FromSimplexMesh(mesh));
+  vtkNew<vtkPoints> pts;
+  pts->SetDataTypeToDouble();
+  pts->SetNumberOfPoints(input->GetNumberOfPoints());
+  for (vtkIdType i = 0; i < input->GetNumberOfPoints(); ++i)
+    pts->SetPoint(i, input->GetPoint(i));
+  output->SetPoints(pts);
+  output->GetPointData()->ShallowCopy(input->GetPointData());
+  if (static_cast<std::size_t>(input->GetNumberOfCells()) == mesh.NumCells())
+  {
+    output->GetCellData()->ShallowCopy(input->GetCellData());
+  }
+  output->GetFieldData()->ShallowCopy(input->GetFieldData());
+  const std::size_t nc = mesh.NumCells();
+  output->GetCellData()->AddArray(vtkAnisoDataConversion::MakeArray("G", q.G.data(), nc, 1));
+  output->GetCellData()->AddArray(
+    vtkAnisoDataConversion::MakeArray("MinAngle", q.MinAngle.data(), nc, 1));
+  vtkNew<vtkUnsignedCharArray> inverted;
+  inverted->SetName("Inverted");
+  inverted->SetNumberOfTuples(static_cast<vtkIdType>(nc));
+  std::copy(q.Inverted.begin(), q.Inverted.end(), inverted->GetPointer(0));
+  output->GetCellData()->AddArray(inverted);
+  output->GetCellData()->SetActiveScalars("G");
+}
+
+/// The angle histogram: bin centres (degrees) and counts.
+void WriteHistogram(const av::MeshQualitySummary& s, vtkTable* histogram)
+{
+  vtkNew<vtkDoubleArray> center;
+  center->SetName("MinAngle");
+  vtkNew<vtkIntArray> count;
+  count->SetName("Count");
+  for (std::size_t b = 0; b < s.AngleHistogram.size(); ++b)
+  {
+    center->InsertNextValue((static_cast<double>(b) + 0.5) * s.HistogramBinWidth);
+    count->InsertNextValue(static_cast<int>(s.AngleHistogram[b]));
+  }
+  histogram->AddColumn(center);
+  histogram->AddColumn(count);
 }
 }
 
@@ -50,8 +91,9 @@ int vtkAnisoMeshQuality::FillOutputPortInformation(int port, vtkInformation* inf
   return 1;
 }
 
-int vtkAnisoMeshQuality::RequestUpdateExtent(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
+int vtkAnisoMeshQuality::RequestUpdateExtent(vtkInformation*,
+  vtkInformationVector** inputVector,
+  vtkInformationVector*)
 {
   vtkAnisoDataConversion::RequestWholeInputs(inputVector, this->GetNumberOfInputPorts());
   return 1;
@@ -94,47 +136,12 @@ int vtkAnisoMeshQuality::RequestData(vtkInformation* request,
     return 0;
   }
   av::MeshQualityResult q;
-  try
+  if (!vtkAnisoFilterUtilities::RunKernel(
+        this, "mesh quality", [&] { q = av::EvaluateMeshQuality(mesh, metric); }))
   {
-    q = av::EvaluateMeshQuality(mesh, metric);
-  }
-  catch (const av::InputError& e)
-  {
-    vtkErrorMacro(<< e.what());
     return 0;
   }
-  catch (const std::exception& e)
-  {
-    vtkErrorMacro("mesh quality failed: " << e.what());
-    return 0;
-  }
-
-  // The simplices only (vertex / line cells dropped), on the input's exact points.
-  output->ShallowCopy(vtkAnisoDataConversion::FromSimplexMesh(mesh));
-  {
-    vtkNew<vtkPoints> pts;
-    pts->SetDataTypeToDouble();
-    pts->SetNumberOfPoints(input->GetNumberOfPoints());
-    for (vtkIdType i = 0; i < input->GetNumberOfPoints(); ++i)
-      pts->SetPoint(i, input->GetPoint(i));
-    output->SetPoints(pts);
-  }
-  output->GetPointData()->ShallowCopy(input->GetPointData());
-  if (static_cast<std::size_t>(input->GetNumberOfCells()) == mesh.NumCells())
-  {
-    output->GetCellData()->ShallowCopy(input->GetCellData());
-  }
-  output->GetFieldData()->ShallowCopy(input->GetFieldData());
-  const std::size_t nc = mesh.NumCells();
-  output->GetCellData()->AddArray(vtkAnisoDataConversion::MakeArray("G", q.G.data(), nc, 1));
-  output->GetCellData()->AddArray(
-    vtkAnisoDataConversion::MakeArray("MinAngle", q.MinAngle.data(), nc, 1));
-  vtkNew<vtkUnsignedCharArray> inverted;
-  inverted->SetName("Inverted");
-  inverted->SetNumberOfTuples(static_cast<vtkIdType>(nc));
-  std::copy(q.Inverted.begin(), q.Inverted.end(), inverted->GetPointer(0));
-  output->GetCellData()->AddArray(inverted);
-  output->GetCellData()->SetActiveScalars("G");
+  WriteQualityMesh(input, mesh, q, output);
 
   const av::MeshQualitySummary& s = q.Summary;
   this->GMin = s.GMin;
@@ -143,6 +150,7 @@ int vtkAnisoMeshQuality::RequestData(vtkInformation* request,
   this->ThetaAvg = s.ThetaAvg;
   this->PercentBad = s.PercentBad;
   vtkFieldData* fd = output->GetFieldData();
+  using vtkAnisoFilterUtilities::AddFieldValue;
   AddFieldValue(fd, "G_min", s.GMin);
   AddFieldValue(fd, "G_avg", s.GAvg);
   AddFieldValue(fd, "theta_min", s.ThetaMin);
@@ -151,18 +159,7 @@ int vtkAnisoMeshQuality::RequestData(vtkInformation* request,
   AddFieldValue(fd, "inverted", static_cast<double>(s.NumInverted));
   AddFieldValue(fd, "edges_in_unit_range", s.PercentEdgesInUnitRange);
   AddFieldValue(fd, "NumberOfCells", static_cast<double>(s.NumCells));
-
-  vtkNew<vtkDoubleArray> centre;
-  centre->SetName("MinAngle");
-  vtkNew<vtkIntArray> count;
-  count->SetName("Count");
-  for (std::size_t b = 0; b < s.AngleHistogram.size(); ++b)
-  {
-    centre->InsertNextValue((static_cast<double>(b) + 0.5) * s.HistogramBinWidth);
-    count->InsertNextValue(static_cast<int>(s.AngleHistogram[b]));
-  }
-  histogram->AddColumn(centre);
-  histogram->AddColumn(count);
+  WriteHistogram(s, histogram);
   return 1;
 }
 

@@ -460,19 +460,9 @@ void ReadElements(Lines& in, FrdData& d, const NodeIndex& index)
   }
 }
 
-void ReadResult(Lines& in, FrdData& d, const NodeIndex& index)
+/// The result's name line (-4) and its component lines (-5).
+std::vector<Component> ReadComponents(Lines& in, FrdResult& r)
 {
-  FrdResult r;
-  r.Line = in.LineNo;
-  r.Value = in.Real(12, "the step value (time/frequency)");
-  in.Int(24, 12, "the number of nodes of the result block"); // checked, not needed
-  r.Step = static_cast<int>(std::clamp<std::int64_t>(in.Int(58, 5, "the step number (NUMSTP)"),
-                                                     std::numeric_limits<int>::min(),
-                                                     std::numeric_limits<int>::max()));
-  r.Analysis = std::string(Trim(in.Field(63, 10)));
-  const int format = in.Format(73);
-  const std::size_t idW = format == 1 ? 10 : 5;
-
   // -4 NAME NCOMPS, then NCOMPS -5 component lines
   if (!in.Next() || in.Key() != -4)
   {
@@ -507,7 +497,14 @@ void ReadResult(Lines& in, FrdData& d, const NodeIndex& index)
       Trim(in.Field(33, 5)).empty() ? 0 : static_cast<int>(in.Int(33, 5, "the IEXIST flag"));
     comps.push_back(comp);
   }
-  // components actually stored in the file (IEXIST 1 = computed by the viewer, e.g. ALL)
+  return comps;
+}
+
+/// Which components the file stores (IEXIST 1 = computed by the viewer, e.g. ALL) and where
+/// each goes: symmetric tensors in VTK order XX YY ZZ XY YZ XZ, vectors by index. Returns the
+/// destination slot of each stored component and sets r's names, kind and size.
+std::vector<int> ComponentLayout(Lines& in, const std::vector<Component>& comps, FrdResult& r)
+{
   std::vector<Component> stored;
   for (const Component& c : comps)
   {
@@ -565,8 +562,14 @@ void ReadResult(Lines& in, FrdData& d, const NodeIndex& index)
   r.IsSymmetricTensor = tensor;
   r.IsVector = vector;
   r.NumComponents = nv;
-  r.Values.assign(d.NumNodes() * static_cast<std::size_t>(nv), 0.0);
+  return slot;
+}
 
+/// The -1 / -2 value lines of a result block up to its -3 end.
+void ReadResultValues(Lines& in, const NodeIndex& index, std::size_t idW,
+  const std::vector<int>& slot, FrdResult& r)
+{
+  const int nv = r.NumComponents;
   std::vector<double> buf(nv);
   bool more = in.Next();
   while (true)
@@ -617,6 +620,25 @@ void ReadResult(Lines& in, FrdData& d, const NodeIndex& index)
     }
     more = in.Next();
   }
+}
+
+void ReadResult(Lines& in, FrdData& d, const NodeIndex& index)
+{
+  FrdResult r;
+  r.Line = in.LineNo;
+  r.Value = in.Real(12, "the step value (time/frequency)");
+  in.Int(24, 12, "the number of nodes of the result block"); // checked, not needed
+  r.Step = static_cast<int>(std::clamp<std::int64_t>(in.Int(58, 5, "the step number (NUMSTP)"),
+                                                     std::numeric_limits<int>::min(),
+                                                     std::numeric_limits<int>::max()));
+  r.Analysis = std::string(Trim(in.Field(63, 10)));
+  const int format = in.Format(73);
+  const std::size_t idW = format == 1 ? 10 : 5;
+
+  const std::vector<Component> comps = ReadComponents(in, r);
+  const std::vector<int> slot = ComponentLayout(in, comps, r);
+  r.Values.assign(d.NumNodes() * static_cast<std::size_t>(r.NumComponents), 0.0);
+  ReadResultValues(in, index, idW, slot, r);
   d.Results.push_back(std::move(r));
 }
 

@@ -357,82 +357,143 @@ void VTKTensorToMedit(int dimension, const double vtk[6], double* m)
   }
 }
 
+namespace
+{
+/// What ParseMeditMesh has read so far.
+struct MeditMeshSections
+{
+  int Dim = 0;
+  bool HaveVertices = false;
+  std::vector<double> Points;
+  std::vector<std::int32_t> Tris, TriRefs, Tets, TetRefs;
+  /// Section start lines for ids that could not be checked when read (vertices came later).
+  std::size_t TriLine = 0, TetLine = 0, EdgeLine = 0;
+};
+
+/// The 'Vertices' section: coordinates and references.
+void ReadVertices(Tokenizer& tok, MeditMeshSections& m, MeditMesh& out)
+{
+  if (m.Dim == 0)
+  {
+    tok.Fail("'Vertices' before 'Dimension'");
+  }
+  if (m.HaveVertices)
+  {
+    tok.Fail("a second 'Vertices' section");
+  }
+  const std::size_t n = tok.Count("Vertices", static_cast<std::size_t>(m.Dim + 1));
+  m.Points.reserve(n * m.Dim);
+  out.PointRefs.reserve(n);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    for (int d = 0; d < m.Dim; ++d)
+    {
+      m.Points.push_back(tok.Real("a vertex coordinate"));
+    }
+    out.PointRefs.push_back(static_cast<std::int32_t>(tok.Int("the reference of a vertex",
+      std::numeric_limits<std::int32_t>::min(), std::numeric_limits<std::int32_t>::max())));
+  }
+  m.HaveVertices = true;
+}
+
+/// Quadrilaterals, Hexahedra, Prisms: read (so that their numbers are checked) and ignored.
+void SkipNonSimplices(Tokenizer& tok, std::string_view kw, MeditMesh& out)
+{
+  const int k = IEquals(kw, "Quadrilaterals") ? 4 : (IEquals(kw, "Hexahedra") ? 8 : 6);
+  const std::string name(kw);
+  const std::size_t n = tok.Count(name.c_str(), static_cast<std::size_t>(k + 1));
+  for (std::size_t i = 0; i < n * (k + 1); ++i)
+  {
+    tok.Int((std::string("an integer of ") + name).c_str(),
+      std::numeric_limits<std::int32_t>::min(), std::numeric_limits<std::int32_t>::max());
+  }
+  out.IgnoredKeywords.push_back(name);
+}
+
+/// Checks the ids read before the vertices, and makes tetrahedra (with triangles as boundary
+/// faces) or triangles the cells of the mesh.
+void FinishMeditMesh(MeditMeshSections& m, const std::string& sourceName, MeditMesh& out)
+{
+  const std::size_t nv = out.PointRefs.size();
+  if (m.TriLine)
+  {
+    CheckIds(m.Tris, nv, "Triangles", m.TriLine, 3, sourceName);
+  }
+  if (m.TetLine)
+  {
+    CheckIds(m.Tets, nv, "Tetrahedra", m.TetLine, 4, sourceName);
+  }
+  if (m.EdgeLine)
+  {
+    CheckIds(out.Edges, nv, "Edges", m.EdgeLine, 2, sourceName);
+  }
+  out.Mesh.AmbientDim = m.Dim;
+  out.Mesh.Points = std::move(m.Points);
+  if (!m.TetRefs.empty())
+  {
+    if (m.Dim != 3)
+    {
+      throw InputError(sourceName + ": Tetrahedra in a 'Dimension 2' mesh");
+    }
+    out.Mesh.SimplexDim = 3;
+    out.Mesh.Cells = std::move(m.Tets);
+    out.CellRefs = std::move(m.TetRefs);
+    out.Faces = std::move(m.Tris);
+    out.FaceRefs = std::move(m.TriRefs);
+  }
+  else if (!m.TriRefs.empty())
+  {
+    out.Mesh.SimplexDim = 2;
+    out.Mesh.Cells = std::move(m.Tris);
+    out.CellRefs = std::move(m.TriRefs);
+  }
+  else
+  {
+    throw InputError(sourceName + ": the mesh has neither Tetrahedra nor Triangles");
+  }
+}
+} // namespace
+
 MeditMesh ParseMeditMesh(const std::string& text, const std::string& sourceName)
 {
   Tokenizer tok(text, sourceName);
   MeditMesh out;
-  int dim = 0;
-  bool haveVertices = false, haveEnd = false;
-  std::vector<double> points;
-  std::vector<std::int32_t> tris, triRefs, tets, tetRefs;
-  // Section start lines for ids that could not be checked when read (vertices came later).
-  std::size_t triLine = 0, tetLine = 0, edgeLine = 0;
-
+  MeditMeshSections m;
+  bool haveEnd = false;
   for (std::string_view kw = tok.Next(); !kw.empty(); kw = tok.Next())
   {
     const std::size_t kwLine = tok.TokenLine;
-    const std::int64_t nv = haveVertices ? static_cast<std::int64_t>(out.PointRefs.size()) : -1;
+    const std::int64_t nv = m.HaveVertices ? static_cast<std::int64_t>(out.PointRefs.size()) : -1;
     if (IEquals(kw, "MeshVersionFormatted"))
     {
       out.Version = static_cast<int>(tok.Int("the MeshVersionFormatted value", 1, 4));
     }
     else if (IEquals(kw, "Dimension"))
     {
-      dim = static_cast<int>(tok.Int("the Dimension value", 2, 3));
+      m.Dim = static_cast<int>(tok.Int("the Dimension value", 2, 3));
     }
     else if (IEquals(kw, "Vertices"))
     {
-      if (dim == 0)
-      {
-        tok.Fail("'Vertices' before 'Dimension'");
-      }
-      if (haveVertices)
-      {
-        tok.Fail("a second 'Vertices' section");
-      }
-      const std::size_t n = tok.Count("Vertices", static_cast<std::size_t>(dim + 1));
-      points.reserve(n * dim);
-      out.PointRefs.reserve(n);
-      for (std::size_t i = 0; i < n; ++i)
-      {
-        for (int d = 0; d < dim; ++d)
-        {
-          points.push_back(tok.Real("a vertex coordinate"));
-        }
-        out.PointRefs.push_back(
-          static_cast<std::int32_t>(tok.Int("the reference of a vertex",
-                                            std::numeric_limits<std::int32_t>::min(),
-                                            std::numeric_limits<std::int32_t>::max())));
-      }
-      haveVertices = true;
+      ReadVertices(tok, m, out);
     }
     else if (IEquals(kw, "Triangles"))
     {
-      triLine = haveVertices ? 0 : kwLine;
-      ReadSimplices(tok, "Triangles", 3, nv, tris, triRefs);
+      m.TriLine = m.HaveVertices ? 0 : kwLine;
+      ReadSimplices(tok, "Triangles", 3, nv, m.Tris, m.TriRefs);
     }
     else if (IEquals(kw, "Tetrahedra"))
     {
-      tetLine = haveVertices ? 0 : kwLine;
-      ReadSimplices(tok, "Tetrahedra", 4, nv, tets, tetRefs);
+      m.TetLine = m.HaveVertices ? 0 : kwLine;
+      ReadSimplices(tok, "Tetrahedra", 4, nv, m.Tets, m.TetRefs);
     }
     else if (IEquals(kw, "Edges"))
     {
-      edgeLine = haveVertices ? 0 : kwLine;
+      m.EdgeLine = m.HaveVertices ? 0 : kwLine;
       ReadSimplices(tok, "Edges", 2, nv, out.Edges, out.EdgeRefs);
     }
     else if (IEquals(kw, "Quadrilaterals") || IEquals(kw, "Hexahedra") || IEquals(kw, "Prisms"))
     {
-      const int k = IEquals(kw, "Quadrilaterals") ? 4 : (IEquals(kw, "Hexahedra") ? 8 : 6);
-      const std::string name(kw);
-      const std::size_t n = tok.Count(name.c_str(), static_cast<std::size_t>(k + 1));
-      for (std::size_t i = 0; i < n * (k + 1); ++i)
-      {
-        tok.Int((std::string("an integer of ") + name).c_str(),
-                std::numeric_limits<std::int32_t>::min(),
-                std::numeric_limits<std::int32_t>::max());
-      }
-      out.IgnoredKeywords.push_back(name);
+      SkipNonSimplices(tok, kw, out);
     }
     else if (IEquals(kw, "End"))
     {
@@ -447,56 +508,18 @@ MeditMesh ParseMeditMesh(const std::string& text, const std::string& sourceName)
     else
     {
       tok.Fail("expected a keyword (Vertices, Triangles, Tetrahedra, Edges, End, ...), got " +
-               tok.Got(kw));
+        tok.Got(kw));
     }
   }
-
   if (!haveEnd)
   {
     throw InputError(sourceName + ": no 'End' keyword: the file is truncated or not a Medit mesh");
   }
-  if (!haveVertices)
+  if (!m.HaveVertices)
   {
     throw InputError(sourceName + ": no 'Vertices' section");
   }
-  const std::size_t nv = out.PointRefs.size();
-  if (triLine)
-  {
-    CheckIds(tris, nv, "Triangles", triLine, 3, sourceName);
-  }
-  if (tetLine)
-  {
-    CheckIds(tets, nv, "Tetrahedra", tetLine, 4, sourceName);
-  }
-  if (edgeLine)
-  {
-    CheckIds(out.Edges, nv, "Edges", edgeLine, 2, sourceName);
-  }
-
-  out.Mesh.AmbientDim = dim;
-  out.Mesh.Points = std::move(points);
-  if (!tetRefs.empty())
-  {
-    if (dim != 3)
-    {
-      throw InputError(sourceName + ": Tetrahedra in a 'Dimension 2' mesh");
-    }
-    out.Mesh.SimplexDim = 3;
-    out.Mesh.Cells = std::move(tets);
-    out.CellRefs = std::move(tetRefs);
-    out.Faces = std::move(tris);
-    out.FaceRefs = std::move(triRefs);
-  }
-  else if (!triRefs.empty())
-  {
-    out.Mesh.SimplexDim = 2;
-    out.Mesh.Cells = std::move(tris);
-    out.CellRefs = std::move(triRefs);
-  }
-  else
-  {
-    throw InputError(sourceName + ": the mesh has neither Tetrahedra nor Triangles");
-  }
+  FinishMeditMesh(m, sourceName, out);
   return out;
 }
 

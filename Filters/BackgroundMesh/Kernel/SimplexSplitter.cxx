@@ -272,9 +272,13 @@ std::string VtkCellTypeName(int type)
   }
 }
 
-SimplexSplitResult SplitIntoSimplices(const double* points, std::size_t numPoints,
-  const std::uint8_t* types, const std::int64_t* offsets, const std::int64_t* connectivity,
-  std::size_t numCells, int outputAmbientDim)
+namespace
+{
+/// Checks the points and every cell first, so that the split itself cannot fail half-way;
+/// returns the cells' dimension (2 or 3).
+int ValidateCells(const double* points, std::size_t numPoints, const std::uint8_t* types,
+  const std::int64_t* offsets, const std::int64_t* connectivity, std::size_t numCells,
+  int outputAmbientDim)
 {
   const std::string who = "SplitIntoSimplices: ";
   if (numCells == 0 || types == nullptr || offsets == nullptr)
@@ -296,7 +300,6 @@ SimplexSplitResult SplitIntoSimplices(const double* points, std::size_t numPoint
       throw InputError(who + "point " + std::to_string(i / 3) + " has a NaN or infinite coordinate");
     }
   }
-  // Validate every cell first: the split itself then cannot fail half-way.
   int dim = 0;
   std::size_t firstDimCell = 0;
   for (std::size_t c = 0; c < numCells; ++c)
@@ -336,7 +339,14 @@ SimplexSplitResult SplitIntoSimplices(const double* points, std::size_t numPoint
     }
   }
 
-  Splitter s(points, outputAmbientDim);
+  return dim;
+}
+
+/// The split of the cells' linear corners (pixels and voxels reordered to VTK's hexahedron
+/// order) into simplices.
+void SplitCells(Splitter& s, const std::uint8_t* types, const std::int64_t* offsets,
+  const std::int64_t* connectivity, std::size_t numCells, int dim)
+{
   s.Simplices.reserve(numCells * (dim == 3 ? 12 * 4 : 6));
   for (std::size_t c = 0; c < numCells; ++c)
   {
@@ -362,6 +372,13 @@ SimplexSplitResult SplitIntoSimplices(const double* points, std::size_t numPoint
     s.Cell(info.Linear, v, static_cast<std::int32_t>(c));
   }
 
+}
+
+/// The output: the used input points (in input order), then the added ones with their parent
+/// weights, and the simplices on those ids.
+SimplexSplitResult AssembleSplit(Splitter& s, const double* points, std::size_t numPoints,
+  int outputAmbientDim, int dim)
+{
   SimplexSplitResult r;
   r.NumDroppedSimplices = s.Dropped;
   r.NumAddedPoints = s.Added.size();
@@ -411,9 +428,22 @@ SimplexSplitResult SplitIntoSimplices(const double* points, std::size_t numPoint
     m.Cells[i] = id >= 0 ? remap[static_cast<std::size_t>(id)]
                          : firstAdded + static_cast<std::int32_t>(-1 - id);
   }
-  if (m.Cells.empty())
+  return r;
+}
+} // namespace
+
+SimplexSplitResult SplitIntoSimplices(const double* points, std::size_t numPoints,
+  const std::uint8_t* types, const std::int64_t* offsets, const std::int64_t* connectivity,
+  std::size_t numCells, int outputAmbientDim)
+{
+  const int dim = ValidateCells(
+    points, numPoints, types, offsets, connectivity, numCells, outputAmbientDim);
+  Splitter s(points, outputAmbientDim);
+  SplitCells(s, types, offsets, connectivity, numCells, dim);
+  SimplexSplitResult r = AssembleSplit(s, points, numPoints, outputAmbientDim, dim);
+  if (r.Mesh.Cells.empty())
   {
-    throw InputError(who + "every cell is degenerate (zero volume or area)");
+    throw InputError("SplitIntoSimplices: every cell is degenerate (zero volume or area)");
   }
   return r;
 }

@@ -40,7 +40,8 @@ std::vector<std::int32_t> UniqueEdges(const SimplexMesh& mesh)
     {
       for (int b = a + 1; b < nv; ++b)
       {
-        std::uint32_t u = static_cast<std::uint32_t>(cell[a]), w = static_cast<std::uint32_t>(cell[b]);
+        std::uint32_t u = static_cast<std::uint32_t>(cell[a]),
+                      w = static_cast<std::uint32_t>(cell[b]);
         if (u > w)
         {
           std::swap(u, w);
@@ -158,7 +159,9 @@ double CellMeasure(const SimplexMesh& mesh, std::size_t cell)
   }
   const double a[3] = { p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2] };
   const double b[3] = { p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2] };
-  const double n[3] = { a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0] };
+  const double n[3] = {
+    a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]
+  };
   return 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
 }
 
@@ -179,11 +182,13 @@ std::vector<std::int32_t> ComputeElementAdjacency(const SimplexMesh& mesh)
       return K1 < o.K1 || (K1 == o.K1 && (K2 < o.K2 || (K2 == o.K2 && Id < o.Id)));
     }
   };
-  auto facetKey = [&](std::size_t id, std::int32_t& v0, F& f) {
+  auto facetKey = [&](std::size_t id, std::int32_t& v0, F& f)
+  {
     const std::int32_t* cell = mesh.Cell(id / nv);
     const int a = static_cast<int>(id % nv);
     std::array<std::int32_t, 4> k = { std::numeric_limits<std::int32_t>::max(),
-      std::numeric_limits<std::int32_t>::max(), std::numeric_limits<std::int32_t>::max(),
+      std::numeric_limits<std::int32_t>::max(),
+      std::numeric_limits<std::int32_t>::max(),
       std::numeric_limits<std::int32_t>::max() };
     int n = 0;
     for (int b = 0; b < nv; ++b)
@@ -221,27 +226,29 @@ std::vector<std::int32_t> ComputeElementAdjacency(const SimplexMesh& mesh)
   }
   std::vector<std::int32_t> adj(nf, -1);
   std::atomic<bool> nonManifold{ false };
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, np), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t v = r.begin(); v != r.end(); ++v)
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, np),
+    [&](const tbb::blocked_range<std::size_t>& r)
     {
-      const auto b = f.begin() + start[v], e = f.begin() + start[v + 1];
-      std::sort(b, e);
-      for (auto i = b; i != e;)
+      for (std::size_t v = r.begin(); v != r.end(); ++v)
       {
-        auto j = i + 1;
-        while (j != e && j->K1 == i->K1 && j->K2 == i->K2)
-          ++j;
-        if (j - i > 2)
-          nonManifold = true;
-        if (j - i == 2)
+        const auto b = f.begin() + start[v], e = f.begin() + start[v + 1];
+        std::sort(b, e);
+        for (auto i = b; i != e;)
         {
-          adj[i->Id] = static_cast<std::int32_t>((i + 1)->Id / nv);
-          adj[(i + 1)->Id] = static_cast<std::int32_t>(i->Id / nv);
+          auto j = i + 1;
+          while (j != e && j->K1 == i->K1 && j->K2 == i->K2)
+            ++j;
+          if (j - i > 2)
+            nonManifold = true;
+          if (j - i == 2)
+          {
+            adj[i->Id] = static_cast<std::int32_t>((i + 1)->Id / nv);
+            adj[(i + 1)->Id] = static_cast<std::int32_t>(i->Id / nv);
+          }
+          i = j;
         }
-        i = j;
       }
-    }
-  });
+    });
   if (nonManifold)
     throw InputError("RestrictedVoronoi: the mesh is not manifold (a facet is shared by more "
                      "than two cells)");

@@ -66,9 +66,9 @@ struct Embedding
 struct SiteSet
 {
   int Dim = 8;
-  std::vector<double> Coords;       // NumSites x Dim
+  std::vector<double> Coords;        // NumSites x Dim
   std::vector<std::int32_t> CellIds; // NumSites
-  std::vector<double> Bary;         // NumSites x 4
+  std::vector<double> Bary;          // NumSites x 4
 
   std::size_t NumSites() const { return CellIds.size(); }
   const double* At(std::size_t i) const { return Coords.data() + i * Dim; }

@@ -29,8 +29,12 @@ void Radial(double x, double y, Eigen::Vector3d& u, double& r)
 
 std::vector<AnalyticPreset> AllAnalyticPresets()
 {
-  return { AnalyticPreset::Gaussian2D, AnalyticPreset::Cube1, AnalyticPreset::Cube2,
-    AnalyticPreset::Cube3, AnalyticPreset::SphereCylindrical, AnalyticPreset::SphereCosine };
+  return { AnalyticPreset::Gaussian2D,
+    AnalyticPreset::Cube1,
+    AnalyticPreset::Cube2,
+    AnalyticPreset::Cube3,
+    AnalyticPreset::SphereCylindrical,
+    AnalyticPreset::SphereCosine };
 }
 
 std::string AnalyticPresetName(AnalyticPreset preset)

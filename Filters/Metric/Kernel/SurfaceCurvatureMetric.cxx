@@ -1,7 +1,8 @@
 #include "SurfaceCurvatureMetric.h"
 
-#include "MetricAlgebra.h"
 #include "MeshTopology.h"
+#include "MetricAlgebra.h"
+#include "VertexGraph.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -26,57 +27,8 @@ Vec3 AnyTangent(const Vec3& n)
   return (a - a.dot(n) * n).normalized();
 }
 
-/// CSR adjacency from a flat list of index pairs.
-void BuildAdjacency(std::size_t n, const std::vector<std::int32_t>& pairs,
-  std::vector<std::int32_t>& offset, std::vector<std::int32_t>& nbr)
-{
-  offset.assign(n + 1, 0);
-  for (std::int32_t e : pairs)
-  {
-    ++offset[static_cast<std::size_t>(e) + 1];
-  }
-  for (std::size_t i = 0; i < n; ++i)
-  {
-    offset[i + 1] += offset[i];
-  }
-  nbr.resize(pairs.size());
-  std::vector<std::int32_t> fill(offset.begin(), offset.end() - 1);
-  for (std::size_t e = 0; e + 1 < pairs.size(); e += 2)
-  {
-    nbr[static_cast<std::size_t>(fill[pairs[e]]++)] = pairs[e + 1];
-    nbr[static_cast<std::size_t>(fill[pairs[e + 1]]++)] = pairs[e];
-  }
-}
-
-/// One Jacobi step of x_i <- (x_i + mean of the neighbours' x) / 2.
-template <class T>
-void SmoothStep(const std::vector<std::int32_t>& offset, const std::vector<std::int32_t>& nbr,
-  const std::vector<T>& in, std::vector<T>& out)
-{
-  const std::size_t n = in.size();
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1024),
-    [&](const tbb::blocked_range<std::size_t>& range) {
-      for (std::size_t i = range.begin(); i != range.end(); ++i)
-      {
-        const std::int32_t b = offset[i], e = offset[i + 1];
-        if (b == e)
-        {
-          out[i] = in[i];
-          continue;
-        }
-        T sum = in[static_cast<std::size_t>(nbr[static_cast<std::size_t>(b)])];
-        for (std::int32_t k = b + 1; k < e; ++k)
-        {
-          sum += in[static_cast<std::size_t>(nbr[static_cast<std::size_t>(k)])];
-        }
-        out[i] = 0.5 * in[i] + (0.5 / (e - b)) * sum;
-      }
-    });
-}
-} // namespace
-
-SurfaceCurvatureMetricResult SurfaceCurvatureMetric(
-  const SimplexMesh& s, const SurfaceCurvatureMetricOptions& opt)
+/// Checks the surface and the options; returns the bounding-box diagonal.
+double ValidateSurface(const SimplexMesh& s, const SurfaceCurvatureMetricOptions& opt)
 {
   const std::string who = "SurfaceCurvatureMetric: ";
   if (s.AmbientDim != 3 || s.SimplexDim != 2)
@@ -95,7 +47,7 @@ SurfaceCurvatureMetricResult SurfaceCurvatureMetric(
   {
     throw InputError(who + "SmoothingIterations must be >= 0 and MaxStretch 0 or >= 1");
   }
-  const std::size_t np = s.NumPoints(), nc = s.NumCells();
+  const std::size_t np = s.NumPoints();
   Vec3 lo = Vec3::Constant(1e300), hi = -lo;
   for (std::size_t i = 0; i < np; ++i)
   {
@@ -107,7 +59,14 @@ SurfaceCurvatureMetricResult SurfaceCurvatureMetric(
     lo = lo.cwiseMin(p);
     hi = hi.cwiseMax(p);
   }
-  const double diag = (hi - lo).norm();
+  return (hi - lo).norm();
+}
+
+/// Area-weighted vertex normals (InputError on bad ids, zero-area or unused triangles).
+std::vector<Vec3> VertexNormals(const SimplexMesh& s, double diag)
+{
+  const std::string who = "SurfaceCurvatureMetric: ";
+  const std::size_t np = s.NumPoints(), nc = s.NumCells();
   std::vector<Vec3> normal(np, Vec3::Zero());
   for (std::size_t c = 0; c < nc; ++c)
   {
@@ -142,16 +101,28 @@ SurfaceCurvatureMetricResult SurfaceCurvatureMetric(
     normal[i] /= len;
   }
 
-  // Per face: second fundamental form in 3D (tangent to the face) from normal differences.
-  std::vector<Mat3> faceForm(nc);
-  std::vector<double> faceWeight(nc);
+  return normal;
+}
+
+/// Per face: second fundamental form in 3D (tangent to the face) from normal differences, and
+/// the face's weight (a third of its area).
+void FaceShapeOperators(const SimplexMesh& s,
+  const std::vector<Vec3>& normal,
+  std::vector<Mat3>& faceForm,
+  std::vector<double>& faceWeight)
+{
+  const std::size_t nc = s.NumCells();
+  faceForm.resize(nc);
+  faceWeight.resize(nc);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nc, 512),
-    [&](const tbb::blocked_range<std::size_t>& range) {
+    [&](const tbb::blocked_range<std::size_t>& range)
+    {
       for (std::size_t c = range.begin(); c != range.end(); ++c)
       {
         const std::int32_t* t = s.Cell(c);
         const Eigen::Map<const Vec3> x[3] = { Eigen::Map<const Vec3>(s.Point(t[0])),
-          Eigen::Map<const Vec3>(s.Point(t[1])), Eigen::Map<const Vec3>(s.Point(t[2])) };
+          Eigen::Map<const Vec3>(s.Point(t[1])),
+          Eigen::Map<const Vec3>(s.Point(t[2])) };
         const Vec3 n2 = (x[1] - x[0]).cross(x[2] - x[0]);
         const Vec3 nf = n2.normalized();
         const Vec3 tu = (x[1] - x[0]).normalized();
@@ -162,20 +133,29 @@ SurfaceCurvatureMetricResult SurfaceCurvatureMetric(
         {
           const int p = (k + 1) % 3, q = (k + 2) % 3;
           const Vec3 e = x[q] - x[p];
-          const Vec3 dn = normal[static_cast<std::size_t>(t[q])] - normal[static_cast<std::size_t>(t[p])];
+          const Vec3 dn =
+            normal[static_cast<std::size_t>(t[q])] - normal[static_cast<std::size_t>(t[p])];
           const double u = e.dot(tu), v = e.dot(tv);
           const Vec3 r1(u, v, 0.0), r2(0.0, u, v);
           A += r1 * r1.transpose() + r2 * r2.transpose();
           rhs += r1 * dn.dot(tu) + r2 * dn.dot(tv);
         }
         const Vec3 efg = A.ldlt().solve(rhs);
-        faceForm[c] = efg[0] * tu * tu.transpose() + efg[1] * (tu * tv.transpose() + tv * tu.transpose()) +
-          efg[2] * tv * tv.transpose();
+        faceForm[c] = efg[0] * tu * tu.transpose() +
+          efg[1] * (tu * tv.transpose() + tv * tu.transpose()) + efg[2] * tv * tv.transpose();
         faceWeight[c] = n2.norm() / 6.0; // a third of the area
       }
     });
+}
 
-  std::vector<std::int32_t> vfOffset(np + 1, 0), vfList(3 * nc);
+/// The triangles around each vertex (CSR: offsets, list).
+void VertexFaces(const SimplexMesh& s,
+  std::vector<std::int32_t>& vfOffset,
+  std::vector<std::int32_t>& vfList)
+{
+  const std::size_t np = s.NumPoints(), nc = s.NumCells();
+  vfOffset.assign(np + 1, 0);
+  vfList.resize(3 * nc);
   for (std::size_t c = 0; c < nc; ++c)
   {
     for (int k = 0; k < 3; ++k)
@@ -197,15 +177,28 @@ SurfaceCurvatureMetricResult SurfaceCurvatureMetric(
       }
     }
   }
+}
 
-  SurfaceCurvatureMetricResult r;
-  r.CurvatureFloor = opt.CurvatureThreshold / diag;
+/// Per vertex: principal curvatures (ordered by magnitude), the stretch pair (s1, s2) and the
+/// line field confidence * v_max v_max^T that the smoothing averages.
+void PrincipalCurvatures(const SimplexMesh& s,
+  const std::vector<Vec3>& normal,
+  const std::vector<Mat3>& faceForm,
+  const std::vector<double>& faceWeight,
+  SurfaceCurvatureMetricResult& r,
+  std::vector<Eigen::Vector2d>& stretch,
+  std::vector<Mat3>& lineField)
+{
+  const std::size_t np = s.NumPoints();
+  std::vector<std::int32_t> vfOffset, vfList;
+  VertexFaces(s, vfOffset, vfList);
   r.MinCurvature.resize(np);
   r.MaxCurvature.resize(np);
-  std::vector<Eigen::Vector2d> stretch(np); // (s1, s2)
-  std::vector<Mat3> lineField(np);          // confidence * v_max v_max^T
+  stretch.resize(np);   // (s1, s2)
+  lineField.resize(np); // confidence * v_max v_max^T
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, np, 512),
-    [&](const tbb::blocked_range<std::size_t>& range) {
+    [&](const tbb::blocked_range<std::size_t>& range)
+    {
       for (std::size_t i = range.begin(); i != range.end(); ++i)
       {
         Mat3 T = Mat3::Zero();
@@ -236,29 +229,45 @@ SurfaceCurvatureMetricResult SurfaceCurvatureMetric(
         lineField[i] = confidence * vmax * vmax.transpose();
       }
     });
+}
 
-  if (opt.SmoothingIterations > 0)
+/// Laplacian smoothing of the stretch pairs and the line field (paper §6, after Alliez et al.).
+void SmoothStretchAndDirections(const SimplexMesh& s,
+  int iterations,
+  std::vector<Eigen::Vector2d>& stretch,
+  std::vector<Mat3>& lineField)
+{
+  const std::size_t np = s.NumPoints();
+  const VertexGraph graph = BuildVertexGraph(np, UniqueEdges(s));
+  std::vector<Eigen::Vector2d> s2(np);
+  std::vector<Mat3> l2(np);
+  for (int it = 0; it < iterations; ++it)
   {
-    std::vector<std::int32_t> offset, nbr;
-    BuildAdjacency(np, UniqueEdges(s), offset, nbr);
-    std::vector<Eigen::Vector2d> s2(np);
-    std::vector<Mat3> l2(np);
-    for (int it = 0; it < opt.SmoothingIterations; ++it)
-    {
-      SmoothStep(offset, nbr, stretch, s2);
-      stretch.swap(s2);
-      SmoothStep(offset, nbr, lineField, l2);
-      lineField.swap(l2);
-    }
+    HalfLaplacianStep(graph, stretch, s2);
+    stretch.swap(s2);
+    HalfLaplacianStep(graph, lineField, l2);
+    lineField.swap(l2);
   }
+}
 
+/// Eq. 19: M = v_min v_min^T + (s2 / s1)^2 v_max v_max^T in the tangent plane, with the
+/// directions and normals of the result.
+void AssembleMetric(const SimplexMesh& s,
+  const SurfaceCurvatureMetricOptions& opt,
+  const std::vector<Vec3>& normal,
+  const std::vector<Eigen::Vector2d>& stretch,
+  const std::vector<Mat3>& lineField,
+  SurfaceCurvatureMetricResult& r)
+{
+  const std::size_t np = s.NumPoints();
   r.Metric.Values.resize(6 * np);
   r.MinDirection.resize(3 * np);
   r.MaxDirection.resize(3 * np);
   r.Normals.resize(3 * np);
   r.StretchRatio.resize(np);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, np, 512),
-    [&](const tbb::blocked_range<std::size_t>& range) {
+    [&](const tbb::blocked_range<std::size_t>& range)
+    {
       for (std::size_t i = range.begin(); i != range.end(); ++i)
       {
         const Vec3& n = normal[i];
@@ -285,6 +294,27 @@ SurfaceCurvatureMetricResult SurfaceCurvatureMetric(
         }
       }
     });
+}
+} // namespace
+
+SurfaceCurvatureMetricResult SurfaceCurvatureMetric(const SimplexMesh& s,
+  const SurfaceCurvatureMetricOptions& opt)
+{
+  const double diag = ValidateSurface(s, opt);
+  const std::vector<Vec3> normal = VertexNormals(s, diag);
+  std::vector<Mat3> faceForm;
+  std::vector<double> faceWeight;
+  FaceShapeOperators(s, normal, faceForm, faceWeight);
+  SurfaceCurvatureMetricResult r;
+  r.CurvatureFloor = opt.CurvatureThreshold / diag;
+  std::vector<Eigen::Vector2d> stretch;
+  std::vector<Mat3> lineField;
+  PrincipalCurvatures(s, normal, faceForm, faceWeight, r, stretch, lineField);
+  if (opt.SmoothingIterations > 0)
+  {
+    SmoothStretchAndDirections(s, opt.SmoothingIterations, stretch, lineField);
+  }
+  AssembleMetric(s, opt, normal, stretch, lineField, r);
   return r;
 }
 

@@ -1,6 +1,7 @@
 #include "TensorToMetric.h"
 
 #include "MetricAlgebra.h"
+#include "VertexGraph.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -61,22 +62,65 @@ void Write(const Mat<D>& m, double* out6)
   PackSymmetric(full, out6);
 }
 
+/// Log-Euclidean smoothing of the metrics (frame, eigenvalues) along the mesh edges: the
+/// logarithms are averaged with HalfLaplacianStep, so the result stays SPD.
 template <int D>
-TensorToMetricResult Convert(const double* tensors, std::size_t n, int nc,
-  const TensorToMetricOptions& opt, const std::vector<std::int32_t>& edges)
+void SmoothLogEuclidean(std::size_t n,
+  const std::vector<std::int32_t>& edges,
+  int iterations,
+  std::vector<Mat<D>>& frame,
+  std::vector<Vec<D>>& metricEig)
+{
+  const tbb::blocked_range<std::size_t> all(0, n, 1024);
+  const VertexGraph graph = BuildVertexGraph(n, edges);
+  std::vector<Mat<D>> logM(n), next(n);
+  tbb::parallel_for(all,
+    [&](const tbb::blocked_range<std::size_t>& range)
+    {
+      for (std::size_t i = range.begin(); i != range.end(); ++i)
+      {
+        logM[i] =
+          frame[i] * metricEig[i].array().log().matrix().asDiagonal() * frame[i].transpose();
+      }
+    });
+  for (int it = 0; it < iterations; ++it)
+  {
+    HalfLaplacianStep(graph, logM, next);
+    logM.swap(next);
+  }
+  tbb::parallel_for(all,
+    [&](const tbb::blocked_range<std::size_t>& range)
+    {
+      for (std::size_t i = range.begin(); i != range.end(); ++i)
+      {
+        Vec<D> l;
+        Decompose<D>(logM[i], l, frame[i]);
+        metricEig[i] = l.array().exp().matrix();
+      }
+    });
+}
+
+template <int D>
+TensorToMetricResult Convert(const double* tensors,
+  std::size_t n,
+  int nc,
+  const TensorToMetricOptions& opt,
+  const std::vector<std::int32_t>& edges)
 {
   TensorToMetricResult r;
   std::vector<Vec<D>> lambda(n);
   std::vector<Mat<D>> frame(n);
   std::vector<double> asym(n);
   const tbb::blocked_range<std::size_t> all(0, n, 1024);
-  tbb::parallel_for(all, [&](const tbb::blocked_range<std::size_t>& range) {
-    for (std::size_t i = range.begin(); i != range.end(); ++i)
+  tbb::parallel_for(all,
+    [&](const tbb::blocked_range<std::size_t>& range)
     {
-      const Mat<D> t = ReadTensor<D>(tensors + i * nc, nc, asym[i]);
-      Decompose<D>(t, lambda[i], frame[i]);
-    }
-  });
+      for (std::size_t i = range.begin(); i != range.end(); ++i)
+      {
+        const Mat<D> t = ReadTensor<D>(tensors + i * nc, nc, asym[i]);
+        Decompose<D>(t, lambda[i], frame[i]);
+      }
+    });
   double maxAbs = 0.0;
   for (std::size_t i = 0; i < n; ++i)
   {
@@ -94,36 +138,39 @@ TensorToMetricResult Convert(const double* tensors, std::size_t n, int nc,
   // 4 capped.
   std::vector<unsigned char> flags(n, 0);
   std::vector<Vec<D>> metricEig(n);
-  tbb::parallel_for(all, [&](const tbb::blocked_range<std::size_t>& range) {
-    for (std::size_t i = range.begin(); i != range.end(); ++i)
+  tbb::parallel_for(all,
+    [&](const tbb::blocked_range<std::size_t>& range)
     {
-      unsigned char f = 0;
-      Vec<D> s;
-      for (int k = 0; k < D; ++k)
+      for (std::size_t i = range.begin(); i != range.end(); ++i)
       {
-        const double l = lambda[i][k];
-        f |= (l < 0.0) ? 1 : 0;
-        double v = opt.Eigenvalues == EigenvalueHandling::Absolute ? std::abs(l) : l;
-        if (v < floor)
+        unsigned char f = 0;
+        Vec<D> s;
+        for (int k = 0; k < D; ++k)
         {
-          v = floor;
-          f |= 2;
+          const double l = lambda[i][k];
+          f |= (l < 0.0) ? 1 : 0;
+          double v = opt.Eigenvalues == EigenvalueHandling::Absolute ? std::abs(l) : l;
+          if (v < floor)
+          {
+            v = floor;
+            f |= 2;
+          }
+          s[k] =
+            opt.Interpretation == TensorInterpretation::EigenvaluesAsStretch ? v : std::sqrt(v);
         }
-        s[k] = opt.Interpretation == TensorInterpretation::EigenvaluesAsStretch ? v : std::sqrt(v);
-      }
-      if (opt.MaximumAnisotropy > 0.0)
-      {
-        const double lowest = s.maxCoeff() / opt.MaximumAnisotropy;
-        if (s.minCoeff() < lowest * (1.0 - 1e-12))
+        if (opt.MaximumAnisotropy > 0.0)
         {
-          s = s.cwiseMax(lowest);
-          f |= 4;
+          const double lowest = s.maxCoeff() / opt.MaximumAnisotropy;
+          if (s.minCoeff() < lowest * (1.0 - 1e-12))
+          {
+            s = s.cwiseMax(lowest);
+            f |= 4;
+          }
         }
+        metricEig[i] = s.cwiseProduct(s);
+        flags[i] = f;
       }
-      metricEig[i] = s.cwiseProduct(s);
-      flags[i] = f;
-    }
-  });
+    });
   for (unsigned char f : flags)
   {
     r.NumNegative += (f & 1) != 0;
@@ -133,59 +180,7 @@ TensorToMetricResult Convert(const double* tensors, std::size_t n, int nc,
 
   if (opt.SmoothingIterations > 0)
   {
-    // Neighbour lists (CSR) from the edge pairs.
-    std::vector<std::int32_t> offset(n + 1, 0), nbr(edges.size());
-    for (std::int32_t e : edges)
-    {
-      ++offset[static_cast<std::size_t>(e) + 1];
-    }
-    for (std::size_t i = 0; i < n; ++i)
-    {
-      offset[i + 1] += offset[i];
-    }
-    std::vector<std::int32_t> fill(offset.begin(), offset.end() - 1);
-    for (std::size_t e = 0; e + 1 < edges.size(); e += 2)
-    {
-      nbr[static_cast<std::size_t>(fill[edges[e]]++)] = edges[e + 1];
-      nbr[static_cast<std::size_t>(fill[edges[e + 1]]++)] = edges[e];
-    }
-    std::vector<Mat<D>> logM(n), next(n);
-    tbb::parallel_for(all, [&](const tbb::blocked_range<std::size_t>& range) {
-      for (std::size_t i = range.begin(); i != range.end(); ++i)
-      {
-        logM[i] = frame[i] * metricEig[i].array().log().matrix().asDiagonal() *
-          frame[i].transpose();
-      }
-    });
-    for (int it = 0; it < opt.SmoothingIterations; ++it)
-    {
-      tbb::parallel_for(all, [&](const tbb::blocked_range<std::size_t>& range) {
-        for (std::size_t i = range.begin(); i != range.end(); ++i)
-        {
-          const std::int32_t b = offset[i], e = offset[i + 1];
-          if (b == e)
-          {
-            next[i] = logM[i];
-            continue;
-          }
-          Mat<D> sum = Mat<D>::Zero();
-          for (std::int32_t k = b; k < e; ++k)
-          {
-            sum += logM[static_cast<std::size_t>(nbr[static_cast<std::size_t>(k)])];
-          }
-          next[i] = 0.5 * logM[i] + (0.5 / (e - b)) * sum;
-        }
-      });
-      logM.swap(next);
-    }
-    tbb::parallel_for(all, [&](const tbb::blocked_range<std::size_t>& range) {
-      for (std::size_t i = range.begin(); i != range.end(); ++i)
-      {
-        Vec<D> l;
-        Decompose<D>(logM[i], l, frame[i]);
-        metricEig[i] = l.array().exp().matrix();
-      }
-    });
+    SmoothLogEuclidean<D>(n, edges, opt.SmoothingIterations, frame, metricEig);
   }
 
   double minEig = std::numeric_limits<double>::infinity();
@@ -197,15 +192,17 @@ TensorToMetricResult Convert(const double* tensors, std::size_t n, int nc,
 
   r.Metric.Values.assign(6 * n, 0.0);
   r.StretchRatio.assign(n, 1.0);
-  tbb::parallel_for(all, [&](const tbb::blocked_range<std::size_t>& range) {
-    for (std::size_t i = range.begin(); i != range.end(); ++i)
+  tbb::parallel_for(all,
+    [&](const tbb::blocked_range<std::size_t>& range)
     {
-      const Vec<D> mu = r.GlobalScale * metricEig[i];
-      const Mat<D> m = frame[i] * mu.asDiagonal() * frame[i].transpose();
-      Write<D>(m, r.Metric.Values.data() + 6 * i);
-      r.StretchRatio[i] = std::sqrt(mu.maxCoeff() / mu.minCoeff());
-    }
-  });
+      for (std::size_t i = range.begin(); i != range.end(); ++i)
+      {
+        const Vec<D> mu = r.GlobalScale * metricEig[i];
+        const Mat<D> m = frame[i] * mu.asDiagonal() * frame[i].transpose();
+        Write<D>(m, r.Metric.Values.data() + 6 * i);
+        r.StretchRatio[i] = std::sqrt(mu.maxCoeff() / mu.minCoeff());
+      }
+    });
   r.MinEigenvalue = std::numeric_limits<double>::infinity();
   r.MaxEigenvalue = 0.0;
   r.MinStretch = std::numeric_limits<double>::infinity();
@@ -221,8 +218,11 @@ TensorToMetricResult Convert(const double* tensors, std::size_t n, int nc,
 }
 } // namespace
 
-TensorToMetricResult TensorToMetric(const double* tensors, std::size_t count, int numComponents,
-  const TensorToMetricOptions& options, const std::vector<std::int32_t>& edges)
+TensorToMetricResult TensorToMetric(const double* tensors,
+  std::size_t count,
+  int numComponents,
+  const TensorToMetricOptions& options,
+  const std::vector<std::int32_t>& edges)
 {
   const std::string who = "TensorToMetric: ";
   if (count == 0 || tensors == nullptr)
@@ -231,8 +231,9 @@ TensorToMetricResult TensorToMetric(const double* tensors, std::size_t count, in
   }
   if (numComponents != 6 && numComponents != 9)
   {
-    throw InputError(who + "a tensor needs 9 components (3x3) or 6 (symmetric, XX YY ZZ XY YZ "
-                           "XZ), the array has " +
+    throw InputError(who +
+      "a tensor needs 9 components (3x3) or 6 (symmetric, XX YY ZZ XY YZ "
+      "XZ), the array has " +
       std::to_string(numComponents));
   }
   if (options.Dimension != 2 && options.Dimension != 3)
@@ -271,7 +272,8 @@ TensorToMetricResult TensorToMetric(const double* tensors, std::size_t count, in
   // Only the components the dimension uses must be finite.
   const int used9[2][9] = { { 1, 1, 0, 1, 1, 0, 0, 0, 0 }, { 1, 1, 1, 1, 1, 1, 1, 1, 1 } };
   const int used6[2][6] = { { 1, 1, 0, 1, 0, 0 }, { 1, 1, 1, 1, 1, 1 } };
-  const int* used = numComponents == 9 ? used9[options.Dimension - 2] : used6[options.Dimension - 2];
+  const int* used =
+    numComponents == 9 ? used9[options.Dimension - 2] : used6[options.Dimension - 2];
   for (std::size_t i = 0; i < count; ++i)
   {
     for (int k = 0; k < numComponents; ++k)

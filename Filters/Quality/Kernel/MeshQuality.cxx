@@ -51,8 +51,8 @@ void CheckMesh(const SimplexMesh& mesh, const char* who)
   const auto np = static_cast<std::int64_t>(mesh.NumPoints());
   for (auto id : mesh.Cells)
     if (id < 0 || id >= np)
-      throw InputError(w + ": cell refers to point id " + std::to_string(id) +
-        " outside [0, " + std::to_string(np) + ")");
+      throw InputError(w + ": cell refers to point id " + std::to_string(id) + " outside [0, " +
+        std::to_string(np) + ")");
   for (double x : mesh.Points)
     if (!std::isfinite(x))
       throw InputError(w + ": mesh points contain NaN or Inf");
@@ -63,8 +63,7 @@ void CheckMetric(const SimplexMesh& mesh, const MetricField& metric, const char*
   const std::string w(who);
   if (metric.Values.size() != 6 * mesh.NumPoints())
     throw InputError(w + ": metric has " + std::to_string(metric.Values.size() / 6) +
-      " tensors (6 values each) but the mesh has " + std::to_string(mesh.NumPoints()) +
-      " points");
+      " tensors (6 values each) but the mesh has " + std::to_string(mesh.NumPoints()) + " points");
   for (double x : metric.Values)
     if (!std::isfinite(x))
       throw InputError(w + ": metric contains NaN or Inf");
@@ -73,8 +72,9 @@ void CheckMetric(const SimplexMesh& mesh, const MetricField& metric, const char*
 /// min over the 6 edges of the dihedral angle at that edge, radians.
 double MinDihedral(const Eigen::Vector3d p[4])
 {
-  static const int kEdges[6][4] = { { 0, 1, 2, 3 }, { 0, 2, 1, 3 }, { 0, 3, 1, 2 },
-    { 1, 2, 0, 3 }, { 1, 3, 0, 2 }, { 2, 3, 0, 1 } };
+  static const int kEdges[6][4] = {
+    { 0, 1, 2, 3 }, { 0, 2, 1, 3 }, { 0, 3, 1, 2 }, { 1, 2, 0, 3 }, { 1, 3, 0, 2 }, { 2, 3, 0, 1 }
+  };
   double best = kPi;
   for (const auto& e : kEdges)
   {
@@ -92,91 +92,74 @@ double MinDihedral(const Eigen::Vector3d p[4])
   }
   return best;
 }
-} // namespace
-
-MeshQualityResult EvaluateMeshQuality(const SimplexMesh& mesh, const MetricField& metric)
+/// Vertex `id` of the mesh in 3D (z = 0 for a flat 2D domain).
+Eigen::Vector3d PointOf(const SimplexMesh& mesh, std::int32_t id)
 {
-  CheckMesh(mesh, "EvaluateMeshQuality");
-  CheckMetric(mesh, metric, "EvaluateMeshQuality");
-  const std::size_t nc = mesh.NumCells();
-  const std::size_t np = mesh.NumPoints();
-  if (nc == 0)
-    throw InputError("EvaluateMeshQuality: the mesh has no cells");
+  const double* p = mesh.Point(static_cast<std::size_t>(id));
+  return Eigen::Vector3d(p[0], p[1], mesh.AmbientDim == 3 ? p[2] : 0.0);
+}
+
+/// One cell's G, smallest angle and orientation in the metric of its averaged square roots
+/// A = mean of the vertex A_i (paper §5.2).
+void CellQuality(const SimplexMesh& mesh,
+  const std::vector<Eigen::Matrix3d>& sqrtM,
+  std::size_t c,
+  MeshQualityResult& res)
+{
   const int k = mesh.SimplexDim;
   const int nv = k + 1;
   const int m = mesh.AmbientDim;
-
-  // Per-vertex A_i = M_i^{1/2}.
-  std::vector<Eigen::Matrix3d> sqrtM(np);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, np),
-    [&](const tbb::blocked_range<std::size_t>& r)
-    {
-      for (std::size_t i = r.begin(); i != r.end(); ++i)
-        sqrtM[i] = SymmetricSqrt(MetricTensor(metric.At(i), m));
-    });
-
-  auto point = [&](std::int32_t id)
+  const std::int32_t* ids = mesh.Cell(c);
+  Eigen::Matrix3d a = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d x[4], y[4];
+  for (int i = 0; i < nv; ++i)
   {
-    const double* p = mesh.Point(static_cast<std::size_t>(id));
-    return Eigen::Vector3d(p[0], p[1], m == 3 ? p[2] : 0.0);
-  };
-
-  MeshQualityResult res;
-  res.G.assign(nc, 0.0);
-  res.MinAngle.assign(nc, 0.0);
-  res.Inverted.assign(nc, 0);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nc),
-    [&](const tbb::blocked_range<std::size_t>& r)
+    a += sqrtM[static_cast<std::size_t>(ids[i])];
+    x[i] = PointOf(mesh, ids[i]);
+  }
+  a /= nv;
+  for (int i = 0; i < nv; ++i)
+    y[i] = a * x[i];
+  if (k == 2)
+  {
+    const Eigen::Vector3d e0 = x[1] - x[0], e1 = x[2] - x[0];
+    const double signedArea = m == 2 ? e0.x() * e1.y() - e0.y() * e1.x() : e0.cross(e1).norm();
+    res.Inverted[c] = signedArea <= 0.0 ? 1 : 0;
+    const double l[3] = { (y[1] - y[2]).norm(), (y[2] - y[0]).norm(), (y[0] - y[1]).norm() };
+    const double s = 0.5 * (y[1] - y[0]).cross(y[2] - y[0]).norm();
+    const double p = 0.5 * (l[0] + l[1] + l[2]);
+    const double h = std::max({ l[0], l[1], l[2] });
+    res.G[c] = p > 0.0 && h > 0.0 ? 2.0 * std::sqrt(3.0) * s / (p * h) : 0.0;
+    double th = kPi;
+    for (int i = 0; i < 3; ++i)
     {
-      for (std::size_t c = r.begin(); c != r.end(); ++c)
-      {
-        const std::int32_t* ids = mesh.Cell(c);
-        Eigen::Matrix3d a = Eigen::Matrix3d::Zero();
-        Eigen::Vector3d x[4], y[4];
-        for (int i = 0; i < nv; ++i)
-        {
-          a += sqrtM[static_cast<std::size_t>(ids[i])];
-          x[i] = point(ids[i]);
-        }
-        a /= nv;
-        for (int i = 0; i < nv; ++i)
-          y[i] = a * x[i];
-        if (k == 2)
-        {
-          const Eigen::Vector3d e0 = x[1] - x[0], e1 = x[2] - x[0];
-          const double signedArea = m == 2 ? e0.x() * e1.y() - e0.y() * e1.x()
-                                           : e0.cross(e1).norm();
-          res.Inverted[c] = signedArea <= 0.0 ? 1 : 0;
-          const double l[3] = { (y[1] - y[2]).norm(), (y[2] - y[0]).norm(),
-            (y[0] - y[1]).norm() };
-          const double s = 0.5 * (y[1] - y[0]).cross(y[2] - y[0]).norm();
-          const double p = 0.5 * (l[0] + l[1] + l[2]);
-          const double h = std::max({ l[0], l[1], l[2] });
-          res.G[c] = p > 0.0 && h > 0.0 ? 2.0 * std::sqrt(3.0) * s / (p * h) : 0.0;
-          double th = kPi;
-          for (int i = 0; i < 3; ++i)
-          {
-            const Eigen::Vector3d u = y[(i + 1) % 3] - y[i], w = y[(i + 2) % 3] - y[i];
-            th = std::min(th, std::atan2(u.cross(w).norm(), u.dot(w)));
-          }
-          res.MinAngle[c] = th * kRadToDeg;
-        }
-        else
-        {
-          const double vol0 = (x[1] - x[0]).dot((x[2] - x[0]).cross(x[3] - x[0])) / 6.0;
-          res.Inverted[c] = vol0 <= 0.0 ? 1 : 0;
-          const double v = std::abs((y[1] - y[0]).dot((y[2] - y[0]).cross(y[3] - y[0]))) / 6.0;
-          double sl2 = 0.0;
-          for (int i = 0; i < 4; ++i)
-            for (int j = i + 1; j < 4; ++j)
-              sl2 += (y[j] - y[i]).squaredNorm();
-          res.G[c] = sl2 > 0.0 ? 12.0 * std::cbrt(9.0 * v * v) / sl2 : 0.0;
-          res.MinAngle[c] = MinDihedral(y) * kRadToDeg;
-        }
-      }
-    });
+      const Eigen::Vector3d u = y[(i + 1) % 3] - y[i], w = y[(i + 2) % 3] - y[i];
+      th = std::min(th, std::atan2(u.cross(w).norm(), u.dot(w)));
+    }
+    res.MinAngle[c] = th * kRadToDeg;
+  }
+  else
+  {
+    const double vol0 = (x[1] - x[0]).dot((x[2] - x[0]).cross(x[3] - x[0])) / 6.0;
+    res.Inverted[c] = vol0 <= 0.0 ? 1 : 0;
+    const double v = std::abs((y[1] - y[0]).dot((y[2] - y[0]).cross(y[3] - y[0]))) / 6.0;
+    double sl2 = 0.0;
+    for (int i = 0; i < 4; ++i)
+      for (int j = i + 1; j < 4; ++j)
+        sl2 += (y[j] - y[i]).squaredNorm();
+    res.G[c] = sl2 > 0.0 ? 12.0 * std::cbrt(9.0 * v * v) / sl2 : 0.0;
+    res.MinAngle[c] = MinDihedral(y) * kRadToDeg;
+  }
+}
 
-  // Unique edges and their metric lengths with Q_ab = (A_a + A_b)/2.
+/// Unique edges and their metric lengths with Q_ab = (A_a + A_b) / 2.
+void EdgeMetricLengths(const SimplexMesh& mesh,
+  const std::vector<Eigen::Matrix3d>& sqrtM,
+  MeshQualityResult& res)
+{
+  const std::size_t nc = mesh.NumCells();
+  const std::size_t np = mesh.NumPoints();
+  const int nv = mesh.SimplexDim + 1;
   std::vector<std::int64_t> keys;
   keys.reserve(nc * static_cast<std::size_t>(nv * (nv - 1) / 2));
   for (std::size_t c = 0; c < nc; ++c)
@@ -206,10 +189,16 @@ MeshQualityResult EvaluateMeshQuality(const SimplexMesh& mesh, const MetricField
         res.Edges[2 * e + 1] = b;
         const Eigen::Matrix3d q =
           0.5 * (sqrtM[static_cast<std::size_t>(a)] + sqrtM[static_cast<std::size_t>(b)]);
-        res.EdgeLengths[e] = (q * (point(b) - point(a))).norm();
+        res.EdgeLengths[e] = (q * (PointOf(mesh, b) - PointOf(mesh, a))).norm();
       }
     });
+}
 
+/// G_min / G_avg, angles, % bad, the angle histogram and the edges in [1/sqrt2, sqrt2] x median.
+void Summarize(int k, MeshQualityResult& res)
+{
+  const std::size_t nc = res.G.size();
+  const std::size_t ne = res.EdgeLengths.size();
   MeshQualitySummary& s = res.Summary;
   s.NumCells = nc;
   s.BadAngleThreshold = k == 2 ? 30.0 : 15.0;
@@ -240,13 +229,13 @@ MeshQualityResult EvaluateMeshQuality(const SimplexMesh& mesh, const MetricField
   if (ne > 0)
   {
     std::vector<double> sorted = res.EdgeLengths;
-    std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(ne / 2),
-      sorted.end());
+    std::nth_element(
+      sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(ne / 2), sorted.end());
     double median = sorted[ne / 2];
     if (ne % 2 == 0)
     {
-      const double lower = *std::max_element(
-        sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(ne / 2));
+      const double lower =
+        *std::max_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(ne / 2));
       median = 0.5 * (median + lower);
     }
     s.MedianEdgeLength = median;
@@ -260,16 +249,52 @@ MeshQualityResult EvaluateMeshQuality(const SimplexMesh& mesh, const MetricField
     }
     s.PercentEdgesInUnitRange = 100.0 * static_cast<double>(inRange) / static_cast<double>(ne);
   }
+}
+} // namespace
+
+MeshQualityResult EvaluateMeshQuality(const SimplexMesh& mesh, const MetricField& metric)
+{
+  CheckMesh(mesh, "EvaluateMeshQuality");
+  CheckMetric(mesh, metric, "EvaluateMeshQuality");
+  const std::size_t nc = mesh.NumCells();
+  const std::size_t np = mesh.NumPoints();
+  if (nc == 0)
+    throw InputError("EvaluateMeshQuality: the mesh has no cells");
+  const int m = mesh.AmbientDim;
+
+  // Per-vertex A_i = M_i^{1/2}.
+  std::vector<Eigen::Matrix3d> sqrtM(np);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, np),
+    [&](const tbb::blocked_range<std::size_t>& r)
+    {
+      for (std::size_t i = r.begin(); i != r.end(); ++i)
+        sqrtM[i] = SymmetricSqrt(MetricTensor(metric.At(i), m));
+    });
+
+  MeshQualityResult res;
+  res.G.assign(nc, 0.0);
+  res.MinAngle.assign(nc, 0.0);
+  res.Inverted.assign(nc, 0);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nc),
+    [&](const tbb::blocked_range<std::size_t>& r)
+    {
+      for (std::size_t c = r.begin(); c != r.end(); ++c)
+        CellQuality(mesh, sqrtM, c, res);
+    });
+  EdgeMetricLengths(mesh, sqrtM, res);
+  Summarize(mesh.SimplexDim, res);
   return res;
 }
 
 std::vector<double> SimplexQualityInEmbedding(const std::vector<std::int32_t>& cells,
-  int simplexDim, const std::vector<double>& coords, int dim)
+  int simplexDim,
+  const std::vector<double>& coords,
+  int dim)
 {
   const int k = simplexDim;
   if (k != 2 && k != 3)
-    throw InputError("SimplexQualityInEmbedding: simplex dimension must be 2 or 3, got " +
-      std::to_string(k));
+    throw InputError(
+      "SimplexQualityInEmbedding: simplex dimension must be 2 or 3, got " + std::to_string(k));
   if (dim < k)
     throw InputError("SimplexQualityInEmbedding: dimension " + std::to_string(dim) +
       " is smaller than the simplex dimension " + std::to_string(k));
@@ -343,8 +368,9 @@ std::vector<double> SimplexQualityInEmbedding(const std::vector<std::int32_t>& c
   return g;
 }
 
-MetricField InterpolateMetricAtSites(
-  const SimplexMesh& mesh, const MetricField& metric, const SiteSet& sites)
+MetricField InterpolateMetricAtSites(const SimplexMesh& mesh,
+  const MetricField& metric,
+  const SiteSet& sites)
 {
   CheckMesh(mesh, "InterpolateMetricAtSites");
   CheckMetric(mesh, metric, "InterpolateMetricAtSites");

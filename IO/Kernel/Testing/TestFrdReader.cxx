@@ -2,8 +2,8 @@
 // glued numbers, node order, tensor/vector component order, several steps), its errors, a
 // fuzz loop, and, when the Debian package calculix-cgx-examples is installed, the real
 // compressor example result.frd (read at run time, never copied into the repository).
-#include "FrdReader.h"
 #include "AnisoTestChecks.h"
+#include "FrdReader.h"
 
 #include <algorithm>
 #include <array>
@@ -31,10 +31,26 @@ std::string Fmt(const char* f, ...)
 
 // Reference hex corners in VTK/CalculiX-input order and the 12 edges of VTK's
 // quadratic hexahedron (mid-edge nodes 8..19).
-const double Corner[8][3] = { { 0, 0, 0 }, { 1, 0, 0 }, { 1, 1, 0 }, { 0, 1, 0 },
-                              { 0, 0, 1 }, { 1, 0, 1 }, { 1, 1, 1 }, { 0, 1, 1 } };
-const int VTKEdges[12][2] = { { 0, 1 }, { 1, 2 }, { 2, 3 }, { 3, 0 }, { 4, 5 }, { 5, 6 },
-                              { 6, 7 }, { 7, 4 }, { 0, 4 }, { 1, 5 }, { 2, 6 }, { 3, 7 } };
+const double Corner[8][3] = { { 0, 0, 0 },
+  { 1, 0, 0 },
+  { 1, 1, 0 },
+  { 0, 1, 0 },
+  { 0, 0, 1 },
+  { 1, 0, 1 },
+  { 1, 1, 1 },
+  { 0, 1, 1 } };
+const int VTKEdges[12][2] = { { 0, 1 },
+  { 1, 2 },
+  { 2, 3 },
+  { 3, 0 },
+  { 4, 5 },
+  { 5, 6 },
+  { 6, 7 },
+  { 7, 4 },
+  { 0, 4 },
+  { 1, 5 },
+  { 2, 6 },
+  { 3, 7 } };
 // frd writes bottom edges, then vertical edges, then top edges.
 const int FrdEdgeOrder[12] = { 0, 1, 2, 3, 8, 9, 10, 11, 4, 5, 6, 7 };
 
@@ -46,9 +62,16 @@ struct Hand
 
 /// Two he20 hexes side by side along x, shifted to negative coordinates so that the E12.5
 /// fields are glued ("-1.00000E+00-2.00000E+00"). Node ids are not contiguous (id = 10*i+5).
-Hand MakeFrd(bool shortFormat = false)
+/// Frd id of hand-made node i.
+int HandNodeId(int i)
 {
-  Hand h;
+  return 10 * i + 5;
+}
+
+/// Two he20 elements side by side: the shared nodes once, corners then mid-edge nodes in FRD
+/// order; fills h.Pts and returns the elements' node indices.
+std::vector<std::array<int, 20>> MakeHandElements(Hand& h)
+{
   std::vector<std::array<int, 20>> elems(2);
   auto addNode = [&](double x, double y, double z)
   {
@@ -72,13 +95,21 @@ Hand MakeFrd(bool shortFormat = false)
     {
       const int* ed = VTKEdges[FrdEdgeOrder[k]];
       elems[e][8 + k] = addNode(0.5 * (Corner[ed[0]][0] + Corner[ed[1]][0]) + e - 2.0,
-                                0.5 * (Corner[ed[0]][1] + Corner[ed[1]][1]) - 3.0,
-                                0.5 * (Corner[ed[0]][2] + Corner[ed[1]][2]) - 1.5);
+        0.5 * (Corner[ed[0]][1] + Corner[ed[1]][1]) - 3.0,
+        0.5 * (Corner[ed[0]][2] + Corner[ed[1]][2]) - 1.5);
     }
   }
+  return elems;
+}
+
+/// The node (2C) and element (3C) blocks.
+void AppendMeshBlocks(std::string& s,
+  const Hand& h,
+  const std::vector<std::array<int, 20>>& elems,
+  bool shortFormat)
+{
   const int np = static_cast<int>(h.Pts.size());
-  auto id = [](int i) { return 10 * i + 5; };
-  std::string& s = h.Text;
+  auto id = HandNodeId;
   s += "    1C\n    1UUSER  hand-made test file\n";
   s += Fmt("    2C%18s%12d%37s%1d\n", "", np, "", shortFormat ? 0 : 1);
   for (int i = 0; i < np; ++i)
@@ -118,19 +149,27 @@ Hand MakeFrd(bool shortFormat = false)
     s += "\n";
   }
   s += " -3\n";
+}
+
+/// Two steps of DISP and STRESS, a tensor with its components out of order, a 7-component
+/// block with a continuation line, and the end.
+void AppendResultBlocks(std::string& s, const Hand& h, bool shortFormat)
+{
+  const int np = static_cast<int>(h.Pts.size());
+  auto id = HandNodeId;
   const char* fmtId = shortFormat ? " -1%5d" : " -1%10d";
   for (int step = 1; step <= 2; ++step)
   {
     s += "    1PSTEP                         1           1           1\n";
     s += Fmt("  100CL  10%d%12.5E%12d%20s%2d%5d%-10s%2d\n",
-             step,
-             1000.0 * step,
-             np,
-             "",
-             2,
-             step,
-             "MODAL",
-             shortFormat ? 0 : 1);
+      step,
+      1000.0 * step,
+      np,
+      "",
+      2,
+      step,
+      "MODAL",
+      shortFormat ? 0 : 1);
     s += " -4  DISP        4    1\n";
     s += " -5  D1          1    2    1    0\n -5  D2          1    2    2    0\n";
     s += " -5  D3          1    2    3    0\n -5  ALL         1    2    0    0    1ALL\n";
@@ -141,14 +180,14 @@ Hand MakeFrd(bool shortFormat = false)
     }
     s += " -3\n";
     s += Fmt("  100CL  10%d%12.5E%12d%20s%2d%5d%-10s%2d\n",
-             step,
-             1000.0 * step,
-             np,
-             "",
-             2,
-             step,
-             "MODAL",
-             shortFormat ? 0 : 1);
+      step,
+      1000.0 * step,
+      np,
+      "",
+      2,
+      step,
+      "MODAL",
+      shortFormat ? 0 : 1);
     s += " -4  STRESS      6    1\n";
     s += " -5  SXX         1    4    1    1\n -5  SYY         1    4    2    2\n";
     s += " -5  SZZ         1    4    3    3\n -5  SXY         1    4    1    2\n";
@@ -158,12 +197,12 @@ Hand MakeFrd(bool shortFormat = false)
       const double b = 100.0 * i + 1000.0 * step;
       s += Fmt(fmtId, id(i)) +
         Fmt("%12.5E%12.5E%12.5E%12.5E%12.5E%12.5E\n",
-            -(b + 11),
-            b + 12,
-            b + 13,
-            b + 14,
-            b + 15,
-            b + 16);
+          -(b + 11),
+          b + 12,
+          b + 13,
+          b + 14,
+          b + 15,
+          b + 16);
     }
     s += " -3\n";
   }
@@ -189,6 +228,14 @@ Hand MakeFrd(bool shortFormat = false)
     Fmt(fmtId, id(1)) + Fmt("%12.5E%12.5E%12.5E%12.5E%12.5E%12.5E\n", 1.0, 2.0, 3.0, 4.0, 5.0, 6.0);
   s += Fmt(shortFormat ? " -2%5s" : " -2%10s", "") + Fmt("%12.5E\n", 7.0);
   s += " -3\n 9999\n";
+}
+
+Hand MakeFrd(bool shortFormat = false)
+{
+  Hand h;
+  const std::vector<std::array<int, 20>> elems = MakeHandElements(h);
+  AppendMeshBlocks(h.Text, h, elems, shortFormat);
+  AppendResultBlocks(h.Text, h, shortFormat);
   return h;
 }
 
@@ -222,7 +269,7 @@ int CountWrongMidEdges(const av::FrdData& d, double relTol)
       const double* a = P(VTKEdges[k][0]);
       const double* b = P(VTKEdges[k][1]);
       const double len = std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
-                                   (a[2] - b[2]) * (a[2] - b[2]));
+        (a[2] - b[2]) * (a[2] - b[2]));
       wrong += IsMidpoint(P(8 + k), a, b, relTol * len) ? 0 : 1;
     }
   }
@@ -234,12 +281,15 @@ int CountWrongMidEdges(const av::FrdData& d, double relTol)
 /// (3,4,5) and whose mid-edge nodes lie on VTK's edges.
 void TestWedgeOrder()
 {
-  const double c[6][3] = { { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 },
-                           { 0, 0, 1 }, { 1, 0, 1 }, { 0, 1, 1 } };
-  const int frdEdges[9][2] = { { 0, 1 }, { 1, 2 }, { 2, 0 }, { 0, 3 }, { 1, 4 },
-                               { 2, 5 }, { 3, 4 }, { 4, 5 }, { 5, 3 } };
-  const int vtkEdges[9][2] = { { 0, 1 }, { 1, 2 }, { 2, 0 }, { 3, 4 }, { 4, 5 },
-                               { 5, 3 }, { 0, 3 }, { 1, 4 }, { 2, 5 } };
+  const double c[6][3] = {
+    { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 }, { 1, 0, 1 }, { 0, 1, 1 }
+  };
+  const int frdEdges[9][2] = {
+    { 0, 1 }, { 1, 2 }, { 2, 0 }, { 0, 3 }, { 1, 4 }, { 2, 5 }, { 3, 4 }, { 4, 5 }, { 5, 3 }
+  };
+  const int vtkEdges[9][2] = {
+    { 0, 1 }, { 1, 2 }, { 2, 0 }, { 3, 4 }, { 4, 5 }, { 5, 3 }, { 0, 3 }, { 1, 4 }, { 2, 5 }
+  };
   double frd[15][3];
   for (int i = 0; i < 6; ++i)
   {
@@ -263,17 +313,17 @@ void TestWedgeOrder()
       v[k] = P(2)[k] - P(0)[k];
       w[k] = (P(3)[k] + P(4)[k] + P(5)[k] - P(0)[k] - P(1)[k] - P(2)[k]) / 3.0;
     }
-    const double n[3] = { u[1] * v[2] - u[2] * v[1],
-                          u[2] * v[0] - u[0] * v[2],
-                          u[0] * v[1] - u[1] * v[0] };
-    AV_CHECK_MSG(n[0] * w[0] + n[1] * w[1] + n[2] * w[2] < 0,
-                 "wedge type " << type << " base normal");
+    const double n[3] = {
+      u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]
+    };
+    AV_CHECK_MSG(
+      n[0] * w[0] + n[1] * w[1] + n[2] * w[2] < 0, "wedge type " << type << " base normal");
     if (type == av::FrdPe15)
     {
       for (int e = 0; e < 9; ++e)
       {
-        AV_CHECK_MSG(IsMidpoint(P(6 + e), P(vtkEdges[e][0]), P(vtkEdges[e][1]), 1e-12),
-                     "pe15 edge " << e);
+        AV_CHECK_MSG(
+          IsMidpoint(P(6 + e), P(vtkEdges[e][0]), P(vtkEdges[e][1]), 1e-12), "pe15 edge " << e);
       }
     }
   }
@@ -340,8 +390,8 @@ void TestHandMade(bool shortFormat)
     AV_CHECK(r.Values[6] == 0.0); // node absent from the block
   }
   const int seven = d.FindResult("SEVEN", 9);
-  AV_CHECK(seven >= 0 && d.Results[seven].NumComponents == 7 &&
-           d.Results[seven].Values[7 + 6] == 7.0);
+  AV_CHECK(
+    seven >= 0 && d.Results[seven].NumComponents == 7 && d.Results[seven].Values[7 + 6] == 7.0);
 }
 
 std::string MessageOf(const std::string& text)
@@ -382,9 +432,9 @@ void TestErrors()
   msg = MessageOf(good.substr(0, good.find(" -3")));
   AV_CHECK_MSG(msg.find("not terminated") != std::string::npos, msg);
   msg = MessageOf(good.substr(0, good.find("SZX") + 40)); // inside a result block
-  AV_CHECK_MSG(msg.find("not terminated") != std::string::npos ||
-                 msg.find("expected") != std::string::npos,
-               msg);
+  AV_CHECK_MSG(
+    msg.find("not terminated") != std::string::npos || msg.find("expected") != std::string::npos,
+    msg);
   const std::string nodeHeader = Fmt("    2C%18s%12d%37s%1d\n", "", 32, "", 1);
   msg = MessageOf(
     Replace(good, nodeHeader, Fmt("    2C%18s%12lld%37s%1d\n", "", 999999999999LL, "", 1)));

@@ -155,36 +155,9 @@ double TetVolume(vtkUnstructuredGrid* g, vtkIdType c)
     6.0;
 }
 
-void TestHexBlock(EventCounter* events)
+// All positive tets; total volume = det(A) x box volume.
+void CheckPositiveVolume(vtkUnstructuredGrid* out, int nx, int ny, int nz)
 {
-  const int nx = 3, ny = 2, nz = 2;
-  const vtkIdType quadratic = 5;
-  auto block = MakeBlock(nx, ny, nz, quadratic);
-  const vtkIdType inPoints = block->GetNumberOfPoints();
-  const vtkIdType inCells = block->GetNumberOfCells();
-
-  vtkNew<vtkAnisoSimplexMesh> filter;
-  Watch(filter, events);
-  events->Reset();
-  filter->SetInputData(block);
-  AV_CHECK(filter->GetExecutive()->Update() == 1);
-  AV_CHECK(events->Errors == 0);
-  AV_CHECK(events->Warnings == 1); // the split summary
-  AV_CHECK(events->Last.find("quadratic hexahedra") != std::string::npos);
-  vtkUnstructuredGrid* out = filter->GetOutput();
-  const vtkIdType numHex = nx * ny * nz;
-  AV_CHECK(out->GetNumberOfCells() == 12 * numHex);
-  AV_CHECK(filter->GetNumberOfSplitCells() == numHex);
-  AV_CHECK(filter->GetNumberOfAddedPoints() == numHex);
-  // Corners + centres; the 12 mid-edge nodes of the quadratic cell are dropped.
-  AV_CHECK(out->GetNumberOfPoints() == inPoints - 12 + numHex);
-  auto* summary =
-    vtkStringArray::SafeDownCast(out->GetFieldData()->GetAbstractArray("SplitSummary"));
-  AV_CHECK(summary && summary->GetNumberOfValues() == 1 &&
-    summary->GetValue(0).find("split 11 hexahedra, 1 quadratic hexahedra into 144 tetrahedra") !=
-      std::string::npos);
-
-  // All positive tets; total volume = det(A) x box volume.
   double volume = 0;
   bool allTets = true, allPositive = true;
   for (vtkIdType c = 0; c < out->GetNumberOfCells(); ++c)
@@ -197,8 +170,11 @@ void TestHexBlock(EventCounter* events)
   AV_CHECK(allTets);
   AV_CHECK(allPositive);
   AV_CHECK_NEAR(volume, DetA() * nx * ny * nz, 1e-12);
+}
 
-  // Point data: linear fields exact at every point (added centres included); "Ref" maps back.
+// Point data: linear fields exact at every point (added centres included); "Ref" maps back.
+void CheckPointData(vtkUnstructuredGrid* out, vtkUnstructuredGrid* block, vtkIdType numHex)
+{
   vtkDataArray* ref = out->GetPointData()->GetArray("Ref");
   vtkDataArray* field = out->GetPointData()->GetArray("F");
   vtkDataArray* ids = out->GetPointData()->GetArray("Id");
@@ -227,8 +203,11 @@ void TestHexBlock(EventCounter* events)
   }
   AV_CHECK(maxErr < 1e-12);
   AV_CHECK(centres == numHex);
+}
 
-  // Cell data from the parent cell.
+// Cell data from the parent cell.
+void CheckParentCellData(vtkUnstructuredGrid* out, vtkIdType inCells, vtkIdType quadratic)
+{
   auto* parent = vtkIdTypeArray::SafeDownCast(out->GetCellData()->GetArray("ParentCellId"));
   vtkDataArray* material = out->GetCellData()->GetArray("Material");
   AV_CHECK(parent && material);
@@ -243,8 +222,12 @@ void TestHexBlock(EventCounter* events)
   AV_CHECK(materialOk);
   AV_CHECK(static_cast<vtkIdType>(pieces.size()) == inCells);
   AV_CHECK(pieces[quadratic] == 12);
+}
 
-  // Conforming: every face is used by two tets, or by one on the box boundary.
+// Conforming: every face is used by two tets, or by one on the box boundary.
+void CheckConforming(vtkUnstructuredGrid* out, int nx, int ny, int nz)
+{
+  vtkDataArray* ref = out->GetPointData()->GetArray("Ref");
   std::map<std::array<vtkIdType, 3>, int> faces;
   vtkNew<vtkIdList> cell;
   for (vtkIdType c = 0; c < out->GetNumberOfCells(); ++c)
@@ -282,13 +265,11 @@ void TestHexBlock(EventCounter* events)
   }
   AV_CHECK(bad == 0);
   AV_CHECK(boundary == 2 * 2 * (nx * ny + ny * nz + nx * nz)); // 2 triangles per boundary square
+}
 
-  // The input is unmodified.
-  AV_CHECK(block->GetNumberOfPoints() == inPoints && block->GetNumberOfCells() == inCells);
-  AV_CHECK(block->GetCellData()->GetNumberOfArrays() == 1);
-  AV_CHECK(block->GetFieldData()->GetNumberOfArrays() == 0);
-
-  // Simplicial input passes through unchanged, without a warning.
+// Simplicial input passes through unchanged, without a warning.
+void CheckSimplicialPassThrough(vtkUnstructuredGrid* out, EventCounter* events)
+{
   vtkNew<vtkUnstructuredGrid> tets;
   tets->DeepCopy(out);
   vtkNew<vtkAnisoSimplexMesh> again;
@@ -317,6 +298,47 @@ void TestHexBlock(EventCounter* events)
   AV_CHECK(std::string(again->GetSplitSummary()).find("nothing split") == 0);
   auto* parentAgain = vtkIdTypeArray::SafeDownCast(same->GetCellData()->GetArray("ParentCellId"));
   AV_CHECK(parentAgain && parentAgain->GetValue(17) == 17);
+}
+
+void TestHexBlock(EventCounter* events)
+{
+  const int nx = 3, ny = 2, nz = 2;
+  const vtkIdType quadratic = 5;
+  auto block = MakeBlock(nx, ny, nz, quadratic);
+  const vtkIdType inPoints = block->GetNumberOfPoints();
+  const vtkIdType inCells = block->GetNumberOfCells();
+
+  vtkNew<vtkAnisoSimplexMesh> filter;
+  Watch(filter, events);
+  events->Reset();
+  filter->SetInputData(block);
+  AV_CHECK(filter->GetExecutive()->Update() == 1);
+  AV_CHECK(events->Errors == 0);
+  AV_CHECK(events->Warnings == 1); // the split summary
+  AV_CHECK(events->Last.find("quadratic hexahedra") != std::string::npos);
+  vtkUnstructuredGrid* out = filter->GetOutput();
+  const vtkIdType numHex = nx * ny * nz;
+  AV_CHECK(out->GetNumberOfCells() == 12 * numHex);
+  AV_CHECK(filter->GetNumberOfSplitCells() == numHex);
+  AV_CHECK(filter->GetNumberOfAddedPoints() == numHex);
+  // Corners + centres; the 12 mid-edge nodes of the quadratic cell are dropped.
+  AV_CHECK(out->GetNumberOfPoints() == inPoints - 12 + numHex);
+  auto* summary =
+    vtkStringArray::SafeDownCast(out->GetFieldData()->GetAbstractArray("SplitSummary"));
+  AV_CHECK(summary && summary->GetNumberOfValues() == 1 &&
+    summary->GetValue(0).find("split 11 hexahedra, 1 quadratic hexahedra into 144 tetrahedra") !=
+      std::string::npos);
+
+  CheckPositiveVolume(out, nx, ny, nz);
+  CheckPointData(out, block, numHex);
+  CheckParentCellData(out, inCells, quadratic);
+  CheckConforming(out, nx, ny, nz);
+  // The input is unmodified.
+  AV_CHECK(block->GetNumberOfPoints() == inPoints && block->GetNumberOfCells() == inCells);
+  AV_CHECK(block->GetCellData()->GetNumberOfArrays() == 1);
+  AV_CHECK(block->GetFieldData()->GetNumberOfArrays() == 0);
+
+  CheckSimplicialPassThrough(out, events);
 }
 
 // Quads -> triangles of the same total area; a hexagonal prism is named in the error.

@@ -34,21 +34,33 @@ using av_vtk_test::EventCounter;
 using av_vtk_test::FieldValue;
 using av_vtk_test::Seconds;
 
-int TestAnisoVoronoiPipeline(int, char*[])
+namespace
+{
+/// The 2D chain, built and run once: source -> embedding -> sampler -> RDT -> quality.
+struct Chain
 {
   vtkNew<vtkAnisoAnalyticMetricSource> source;
+  vtkNew<vtkAnisoEmbedding> embedding;
+  vtkNew<vtkAnisoParticleSampler> sampler;
+  vtkNew<vtkAnisoRestrictedDelaunay> rdt;
+  vtkNew<vtkAnisoMeshQuality> quality;
+};
+
+void RunChain(Chain& chain)
+{
+  vtkAnisoAnalyticMetricSource* source = chain.source;
+  vtkAnisoEmbedding* embedding = chain.embedding;
+  vtkAnisoParticleSampler* sampler = chain.sampler;
+  vtkAnisoRestrictedDelaunay* rdt = chain.rdt;
+  vtkAnisoMeshQuality* quality = chain.quality;
   source->SetPreset(0); // Gaussian2D on [-1, 1]^2
   source->SetResolution(30);
-  vtkNew<vtkAnisoEmbedding> embedding;
   embedding->SetInputConnection(source->GetOutputPort());
   embedding->SetTargetDimension(3);
-  vtkNew<vtkAnisoParticleSampler> sampler;
   sampler->SetInputConnection(embedding->GetOutputPort());
   sampler->SetNumberOfSites(300);
-  vtkNew<vtkAnisoRestrictedDelaunay> rdt;
   rdt->SetInputConnection(0, embedding->GetOutputPort());
   rdt->SetInputConnection(1, sampler->GetOutputPort());
-  vtkNew<vtkAnisoMeshQuality> quality;
   quality->SetInputConnection(rdt->GetOutputPort());
   auto t0 = std::chrono::steady_clock::now();
   embedding->Update();
@@ -60,7 +72,10 @@ int TestAnisoVoronoiPipeline(int, char*[])
   t0 = std::chrono::steady_clock::now();
   quality->Update();
   std::printf("RDT + quality %.3f s\n", Seconds(t0));
+}
 
+void CheckSites(vtkAnisoParticleSampler* sampler)
+{
   vtkPolyData* sites = sampler->GetOutput();
   AV_CHECK(sites->GetNumberOfPoints() == 300);
   AV_CHECK(sites->GetNumberOfVerts() == 300);
@@ -72,9 +87,11 @@ int TestAnisoVoronoiPipeline(int, char*[])
   if (energy && energy->GetNumberOfRows() >= 2)
     AV_CHECK(energy->GetValueByName(energy->GetNumberOfRows() - 1, "Energy").ToDouble() <
       energy->GetValueByName(0, "Energy").ToDouble());
+}
 
-  // The dual mesh is a valid triangulated disk with one vertex per site.
-  vtkUnstructuredGrid* mesh = rdt->GetOutput();
+// The dual mesh is a valid triangulated disk with one vertex per site.
+void CheckDualMeshIsDisk(vtkUnstructuredGrid* mesh)
+{
   const vtkIdType nc = mesh->GetNumberOfCells();
   std::printf("RDT: %lld triangles, %g inverted, %g non-manifold, %g open, %g unused\n",
     static_cast<long long>(nc),
@@ -134,8 +151,11 @@ int TestAnisoVoronoiPipeline(int, char*[])
   AV_CHECK(boundaryEdges > 0);
   AV_CHECK(badBoundaryVertex == 0);
   AV_CHECK(euler == 1);
+}
 
-  // Quality (paper §5.2): measured G_avg 0.86 here; the bound leaves a margin.
+// Quality (paper §5.2): measured G_avg 0.86 here; the bound leaves a margin.
+void CheckQuality(vtkAnisoMeshQuality* quality, vtkIdType nc)
+{
   vtkUnstructuredGrid* q = quality->GetOutput();
   const double gavg = FieldValue(q, "G_avg");
   std::printf("quality: G_min %.3f G_avg %.3f theta_min %.2f theta_avg %.2f bad %.2f %% "
@@ -159,8 +179,13 @@ int TestAnisoVoronoiPipeline(int, char*[])
       total += hist->GetValueByName(r, "Count").ToInt();
     AV_CHECK(total == nc);
   }
+}
 
-  // The Voronoi cells of the same sites tile the square.
+// The Voronoi cells of the same sites tile the square.
+void CheckVoronoiTiles(Chain& chain)
+{
+  vtkAnisoEmbedding* embedding = chain.embedding;
+  vtkAnisoParticleSampler* sampler = chain.sampler;
   vtkNew<vtkAnisoRestrictedVoronoi> rvd;
   rvd->SetInputConnection(0, embedding->GetOutputPort());
   rvd->SetInputConnection(1, sampler->GetOutputPort());
@@ -170,75 +195,94 @@ int TestAnisoVoronoiPipeline(int, char*[])
   std::printf("RVD: %lld polygons for 300 sites\n",
     static_cast<long long>(rvd->GetOutput()->GetNumberOfCells()));
   AV_CHECK(rvd->GetOutput()->GetNumberOfCells() >= 300);
+}
 
-  // Same seed -> identical sites; another seed -> different sites.
-  {
-    vtkNew<vtkAnisoParticleSampler> again;
-    again->SetInputConnection(embedding->GetOutputPort());
-    again->SetNumberOfSites(300);
-    again->Update();
-    vtkDataArray* a = sites->GetPointData()->GetArray("Embedding");
-    vtkDataArray* b = again->GetOutput()->GetPointData()->GetArray("Embedding");
-    bool same = a->GetNumberOfTuples() == b->GetNumberOfTuples();
-    for (vtkIdType i = 0; same && i < a->GetNumberOfTuples(); ++i)
-      for (int d = 0; d < 3; ++d)
-        same = same && a->GetComponent(i, d) == b->GetComponent(i, d);
-    AV_CHECK(same);
-    again->SetSeed(7);
-    again->Update();
-    b = again->GetOutput()->GetPointData()->GetArray("Embedding");
-    AV_CHECK(b->GetComponent(0, 0) != a->GetComponent(0, 0) ||
-      b->GetComponent(0, 1) != a->GetComponent(0, 1));
-  }
+// Same seed -> identical sites; another seed -> different sites.
+void CheckSamplerDeterminism(Chain& chain)
+{
+  vtkAnisoEmbedding* embedding = chain.embedding;
+  vtkPolyData* sites = chain.sampler->GetOutput();
+  vtkNew<vtkAnisoParticleSampler> again;
+  again->SetInputConnection(embedding->GetOutputPort());
+  again->SetNumberOfSites(300);
+  again->Update();
+  vtkDataArray* a = sites->GetPointData()->GetArray("Embedding");
+  vtkDataArray* b = again->GetOutput()->GetPointData()->GetArray("Embedding");
+  bool same = a->GetNumberOfTuples() == b->GetNumberOfTuples();
+  for (vtkIdType i = 0; same && i < a->GetNumberOfTuples(); ++i)
+    for (int d = 0; d < 3; ++d)
+      same = same && a->GetComponent(i, d) == b->GetComponent(i, d);
+  AV_CHECK(same);
+  again->SetSeed(7);
+  again->Update();
+  b = again->GetOutput()->GetPointData()->GetArray("Embedding");
+  AV_CHECK(b->GetComponent(0, 0) != a->GetComponent(0, 0) ||
+    b->GetComponent(0, 1) != a->GetComponent(0, 1));
+}
 
-  // Bad inputs: errors, no crash.
-  {
-    vtkNew<EventCounter> errors;
-    vtkNew<vtkAnisoParticleSampler> zero;
-    zero->AddObserver(vtkCommand::ErrorEvent, errors);
-    zero->SetInputConnection(embedding->GetOutputPort());
-    zero->SetNumberOfSites(0);
-    zero->Update();
-    AV_CHECK(errors->Errors == 1);
-    std::printf("0 sites -> \"%s\"\n", errors->Last.c_str());
-    zero->SetNumberOfSites(100000000); // more than 8 x the mesh's points
-    zero->Update();
-    AV_CHECK(errors->Errors == 2);
-    std::printf("too many sites -> \"%s\"\n", errors->Last.c_str());
+// Bad inputs: errors, no crash.
+void CheckBadInputs(Chain& chain)
+{
+  vtkAnisoAnalyticMetricSource* source = chain.source;
+  vtkAnisoEmbedding* embedding = chain.embedding;
+  vtkUnstructuredGrid* mesh = chain.rdt->GetOutput();
+  vtkNew<EventCounter> errors;
+  vtkNew<vtkAnisoParticleSampler> zero;
+  zero->AddObserver(vtkCommand::ErrorEvent, errors);
+  zero->SetInputConnection(embedding->GetOutputPort());
+  zero->SetNumberOfSites(0);
+  zero->Update();
+  AV_CHECK(errors->Errors == 1);
+  std::printf("0 sites -> \"%s\"\n", errors->Last.c_str());
+  zero->SetNumberOfSites(100000000); // more than 8 x the mesh's points
+  zero->Update();
+  AV_CHECK(errors->Errors == 2);
+  std::printf("too many sites -> \"%s\"\n", errors->Last.c_str());
 
-    vtkNew<vtkAnisoParticleSampler> noEmbedding;
-    noEmbedding->AddObserver(vtkCommand::ErrorEvent, errors);
-    noEmbedding->SetInputConnection(source->GetOutputPort());
-    noEmbedding->Update();
-    AV_CHECK(errors->Errors == 3);
-    AV_CHECK(errors->Last.find("embedding") != std::string::npos);
-    AV_CHECK(noEmbedding->GetOutput()->GetNumberOfPoints() == 0);
-    std::printf("no embedding -> \"%s\"\n", errors->Last.c_str());
+  vtkNew<vtkAnisoParticleSampler> noEmbedding;
+  noEmbedding->AddObserver(vtkCommand::ErrorEvent, errors);
+  noEmbedding->SetInputConnection(source->GetOutputPort());
+  noEmbedding->Update();
+  AV_CHECK(errors->Errors == 3);
+  AV_CHECK(errors->Last.find("embedding") != std::string::npos);
+  AV_CHECK(noEmbedding->GetOutput()->GetNumberOfPoints() == 0);
+  std::printf("no embedding -> \"%s\"\n", errors->Last.c_str());
 
-    vtkNew<vtkPolyData> outside;
-    vtkNew<vtkPoints> pts;
-    pts->InsertNextPoint(0.0, 0.0, 0.0);
-    pts->InsertNextPoint(5.0, 5.0, 0.0); // outside [-1, 1]^2
-    outside->SetPoints(pts);
-    vtkNew<vtkAnisoRestrictedDelaunay> badSites;
-    badSites->AddObserver(vtkCommand::ErrorEvent, errors);
-    badSites->SetInputConnection(0, embedding->GetOutputPort());
-    badSites->SetInputData(1, outside);
-    badSites->Update();
-    AV_CHECK(errors->Errors == 4);
-    AV_CHECK(errors->Last.find("outside") != std::string::npos);
-    AV_CHECK(badSites->GetOutput()->GetNumberOfCells() == 0);
-    std::printf("site outside -> \"%s\"\n", errors->Last.c_str());
+  vtkNew<vtkPolyData> outside;
+  vtkNew<vtkPoints> pts;
+  pts->InsertNextPoint(0.0, 0.0, 0.0);
+  pts->InsertNextPoint(5.0, 5.0, 0.0); // outside [-1, 1]^2
+  outside->SetPoints(pts);
+  vtkNew<vtkAnisoRestrictedDelaunay> badSites;
+  badSites->AddObserver(vtkCommand::ErrorEvent, errors);
+  badSites->SetInputConnection(0, embedding->GetOutputPort());
+  badSites->SetInputData(1, outside);
+  badSites->Update();
+  AV_CHECK(errors->Errors == 4);
+  AV_CHECK(errors->Last.find("outside") != std::string::npos);
+  AV_CHECK(badSites->GetOutput()->GetNumberOfCells() == 0);
+  std::printf("site outside -> \"%s\"\n", errors->Last.c_str());
 
-    vtkNew<vtkAnisoMeshQuality> noMetric;
-    noMetric->AddObserver(vtkCommand::ErrorEvent, errors);
-    vtkNew<vtkUnstructuredGrid> bare;
-    bare->CopyStructure(mesh);
-    noMetric->SetInputData(bare);
-    noMetric->Update();
-    AV_CHECK(errors->Errors == 5);
-    std::printf("no metric -> \"%s\"\n", errors->Last.c_str());
-  }
+  vtkNew<vtkAnisoMeshQuality> noMetric;
+  noMetric->AddObserver(vtkCommand::ErrorEvent, errors);
+  vtkNew<vtkUnstructuredGrid> bare;
+  bare->CopyStructure(mesh);
+  noMetric->SetInputData(bare);
+  noMetric->Update();
+  AV_CHECK(errors->Errors == 5);
+  std::printf("no metric -> \"%s\"\n", errors->Last.c_str());
+}
+} // namespace
 
+int TestAnisoVoronoiPipeline(int, char*[])
+{
+  Chain chain;
+  RunChain(chain);
+  CheckSites(chain.sampler);
+  CheckDualMeshIsDisk(chain.rdt->GetOutput());
+  CheckQuality(chain.quality, chain.rdt->GetOutput()->GetNumberOfCells());
+  CheckVoronoiTiles(chain);
+  CheckSamplerDeterminism(chain);
+  CheckBadInputs(chain);
   return AV_TEST_RESULT();
 }
