@@ -60,8 +60,10 @@ public:
 
   /// min(r2, squared distance from cx to the sites of x (Dim values each) listed in the
   /// 3 x 3 x 3 grid cells around q).
-  double NearestSquared(
-    const std::vector<double>& x, const double* cx, const long long q[3], double r2) const
+  double NearestSquared(const std::vector<double>& x,
+    const double* cx,
+    const long long q[3],
+    double r2) const
   {
     const auto ud = static_cast<std::size_t>(Dim);
     double dmin = r2;
@@ -69,7 +71,8 @@ public:
       for (long long a1 = std::max(0LL, q[1] - 1); a1 <= std::min(G[1] - 1, q[1] + 1); ++a1)
         for (long long a2 = std::max(0LL, q[2] - 1); a2 <= std::min(G[2] - 1, q[2] + 1); ++a2)
           for (std::int32_t t = Head[static_cast<std::size_t>((a0 * G[1] + a1) * G[2] + a2)];
-               t >= 0; t = Next[static_cast<std::size_t>(t)])
+               t >= 0;
+               t = Next[static_cast<std::size_t>(t)])
           {
             const double* xt = x.data() + static_cast<std::size_t>(t) * ud;
             double d2 = 0.0;
@@ -94,8 +97,12 @@ private:
 
 /// One candidate: a cell drawn proportionally to its measure (cumulative `cdf`, never a
 /// degenerate cell), uniform barycentrics b in it and the embedded point cx. Returns the cell.
-std::size_t DrawCandidate(const SimplexMesh& mesh, const Embedding& emb,
-  const std::vector<double>& meas, const std::vector<double>& cdf, Rng& rng, double* b,
+std::size_t DrawCandidate(const SimplexMesh& mesh,
+  const Embedding& emb,
+  const std::vector<double>& meas,
+  const std::vector<double>& cdf,
+  Rng& rng,
+  double* b,
   std::vector<double>& cx)
 {
   const int nv = mesh.VerticesPerCell();
@@ -119,8 +126,12 @@ std::size_t DrawCandidate(const SimplexMesh& mesh, const Embedding& emb,
 
 } // namespace
 
-SiteSet BestCandidateSites(const SimplexMesh& mesh, const Embedding& emb,
-  const std::vector<double>& meas, std::size_t count, int candidates, Rng& rng,
+SiteSet BestCandidateSites(const SimplexMesh& mesh,
+  const Embedding& emb,
+  const std::vector<double>& meas,
+  std::size_t count,
+  int candidates,
+  Rng& rng,
   const SiteSet& placed)
 {
   const int k = mesh.SimplexDim, dim = emb.Dim;

@@ -25,8 +25,12 @@ namespace sampling
  * is missed). Returns the new sites in cell order (ties keep placement order). Serial:
  * deterministic for the state of `rng`.
  */
-SiteSet BestCandidateSites(const SimplexMesh& mesh, const Embedding& emb,
-  const std::vector<double>& meas, std::size_t count, int candidates, Rng& rng,
+SiteSet BestCandidateSites(const SimplexMesh& mesh,
+  const Embedding& emb,
+  const std::vector<double>& meas,
+  std::size_t count,
+  int candidates,
+  Rng& rng,
   const SiteSet& placed);
 
 } // namespace sampling

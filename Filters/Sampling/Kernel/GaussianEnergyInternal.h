@@ -59,8 +59,10 @@ public:
   int Evaluations() const { return NumEvaluations; }
 
   /// Energy (returned) and, with `grad`, projected gradients; per-particle outputs, serial sum.
-  double Evaluate(const std::vector<double>& x, const std::vector<std::int32_t>& cells,
-    const std::vector<double>& bary, const std::vector<std::int32_t>& edges,
+  double Evaluate(const std::vector<double>& x,
+    const std::vector<std::int32_t>& cells,
+    const std::vector<double>& bary,
+    const std::vector<std::int32_t>& edges,
     std::vector<double>* grad)
   {
     ++NumEvaluations;
@@ -81,7 +83,8 @@ public:
           {
             Eigen::Map<Vec> gp(grad->data() + p * static_cast<std::size_t>(Dim), Dim);
             if (Kind[p] == 0)
-              gp = Particles.ProjectGradient(Particles.Data(p, cells[p], 0), bary.data() + 4 * p, g);
+              gp =
+                Particles.ProjectGradient(Particles.Data(p, cells[p], 0), bary.data() + 4 * p, g);
             else if (Kind[p] == 1)
             {
               double len = 0.0;
@@ -101,10 +104,16 @@ public:
 
 private:
   /// Particle p's kernel sum over its inner list (returned) and its gradient g, in chunks:
-  /// distances, then the kernel of the whole chunk (vectorised exp), then the sums in list
+  /// distances, then the kernel of the whole chunk (vectorized exp), then the sums in list
   /// order. d2, w: kExpChunk scratch values.
-  double PairSums(const std::vector<double>& x, std::size_t p, double inv4s2, double rc2,
-    double shift, double* d2, double* w, Vec& g) const
+  double PairSums(const std::vector<double>& x,
+    std::size_t p,
+    double inv4s2,
+    double rc2,
+    double shift,
+    double* d2,
+    double* w,
+    Vec& g) const
   {
     const Eigen::Map<const Vec> xp(x.data() + p * static_cast<std::size_t>(Dim), Dim);
     double e = 0.0;

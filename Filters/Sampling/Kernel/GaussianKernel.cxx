@@ -16,7 +16,7 @@ namespace
 {
 
 /// exp(x) for x in [-700, 0], within a few ulp of std::exp; inline and branch-free so that
-/// loops over it vectorise (glibc's exp is a call per value).
+/// loops over it vectorize (glibc's exp is a call per value).
 inline double ExpNonPositive(double x)
 {
   // k = round(x / ln 2) by the 1.5 * 2^52 trick: the low bits of t hold k.
@@ -50,9 +50,12 @@ inline double ExpNonPositive(double x)
 } // namespace
 
 // The comparisons are on the bit patterns (ordered like the values for non-negative doubles):
-// floating-point selects would keep GCC from vectorising the loop.
-AV_SIMD_CLONES void GaussianKernel(
-  const double* d2, double* w, std::size_t m, double inv4s2, double rc2)
+// floating-point selects would keep GCC from vectorizing the loop.
+AV_SIMD_CLONES void GaussianKernel(const double* d2,
+  double* w,
+  std::size_t m,
+  double inv4s2,
+  double rc2)
 {
   const double clampD2 = std::min(rc2, 700.0 / inv4s2); // exp's argument stays >= -700
   std::int64_t bRc2, bClamp;

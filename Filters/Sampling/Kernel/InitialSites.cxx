@@ -79,7 +79,10 @@ std::vector<std::size_t> MortonCellOrder(const SimplexMesh& mesh)
  * Random mode draws i.i.d. instead. Returns item indices (into `order`'s values).
  */
 std::vector<std::size_t> StratifiedDraw(const std::vector<std::size_t>& order,
-  const std::vector<double>& weight, std::size_t count, bool stratified, Rng& rng)
+  const std::vector<double>& weight,
+  std::size_t count,
+  bool stratified,
+  Rng& rng)
 {
   std::vector<double> cdf(order.size());
   double total = 0.0;
@@ -109,8 +112,12 @@ void CopySite(const SiteSet& from, std::size_t j, SiteSet& to, std::size_t i)
 
 } // namespace
 
-void DrawInitialSites(const SimplexMesh& mesh, const Embedding& emb, const std::vector<double>& meas,
-  const ParticleSamplerOptions& opt, const FeatureSitePlacement& placed, ParticleSamplerResult& res)
+void DrawInitialSites(const SimplexMesh& mesh,
+  const Embedding& emb,
+  const std::vector<double>& meas,
+  const ParticleSamplerOptions& opt,
+  const FeatureSitePlacement& placed,
+  ParticleSamplerResult& res)
 {
   const int nv = mesh.VerticesPerCell(), dim = emb.Dim;
   const std::size_t nc = mesh.NumCells(), n = opt.NumSites;

@@ -22,8 +22,12 @@ namespace sampling
  * cell, plus the feature sites `placed`; all ordered by cell id. Writes res.Sites (sized
  * NumSites, zero coordinates), res.FeatureKind and res.FeatureEdge.
  */
-void DrawInitialSites(const SimplexMesh& mesh, const Embedding& emb, const std::vector<double>& meas,
-  const ParticleSamplerOptions& opt, const FeatureSitePlacement& placed, ParticleSamplerResult& res);
+void DrawInitialSites(const SimplexMesh& mesh,
+  const Embedding& emb,
+  const std::vector<double>& meas,
+  const ParticleSamplerOptions& opt,
+  const FeatureSitePlacement& placed,
+  ParticleSamplerResult& res);
 
 } // namespace sampling
 } // namespace av

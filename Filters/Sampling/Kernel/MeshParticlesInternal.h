@@ -52,12 +52,14 @@ public:
     std::int32_t Ids[NV];
     std::int32_t Nbrs[NV];
     bool Degenerate = false;
-    bool InverseOk = false;   ///< Gram matrix of the full cell invertible (det > 0, finite)
+    bool InverseOk = false; ///< Gram matrix of the full cell invertible (det > 0, finite)
     Eigen::Matrix3d GramInv = Eigen::Matrix3d::Identity(); ///< of the K edges v_j - v_0
     double V[NV][MaxDimOf<D>] = {};
   };
 
-  MeshParticles(const SimplexMesh& mesh, const Embedding& emb, const VertexCells& vc,
+  MeshParticles(const SimplexMesh& mesh,
+    const Embedding& emb,
+    const VertexCells& vc,
     const SharpFeatures* features)
     : Mesh(mesh)
     , Emb(emb)
@@ -136,7 +138,8 @@ public:
   {
     const auto ue = static_cast<std::size_t>(e);
     const Eigen::Map<const Vec> a(Emb.At(static_cast<std::size_t>(Features->Edges[2 * ue])), Dim);
-    const Eigen::Map<const Vec> b(Emb.At(static_cast<std::size_t>(Features->Edges[2 * ue + 1])), Dim);
+    const Eigen::Map<const Vec> b(
+      Emb.At(static_cast<std::size_t>(Features->Edges[2 * ue + 1])), Dim);
     Vec u = b - a;
     *length = u.norm();
     if (*length > 0.0)
@@ -150,7 +153,11 @@ public:
    * The particle's cell is always its edge's EdgeCells entry, its barycentrics nonzero only
    * at the edge's two points. Returns the data of the final cell.
    */
-  const CellData& WalkLine(std::size_t p, std::int32_t& cell, double* b, std::int32_t& edge, const Vec& d)
+  const CellData& WalkLine(std::size_t p,
+    std::int32_t& cell,
+    double* b,
+    std::int32_t& edge,
+    const Vec& d)
   {
     const SharpFeatures& f = *Features;
     auto ue = static_cast<std::size_t>(edge);
@@ -252,7 +259,7 @@ private:
     {
       cd.Ids[i] = ids[i];
       // Face neighbors only of the cells particles visit (all 240k of cube2 took 8% of the
-      // run), memoised: a cell is refilled often. Concurrent fills store the same value.
+      // run), memoized: a cell is refilled often. Concurrent fills store the same value.
       auto& memo = NbrMemo[static_cast<std::size_t>(cell) * NV + static_cast<std::size_t>(i)];
       std::int32_t nb = memo.load(std::memory_order_relaxed);
       if (nb == kUnknown)
@@ -427,7 +434,7 @@ private:
   const int Dim;
   static constexpr std::int32_t kUnknown = -2;
   std::unique_ptr<std::atomic<std::int32_t>[]> NbrMemo; // face neighbors, kUnknown: not yet
-  std::vector<CellData> CellCache; // 2 per particle
+  std::vector<CellData> CellCache;                      // 2 per particle
 };
 
 } // namespace sampling

@@ -24,7 +24,9 @@ template <int D, int K>
 class ParticleOptimizer
 {
 public:
-  ParticleOptimizer(const SimplexMesh& mesh, const Embedding& emb, const VertexCells& vc,
+  ParticleOptimizer(const SimplexMesh& mesh,
+    const Embedding& emb,
+    const VertexCells& vc,
     const SharpFeatures* features)
     : Particles(mesh, emb, vc, features)
     , Lists(emb.Dim)
@@ -83,8 +85,12 @@ private:
 };
 
 template <int D>
-void RunDim(const SimplexMesh& mesh, const Embedding& emb, const VertexCells& vc,
-  const SharpFeatures* features, const ParticleSamplerOptions& opt, ParticleSamplerResult& res)
+void RunDim(const SimplexMesh& mesh,
+  const Embedding& emb,
+  const VertexCells& vc,
+  const SharpFeatures* features,
+  const ParticleSamplerOptions& opt,
+  ParticleSamplerResult& res)
 {
   if (mesh.SimplexDim == 2)
     ParticleOptimizer<D, 2>(mesh, emb, vc, features).Run(opt, res);
@@ -94,8 +100,11 @@ void RunDim(const SimplexMesh& mesh, const Embedding& emb, const VertexCells& vc
 
 } // namespace
 
-void OptimizeParticles(const SimplexMesh& mesh, const Embedding& embedding,
-  const SharpFeatures* features, const ParticleSamplerOptions& opt, ParticleSamplerResult& res)
+void OptimizeParticles(const SimplexMesh& mesh,
+  const Embedding& embedding,
+  const SharpFeatures* features,
+  const ParticleSamplerOptions& opt,
+  ParticleSamplerResult& res)
 {
   const VertexCells vc = BuildVertexCells(mesh);
   switch (embedding.Dim)

@@ -21,8 +21,11 @@ namespace sampling
  * there are none). Dispatches once on the embedding dimension (compiled for 2-6 and 8, a
  * runtime-size fallback otherwise) and the simplex dimension.
  */
-void OptimizeParticles(const SimplexMesh& mesh, const Embedding& embedding,
-  const SharpFeatures* features, const ParticleSamplerOptions& opt, ParticleSamplerResult& res);
+void OptimizeParticles(const SimplexMesh& mesh,
+  const Embedding& embedding,
+  const SharpFeatures* features,
+  const ParticleSamplerOptions& opt,
+  ParticleSamplerResult& res);
 
 } // namespace sampling
 } // namespace av

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// SampleParticles: input checks, sharp-feature sites, the initial sites and the optimisation
+// SampleParticles: input checks, sharp-feature sites, the initial sites and the optimization
 // (ParticleOptimizer) in a thread arena of the requested size.
 #include "ParticleSampler.h"
 
@@ -39,9 +39,9 @@ void CheckInputs(const SimplexMesh& mesh, const Embedding& emb)
     throw InputError("SampleParticles: embedding dimension " + std::to_string(emb.Dim) +
       " is outside [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
   if (emb.Coords.size() != mesh.NumPoints() * static_cast<std::size_t>(emb.Dim))
-    throw InputError("SampleParticles: the embedding has " +
-      std::to_string(emb.Coords.size()) + " values, expected NumPoints (" +
-      std::to_string(mesh.NumPoints()) + ") x Dim (" + std::to_string(emb.Dim) + ")");
+    throw InputError("SampleParticles: the embedding has " + std::to_string(emb.Coords.size()) +
+      " values, expected NumPoints (" + std::to_string(mesh.NumPoints()) + ") x Dim (" +
+      std::to_string(emb.Dim) + ")");
   for (double x : emb.Coords)
     if (!std::isfinite(x))
       throw InputError("SampleParticles: the embedding contains NaN or Inf");
@@ -93,8 +93,11 @@ ParticleSamplerResult MakeResult(std::size_t n, int dim)
  * cut back to what fits in half of the sites (corners only, or none) with res.FeatureWarning
  * saying so. Fills res.NumCornerSites and NumFeatureLineSites.
  */
-FeatureSitePlacement PlaceSharpFeatureSites(const SimplexMesh& mesh, const Embedding& embedding,
-  const ParticleSamplerOptions& opt, double spacing, SharpFeatures& features,
+FeatureSitePlacement PlaceSharpFeatureSites(const SimplexMesh& mesh,
+  const Embedding& embedding,
+  const ParticleSamplerOptions& opt,
+  double spacing,
+  SharpFeatures& features,
   ParticleSamplerResult& res)
 {
   FeatureSitePlacement placed;
@@ -131,8 +134,9 @@ FeatureSitePlacement PlaceSharpFeatureSites(const SimplexMesh& mesh, const Embed
 
 } // namespace
 
-ParticleSamplerResult SampleParticles(
-  const SimplexMesh& mesh, const Embedding& embedding, const ParticleSamplerOptions& opt)
+ParticleSamplerResult SampleParticles(const SimplexMesh& mesh,
+  const Embedding& embedding,
+  const ParticleSamplerOptions& opt)
 {
   const Stopwatch clock;
   CheckInputs(mesh, embedding);
@@ -155,8 +159,12 @@ ParticleSamplerResult SampleParticles(
   const double factor =
     opt.FeatureSpacingFactor > 0.0 ? opt.FeatureSpacingFactor : (k == 3 ? 1.26 : 1.075);
   SharpFeatures features;
-  const FeatureSitePlacement placed = PlaceSharpFeatureSites(mesh, embedding, opt,
-    factor * std::pow(total / static_cast<double>(n), 1.0 / k), features, res);
+  const FeatureSitePlacement placed = PlaceSharpFeatureSites(mesh,
+    embedding,
+    opt,
+    factor * std::pow(total / static_cast<double>(n), 1.0 / k),
+    features,
+    res);
   sampling::DrawInitialSites(mesh, embedding, meas, opt, placed, res);
 
   const SharpFeatures* featurePtr = placed.Sites.NumSites() > 0 ? &features : nullptr;

@@ -22,7 +22,10 @@ namespace sampling
  * cells despite round-off, coarsened while the grid would have more than 4 count + 64 cells
  * (far-apart clusters: still exact). Writes the cell counts per axis.
  */
-inline double GridCellSide(const double lo[3], const double hi[3], double r, std::size_t count,
+inline double GridCellSide(const double lo[3],
+  const double hi[3],
+  double r,
+  std::size_t count,
   long long cellsPerAxis[3])
 {
   double extent = 0.0;
@@ -78,8 +81,13 @@ AxesMatrix<D> PrincipalAxes(std::size_t count, int dim, PointAt at)
 /// Bounds [lo, hi] of the points' principal coordinates; with `proj`, also stores them (3 per
 /// point).
 template <int D, class PointAt>
-void ProjectedBounds(const AxesMatrix<D>& axes, std::size_t count, int dim, PointAt at,
-  double lo[3], double hi[3], double* proj = nullptr)
+void ProjectedBounds(const AxesMatrix<D>& axes,
+  std::size_t count,
+  int dim,
+  PointAt at,
+  double lo[3],
+  double hi[3],
+  double* proj = nullptr)
 {
   for (std::size_t i = 0; i < count; ++i)
   {

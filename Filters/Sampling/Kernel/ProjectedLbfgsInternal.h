@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// ProjectedLbfgsInternal: the particle sampler's minimiser: L-BFGS on projected gradients, a
+// ProjectedLbfgsInternal: the particle sampler's minimizer: L-BFGS on projected gradients, a
 // per-particle trust region, moves walked on the mesh and a backtracking line search.
 #ifndef av_ProjectedLbfgsInternal_h
 #define av_ProjectedLbfgsInternal_h
@@ -59,12 +59,16 @@ public:
    * `iterations` iterations, energies appended to `energyOut` (the start value first). `done`
    * / `total` scale the progress callback. Returns the iterations done.
    */
-  int Minimize(const ParticleSamplerOptions& opt, int iterations, int done, int total,
-    std::vector<double>& energyOut, ParticleSamplerResult& res)
+  int Minimize(const ParticleSamplerOptions& opt,
+    int iterations,
+    int done,
+    int total,
+    std::vector<double>& energyOut,
+    ParticleSamplerResult& res)
   {
     Reset(res);
-    double energy = Energy.Evaluate(
-      res.Sites.Coords, res.Sites.CellIds, res.Sites.Bary, res.FeatureEdge, &G);
+    double energy =
+      Energy.Evaluate(res.Sites.Coords, res.Sites.CellIds, res.Sites.Bary, res.FeatureEdge, &G);
     energyOut.push_back(energy);
     int failures = 0, itDone = 0;
     for (int it = 0; it < iterations; ++it)
@@ -150,8 +154,7 @@ private:
     pa *= gamma;
     for (std::size_t h = 0; h < nh; ++h)
     {
-      const double beta =
-        Sums.ScaleAddDot(NumValues, ps, pa, px, d, Hist[h].Y.data()) / Hist[h].Sy;
+      const double beta = Sums.ScaleAddDot(NumValues, ps, pa, px, d, Hist[h].Y.data()) / Hist[h].Sy;
       ps = 1.0;
       pa = Alpha[h] - beta;
       px = Hist[h].S.data();
@@ -170,8 +173,12 @@ private:
       Sums.ScaleAddDot(NumValues, 1.0, 0.0, nullptr, G.data(), G.data()) / static_cast<double>(N));
     if (rms <= 0.0 && nh == 0)
       return false;
-    Sums.ScaleAddDot(NumValues, 0.0, -0.5 * Energy.KernelWidth() / std::max(rms, 1e-300),
-      G.data(), Dir.data(), nullptr);
+    Sums.ScaleAddDot(NumValues,
+      0.0,
+      -0.5 * Energy.KernelWidth() / std::max(rms, 1e-300),
+      G.data(),
+      Dir.data(),
+      nullptr);
     return true;
   }
 
@@ -237,7 +244,8 @@ private:
           std::copy_n(bary.data() + 4 * p, 4, b);
           const Vec d = step * Vec(Dir.segment(static_cast<Eigen::Index>(p) * Dim, Dim));
           Et[p] = edges[p];
-          const CellData& cd = Kind[p] == 0 ? Particles.Walk(p, c, b, d)
+          const CellData& cd = Kind[p] == 0
+            ? Particles.Walk(p, c, b, d)
             : (Kind[p] == 1 ? Particles.WalkLine(p, c, b, Et[p], d) : Particles.Data(p, c, 0));
           Ct[p] = c;
           Eigen::Map<Vec>(Xt.data() + p * static_cast<std::size_t>(Dim), Dim) =
@@ -301,13 +309,13 @@ private:
   std::size_t NumValues = 0;         // N * Dim, the length of the vectors below
   const std::int8_t* Kind = nullptr; // per particle: 0 free, 1 feature line, 2 corner
   FixedBlockSums Sums;
-  std::vector<double> G;                       // projected gradient at the accepted state
-  std::vector<double> Xt, Gt, Bt;              // trial positions, gradients, barycentrics
-  std::vector<std::int32_t> Ct, Et;            // trial cells, feature edges
-  Eigen::VectorXd Dir;                         // search direction
-  std::deque<Pair> Hist;                       // the last History (s, y) pairs
-  std::vector<Pair> Spare;                     // storage of dropped pairs
-  std::vector<double> Alpha;                   // two-loop coefficients
+  std::vector<double> G;            // projected gradient at the accepted state
+  std::vector<double> Xt, Gt, Bt;   // trial positions, gradients, barycentrics
+  std::vector<std::int32_t> Ct, Et; // trial cells, feature edges
+  Eigen::VectorXd Dir;              // search direction
+  std::deque<Pair> Hist;            // the last History (s, y) pairs
+  std::vector<Pair> Spare;          // storage of dropped pairs
+  std::vector<double> Alpha;        // two-loop coefficients
 };
 
 } // namespace sampling

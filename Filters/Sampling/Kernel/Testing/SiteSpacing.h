@@ -14,7 +14,7 @@
 namespace av_test
 {
 
-/// Nearest-neighbour distance of every site, measured on the first `cols` coordinates.
+/// Nearest-neighbor distance of every site, measured on the first `cols` coordinates.
 inline std::vector<double> NearestDistances(const av::SiteSet& s, int cols, int offset = 0)
 {
   const std::size_t n = s.NumSites();
