@@ -303,7 +303,8 @@ private:
 
   /**
    * Least-squares barycentric change (sum 0, zero on `active` vertices) whose embedded
-   * displacement best matches d in the cell; returns false for a degenerate cell.
+   * displacement best matches d in the cell; returns false for a degenerate cell. One
+   * function on purpose: it is the hottest part of the walks and projections.
    */
   bool TangentBary(const CellData& cd, const bool active[NV], const Vec& d, double db[NV]) const
   {
@@ -328,8 +329,37 @@ private:
     for (int j = 0; j < m; ++j)
       e[j] = Vertex(cd, fr[j + 1]) - base;
     double a[3] = { 0.0, 0.0, 0.0 };
-    if (!SolveEdgeFrame(cd, e, m, d, a))
-      return false;
+    if (m == 1)
+    {
+      const double g = e[0].squaredNorm();
+      if (!(g > 0.0))
+        return false;
+      a[0] = e[0].dot(d) / g;
+    }
+    else
+    {
+      Eigen::Matrix<double, 3, 1> rhs = Eigen::Matrix<double, 3, 1>::Zero();
+      for (int i = 0; i < m; ++i)
+        rhs[i] = e[i].dot(d);
+      Eigen::Matrix<double, 3, 1> sol;
+      if (m == K)
+      {
+        if (!cd.InverseOk)
+          return false;
+        sol = cd.GramInv * rhs;
+      }
+      else
+      {
+        Eigen::Matrix3d inverse;
+        if (!PaddedGramInverse(e, m, inverse))
+          return false;
+        sol = inverse * rhs;
+      }
+      for (int j = 0; j < m; ++j)
+        a[j] = sol[j];
+      if (!(std::isfinite(a[0]) && std::isfinite(a[1]) && std::isfinite(a[2])))
+        return false;
+    }
     double sum = 0.0;
     for (int j = 0; j < m; ++j)
     {
@@ -338,40 +368,6 @@ private:
     }
     db[fr[0]] = -sum;
     return true;
-  }
-
-  /// a = (E^T E)^{-1} E^T d for the m edges e (m == K: the cell's cached inverse); false
-  /// when singular or not finite.
-  static bool SolveEdgeFrame(const CellData& cd, const Vec* e, int m, const Vec& d, double a[3])
-  {
-    if (m == 1)
-    {
-      const double g = e[0].squaredNorm();
-      if (!(g > 0.0))
-        return false;
-      a[0] = e[0].dot(d) / g;
-      return true;
-    }
-    Eigen::Matrix<double, 3, 1> rhs = Eigen::Matrix<double, 3, 1>::Zero();
-    for (int i = 0; i < m; ++i)
-      rhs[i] = e[i].dot(d);
-    Eigen::Matrix<double, 3, 1> sol;
-    if (m == K)
-    {
-      if (!cd.InverseOk)
-        return false;
-      sol = cd.GramInv * rhs;
-    }
-    else
-    {
-      Eigen::Matrix3d inverse;
-      if (!PaddedGramInverse(e, m, inverse))
-        return false;
-      sol = inverse * rhs;
-    }
-    for (int j = 0; j < m; ++j)
-      a[j] = sol[j];
-    return std::isfinite(a[0]) && std::isfinite(a[1]) && std::isfinite(a[2]);
   }
 
   /**

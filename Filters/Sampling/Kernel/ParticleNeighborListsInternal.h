@@ -208,10 +208,14 @@ private:
   /// of consecutive cells; full distances on grid-ordered positions, stored branch-free.
   void CollectCandidates(const std::vector<double>& x, double r2)
   {
-    const long long* n = GridCells;
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, N),
       [&](const tbb::blocked_range<std::size_t>& rg)
       {
+        // Local copies: the buffer's reallocations would make the compiler reload members.
+        const long long n[3] = { GridCells[0], GridCells[1], GridCells[2] };
+        const std::uint32_t* gridStart = GridStart.data();
+        const std::uint32_t* gridItems = GridItems.data();
+        const double* gridX = GridX.data();
         std::vector<std::uint32_t> buffer; // per chunk, grows to the largest neighborhood
         for (std::size_t p = rg.begin(); p != rg.end(); ++p)
         {
@@ -225,15 +229,14 @@ private:
             for (long long j = std::max(0LL, c[1] - 1); j <= std::min(n[1] - 1, c[1] + 1); ++j)
             {
               const auto row = static_cast<std::size_t>((i * n[1] + j) * n[2]);
-              const std::uint32_t t0 = GridStart[row + static_cast<std::size_t>(k0)];
-              const std::uint32_t t1 = GridStart[row + static_cast<std::size_t>(k1) + 1];
+              const std::uint32_t t0 = gridStart[row + static_cast<std::size_t>(k0)];
+              const std::uint32_t t1 = gridStart[row + static_cast<std::size_t>(k1) + 1];
               if (buffer.size() < count + (t1 - t0))
                 buffer.resize(2 * (count + (t1 - t0)));
               for (std::uint32_t t = t0; t < t1; ++t)
               {
-                const Eigen::Map<const Vec> xq(
-                  GridX.data() + t * static_cast<std::size_t>(Dim), Dim);
-                const std::uint32_t q = GridItems[t];
+                const Eigen::Map<const Vec> xq(gridX + t * static_cast<std::size_t>(Dim), Dim);
+                const std::uint32_t q = gridItems[t];
                 buffer[count] = q;
                 count += ((xp - xq).squaredNorm() < r2) & (q != p) ? 1 : 0;
               }
