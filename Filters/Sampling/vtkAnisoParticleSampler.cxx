@@ -1,8 +1,12 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// vtkAnisoParticleSampler: converts the input, runs av::SampleParticles and builds the site
+// polydata and the energy table.
 #include "vtkAnisoParticleSampler.h"
 
 #include "MeshQuality.h" // InterpolateMetricAtSites
 #include "ParticleSampler.h"
 #include "vtkAnisoDataConversion.h"
+#include "vtkAnisoFilterUtilities.h"
 
 #include <vtkCellArray.h>
 #include <vtkDataSet.h>
@@ -18,18 +22,102 @@
 #include <vtkSignedCharArray.h>
 #include <vtkTable.h>
 
-#include <algorithm>
-
 vtkStandardNewMacro(vtkAnisoParticleSampler);
 
 namespace
 {
-void AddFieldValue(vtkFieldData* fd, const char* name, double value)
+/// The kernel's options from the filter's parameters; progress and abort go through `filter`.
+av::ParticleSamplerOptions MakeOptions(vtkAnisoParticleSampler* filter)
 {
-  vtkNew<vtkDoubleArray> a;
-  a->SetName(name);
-  a->InsertNextValue(value);
-  fd->AddArray(a);
+  av::ParticleSamplerOptions options;
+  options.NumSites = static_cast<std::size_t>(filter->GetNumberOfSites());
+  options.Iterations = filter->GetIterations();
+  options.WarmupIterations = filter->GetWarmupIterations();
+  options.PreserveSharpFeatures = filter->GetPreserveSharpFeatures();
+  options.FeatureAngle = filter->GetFeatureAngle();
+  options.Seed = static_cast<std::uint64_t>(static_cast<std::uint32_t>(filter->GetSeed()));
+  options.KernelWidthFactor = filter->GetKernelWidthFactor();
+  options.NeighbourCutoff = filter->GetNeighbourCutoff();
+  options.Progress = [filter](double f)
+  {
+    filter->UpdateProgress(0.05 + 0.9 * f);
+    return !filter->GetAbortExecute();
+  };
+  return options;
+}
+
+/// One vertex cell per site at its input-space position, with the point arrays "Embedding",
+/// "CellId", "Barycentric", "FeatureKind" and ("Metric") the metric at the sites.
+void FillSites(vtkPolyData* output, int ambientDim, const av::ParticleSamplerResult& result,
+  const av::MetricField* siteMetric)
+{
+  const av::SiteSet& sites = result.Sites;
+  const std::size_t n = sites.NumSites();
+  const int dim = sites.Dim;
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(static_cast<vtkIdType>(n));
+  vtkNew<vtkCellArray> verts;
+  verts->AllocateExact(static_cast<vtkIdType>(n), static_cast<vtkIdType>(n));
+  vtkNew<vtkIntArray> cellIds;
+  cellIds->SetName("CellId");
+  cellIds->SetNumberOfTuples(static_cast<vtkIdType>(n));
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const double* x = sites.At(i);
+    points->SetPoint(static_cast<vtkIdType>(i), x[0], x[1], ambientDim == 3 ? x[2] : 0.0);
+    const vtkIdType id = static_cast<vtkIdType>(i);
+    verts->InsertNextCell(1, &id);
+    cellIds->SetValue(static_cast<vtkIdType>(i), sites.CellIds[i]);
+  }
+  output->SetPoints(points);
+  output->SetVerts(verts);
+  vtkPointData* pd = output->GetPointData();
+  pd->AddArray(vtkAnisoDataConversion::MakeArray("Embedding", sites.Coords.data(), n, dim));
+  pd->AddArray(cellIds);
+  pd->AddArray(vtkAnisoDataConversion::MakeArray("Barycentric", sites.Bary.data(), n, 4));
+  vtkNew<vtkSignedCharArray> kind;
+  kind->SetName("FeatureKind");
+  kind->SetNumberOfTuples(static_cast<vtkIdType>(n));
+  for (std::size_t i = 0; i < n; ++i)
+    kind->SetValue(static_cast<vtkIdType>(i), static_cast<signed char>(result.FeatureKind[i]));
+  pd->AddArray(kind);
+  if (siteMetric)
+  {
+    auto m = vtkAnisoDataConversion::MakeArray("Metric", siteMetric->Values.data(), n, 6);
+    pd->AddArray(m);
+    pd->SetActiveTensors("Metric");
+  }
+}
+
+/// The run's summary values as one-value field arrays.
+void AddSummary(vtkFieldData* fd, const av::ParticleSamplerResult& result)
+{
+  using vtkAnisoFilterUtilities::AddFieldValue;
+  AddFieldValue(fd, "Sigma", result.Sigma);
+  AddFieldValue(fd, "EmbeddedMeasure", result.EmbeddedMeasure);
+  AddFieldValue(fd, "MeanNeighbours", result.MeanNeighbours);
+  AddFieldValue(fd, "SamplerIterations", result.IterationsDone);
+  AddFieldValue(fd, "SamplerWarmupIterations", result.WarmupIterationsDone);
+  AddFieldValue(fd, "SamplerSeconds", result.Seconds);
+  AddFieldValue(fd, "NumCornerSites", static_cast<double>(result.NumCornerSites));
+  AddFieldValue(fd, "NumFeatureLineSites", static_cast<double>(result.NumFeatureLineSites));
+}
+
+/// "Iteration", "Energy": the energy history at the final kernel.
+void FillEnergyTable(vtkTable* energyTable, const av::ParticleSamplerResult& result)
+{
+  vtkNew<vtkIntArray> iteration;
+  iteration->SetName("Iteration");
+  vtkNew<vtkDoubleArray> energy;
+  energy->SetName("Energy");
+  for (std::size_t k = 0; k < result.Energy.size(); ++k)
+  {
+    iteration->InsertNextValue(static_cast<int>(k));
+    energy->InsertNextValue(result.Energy[k]);
+  }
+  energyTable->AddColumn(iteration);
+  energyTable->AddColumn(energy);
 }
 }
 
@@ -103,40 +191,20 @@ int vtkAnisoParticleSampler::RequestData(vtkInformation* request,
   const bool haveMetric = metricArray &&
     vtkAnisoDataConversion::ToMetricField(metricArray, mesh.NumPoints(), metric, error);
 
-  av::ParticleSamplerOptions options;
-  options.NumSites = static_cast<std::size_t>(this->NumberOfSites);
-  options.Iterations = this->Iterations;
-  options.WarmupIterations = this->WarmupIterations;
-  options.PreserveSharpFeatures = this->PreserveSharpFeatures;
-  options.FeatureAngle = this->FeatureAngle;
-  options.Seed = static_cast<std::uint64_t>(static_cast<std::uint32_t>(this->Seed));
-  options.KernelWidthFactor = this->KernelWidthFactor;
-  options.NeighbourCutoff = this->NeighbourCutoff;
-  options.Progress = [this](double f)
-  {
-    this->UpdateProgress(0.05 + 0.9 * f);
-    return !this->GetAbortExecute();
-  };
-
+  const av::ParticleSamplerOptions options = MakeOptions(this);
   av::ParticleSamplerResult result;
   av::MetricField siteMetric;
-  try
+  if (!vtkAnisoFilterUtilities::RunKernel(this, "particle sampling",
+        [&]
+        {
+          this->UpdateProgress(0.01);
+          result = av::SampleParticles(mesh, embedding, options);
+          if (haveMetric)
+          {
+            siteMetric = av::InterpolateMetricAtSites(mesh, metric, result.Sites);
+          }
+        }))
   {
-    this->UpdateProgress(0.01);
-    result = av::SampleParticles(mesh, embedding, options);
-    if (haveMetric)
-    {
-      siteMetric = av::InterpolateMetricAtSites(mesh, metric, result.Sites);
-    }
-  }
-  catch (const av::InputError& e)
-  {
-    vtkErrorMacro(<< e.what());
-    return 0;
-  }
-  catch (const std::exception& e)
-  {
-    vtkErrorMacro("particle sampling failed: " << e.what());
     return 0;
   }
   if (!result.FeatureWarning.empty())
@@ -149,64 +217,9 @@ int vtkAnisoParticleSampler::RequestData(vtkInformation* request,
   }
   this->Sigma = result.Sigma;
 
-  const av::SiteSet& sites = result.Sites;
-  const std::size_t n = sites.NumSites();
-  const int dim = sites.Dim;
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToDouble();
-  points->SetNumberOfPoints(static_cast<vtkIdType>(n));
-  vtkNew<vtkCellArray> verts;
-  verts->AllocateExact(static_cast<vtkIdType>(n), static_cast<vtkIdType>(n));
-  vtkNew<vtkIntArray> cellIds;
-  cellIds->SetName("CellId");
-  cellIds->SetNumberOfTuples(static_cast<vtkIdType>(n));
-  for (std::size_t i = 0; i < n; ++i)
-  {
-    const double* x = sites.At(i);
-    points->SetPoint(static_cast<vtkIdType>(i), x[0], x[1], mesh.AmbientDim == 3 ? x[2] : 0.0);
-    const vtkIdType id = static_cast<vtkIdType>(i);
-    verts->InsertNextCell(1, &id);
-    cellIds->SetValue(static_cast<vtkIdType>(i), sites.CellIds[i]);
-  }
-  output->SetPoints(points);
-  output->SetVerts(verts);
-  vtkPointData* pd = output->GetPointData();
-  pd->AddArray(vtkAnisoDataConversion::MakeArray("Embedding", sites.Coords.data(), n, dim));
-  pd->AddArray(cellIds);
-  pd->AddArray(vtkAnisoDataConversion::MakeArray("Barycentric", sites.Bary.data(), n, 4));
-  vtkNew<vtkSignedCharArray> kind;
-  kind->SetName("FeatureKind");
-  kind->SetNumberOfTuples(static_cast<vtkIdType>(n));
-  for (std::size_t i = 0; i < n; ++i)
-    kind->SetValue(static_cast<vtkIdType>(i), static_cast<signed char>(result.FeatureKind[i]));
-  pd->AddArray(kind);
-  if (haveMetric)
-  {
-    auto m = vtkAnisoDataConversion::MakeArray("Metric", siteMetric.Values.data(), n, 6);
-    pd->AddArray(m);
-    pd->SetActiveTensors("Metric");
-  }
-  vtkFieldData* fd = output->GetFieldData();
-  AddFieldValue(fd, "Sigma", result.Sigma);
-  AddFieldValue(fd, "EmbeddedMeasure", result.EmbeddedMeasure);
-  AddFieldValue(fd, "MeanNeighbours", result.MeanNeighbours);
-  AddFieldValue(fd, "SamplerIterations", result.IterationsDone);
-  AddFieldValue(fd, "SamplerWarmupIterations", result.WarmupIterationsDone);
-  AddFieldValue(fd, "SamplerSeconds", result.Seconds);
-  AddFieldValue(fd, "NumCornerSites", static_cast<double>(result.NumCornerSites));
-  AddFieldValue(fd, "NumFeatureLineSites", static_cast<double>(result.NumFeatureLineSites));
-
-  vtkNew<vtkIntArray> iteration;
-  iteration->SetName("Iteration");
-  vtkNew<vtkDoubleArray> energy;
-  energy->SetName("Energy");
-  for (std::size_t k = 0; k < result.Energy.size(); ++k)
-  {
-    iteration->InsertNextValue(static_cast<int>(k));
-    energy->InsertNextValue(result.Energy[k]);
-  }
-  energyTable->AddColumn(iteration);
-  energyTable->AddColumn(energy);
+  FillSites(output, mesh.AmbientDim, result, haveMetric ? &siteMetric : nullptr);
+  AddSummary(output->GetFieldData(), result);
+  FillEnergyTable(energyTable, result);
   this->UpdateProgress(1.0);
   return 1;
 }

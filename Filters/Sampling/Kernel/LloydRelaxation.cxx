@@ -1,15 +1,17 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// LloydRelaxation: Lloyd steps on the restricted Voronoi diagram (piece centroids by fanning,
+// exact closest points on the embedded elements) and the CVT energy.
 #include "LloydRelaxation.h"
-#include "MeshTopology.h"
 
-#include "ParticleSampler.h"
+#include "MeshTopology.h"
 #include "RestrictedVoronoi.h"
+#include "Stopwatch.h"
 
 #include <Eigen/Dense>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -188,6 +190,163 @@ double ClosestOnElement(const SimplexMesh& mesh, const Embedding& emb, const Ele
   return bestPhi;
 }
 
+/// Pieces of the diagram grouped by site (CSR: Order[Offsets[s] .. Offsets[s + 1]) are site
+/// s's pieces), in element order: the per-site sums are deterministic.
+struct SitePieces
+{
+  std::vector<std::int64_t> Offsets, Order;
+};
+
+SitePieces GroupPiecesBySite(const RestrictedVoronoiDiagram& rvd, std::size_t ns)
+{
+  const std::size_t np = rvd.NumPieces();
+  SitePieces g;
+  g.Offsets.assign(ns + 1, 0);
+  for (std::size_t p = 0; p < np; ++p)
+    ++g.Offsets[rvd.PieceSite[p] + 1];
+  for (std::size_t s = 0; s < ns; ++s)
+    g.Offsets[s + 1] += g.Offsets[s];
+  g.Order.resize(np);
+  std::vector<std::int64_t> fill(g.Offsets.begin(), g.Offsets.end() - 1);
+  for (std::size_t p = 0; p < np; ++p)
+    g.Order[fill[rvd.PieceSite[p]]++] = static_cast<std::int64_t>(p);
+  return g;
+}
+
+/// Moments of one piece in its element's barycentric coordinates: signed lambda-space measure
+/// F, F times the mean of |E l - s|^2 (M) and the first moment C of the barycentrics.
+struct PieceMoments
+{
+  double F = 0.0, M = 0.0, C[4] = { 0, 0, 0, 0 };
+};
+
+/// The moments of piece p of `rvd` about `site` (ss = |site|^2), from the piece fanned into
+/// triangles / tetrahedra. lam: scratch for the barycentrics of the piece's vertices.
+PieceMoments FanPiece(const SimplexMesh& mesh, const Embedding& emb, const ElementData& d,
+  const RestrictedVoronoiDiagram& rvd, std::size_t p, const double* site, double ss,
+  std::vector<double>& lam)
+{
+  const int K = d.K, V = K + 1, Dim = d.Dim, A = d.Amb;
+  const std::size_t c = static_cast<std::size_t>(rvd.PieceElement[p]);
+  const std::int32_t* cv = mesh.Cell(c);
+  const std::int64_t v0 = rvd.PieceVertexOffsets[p], v1 = rvd.PieceVertexOffsets[p + 1];
+  lam.resize(static_cast<std::size_t>((v1 - v0) * V));
+  for (std::int64_t i = v0; i < v1; ++i)
+    ToBary(mesh, d, c, rvd.Points.data() + i * A, lam.data() + (i - v0) * V);
+  const double* G = d.Gram.data() + c * V * V;
+  double h[4] = { 0, 0, 0, 0 };
+  for (int i = 0; i < V; ++i)
+  {
+    const double* e = emb.At(cv[i]);
+    for (int k = 0; k < Dim; ++k)
+      h[i] += e[k] * site[k];
+  }
+  // quad(l) = |E l - s|^2 = l^T G l - 2 h^T l + |s|^2 (l need not sum to 1).
+  auto quad = [&](const double* l, double scale) {
+    double r2 = 0.0;
+    for (int a = 0; a < V; ++a)
+    {
+      double ga = 0.0;
+      for (int b = 0; b < V; ++b)
+        ga += G[a * V + b] * l[b];
+      r2 += l[a] * (ga - 2.0 * scale * h[a]);
+    }
+    return r2 + scale * scale * ss;
+  };
+  PieceMoments m;
+  auto addSimplex = [&](const double* a, const double* b, const double* cc, const double* dd) {
+    const double f = FanFraction(K, a, b, cc, dd);
+    const double* vs[4] = { a, b, cc, dd };
+    double sumL[4] = { 0, 0, 0, 0 }, q = 0.0;
+    for (int i = 0; i < V; ++i)
+    {
+      q += quad(vs[i], 1.0);
+      for (int j = 0; j < V; ++j)
+        sumL[j] += vs[i][j];
+    }
+    q += quad(sumL, static_cast<double>(V));
+    m.F += f;
+    m.M += f * q;
+    for (int j = 0; j < V; ++j)
+      m.C[j] += f * sumL[j] / V;
+  };
+  auto L = [&](std::int64_t id) { return lam.data() + (id - v0) * V; };
+  if (K == 2)
+  {
+    for (std::int64_t i = v0 + 1; i + 1 < v1; ++i)
+      addSimplex(L(v0), L(i), L(i + 1), nullptr);
+    return m;
+  }
+  const std::int64_t f0 = rvd.PieceFaceOffsets[p], f1 = rvd.PieceFaceOffsets[p + 1];
+  const double* apex = L(rvd.FaceVertices[rvd.FaceOffsets[f0]]);
+  for (std::int64_t f = f0; f < f1; ++f)
+  {
+    const std::int64_t a = rvd.FaceOffsets[f], b = rvd.FaceOffsets[f + 1];
+    for (std::int64_t i = a + 1; i + 1 < b; ++i)
+      addSimplex(apex, L(rvd.FaceVertices[a]), L(rvd.FaceVertices[i]),
+        L(rvd.FaceVertices[i + 1]));
+  }
+  return m;
+}
+
+/// Site s lies on a boundary facet of its element (barycentric 0 there).
+bool OnBoundary(const ElementData& d, const SiteSet& sites, std::size_t s)
+{
+  const int V = d.K + 1;
+  const std::uint8_t bm = d.Boundary[static_cast<std::size_t>(sites.CellIds[s])];
+  bool onBoundary = false;
+  for (int a = 0; a < V; ++a)
+    onBoundary = onBoundary || ((bm & (1 << a)) && sites.Bary[s * 4 + a] <= 1e-12);
+  return onBoundary;
+}
+
+/**
+ * Moves site s of `next` to the closest point of the centroid z on the embedded mesh: the
+ * candidate elements are those of its cell plus the site's own element, so the new site is
+ * never farther from the centroid than the old one (energy decreases). Returns the move.
+ */
+double ProjectCentroid(const SimplexMesh& mesh, const Embedding& emb, const ElementData& d,
+  const RestrictedVoronoiDiagram& rvd, const SitePieces& pieces, const SiteSet& sites,
+  std::size_t s, const std::vector<double>& z, SiteSet& next)
+{
+  const int V = d.K + 1, Dim = d.Dim;
+  double bestPhi = std::numeric_limits<double>::infinity(), bestLam[4] = { 0, 0, 0, 0 };
+  std::int32_t bestCell = sites.CellIds[s];
+  auto tryCell = [&](std::size_t c) {
+    double l[4] = { 0, 0, 0, 0 };
+    const double phi = ClosestOnElement(mesh, emb, d, c, z.data(), l);
+    if (phi < bestPhi)
+    {
+      bestPhi = phi;
+      bestCell = static_cast<std::int32_t>(c);
+      std::copy(l, l + 4, bestLam);
+    }
+  };
+  tryCell(static_cast<std::size_t>(sites.CellIds[s]));
+  for (std::int64_t o = pieces.Offsets[s]; o < pieces.Offsets[s + 1]; ++o)
+  {
+    const std::size_t c = static_cast<std::size_t>(rvd.PieceElement[pieces.Order[o]]);
+    if (c != static_cast<std::size_t>(sites.CellIds[s]))
+      tryCell(c);
+  }
+  const std::int32_t* cv = mesh.Cell(static_cast<std::size_t>(bestCell));
+  const double* site = sites.At(s);
+  double* out = next.Coords.data() + s * Dim;
+  double mv = 0.0;
+  for (int k = 0; k < Dim; ++k)
+  {
+    double x = 0.0;
+    for (int i = 0; i < V; ++i)
+      x += bestLam[i] * emb.At(cv[i])[k];
+    mv += (x - site[k]) * (x - site[k]);
+    out[k] = x;
+  }
+  next.CellIds[s] = bestCell;
+  for (int i = 0; i < 4; ++i)
+    next.Bary[s * 4 + i] = i < V ? bestLam[i] : 0.0;
+  return std::sqrt(mv);
+}
+
 /// One RVD + centroid pass: returns the CVT energy of `sites`; moves them when `next` is set.
 double LloydPass(const SimplexMesh& mesh, const Embedding& emb, const ElementData& d,
   const SiteSet& sites, SiteSet* next, double* meanMove, bool keepBoundary,
@@ -198,25 +357,16 @@ double LloydPass(const SimplexMesh& mesh, const Embedding& emb, const ElementDat
   vo.KeepEmbeddedPoints = false; // vertices are mapped through barycentrics instead
   const RestrictedVoronoiDiagram rvd = ComputeRestrictedVoronoi(mesh, emb, sites, vo);
 
-  const std::size_t ns = sites.NumSites(), np = rvd.NumPieces();
-  const int K = d.K, V = K + 1, Dim = d.Dim, A = d.Amb;
-  // Pieces grouped by site, in element order (deterministic sums).
-  std::vector<std::int64_t> off(ns + 1, 0);
-  for (std::size_t p = 0; p < np; ++p)
-    ++off[rvd.PieceSite[p] + 1];
-  for (std::size_t s = 0; s < ns; ++s)
-    off[s + 1] += off[s];
-  std::vector<std::int64_t> order(np), fill(off.begin(), off.end() - 1);
-  for (std::size_t p = 0; p < np; ++p)
-    order[fill[rvd.PieceSite[p]]++] = static_cast<std::int64_t>(p);
-
+  const std::size_t ns = sites.NumSites();
+  const int K = d.K, V = K + 1, Dim = d.Dim;
+  const SitePieces pieces = GroupPiecesBySite(rvd, ns);
   std::vector<double> siteEnergy(ns, 0.0), move(ns, 0.0);
   std::vector<char> fixed(ns, 0);
   if (next)
     *next = sites;
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, ns), [&](const auto& r) {
     std::vector<double> lam; // barycentrics of one piece's vertices
-    std::vector<double> z(Dim), bestZ(Dim);
+    std::vector<double> z(Dim);
     for (std::size_t s = r.begin(); s != r.end(); ++s)
     {
       const double* site = sites.At(s);
@@ -225,80 +375,21 @@ double LloydPass(const SimplexMesh& mesh, const Embedding& emb, const ElementDat
         ss += site[k] * site[k];
       std::fill(z.begin(), z.end(), 0.0);
       double wsum = 0.0, energy = 0.0;
-      for (std::int64_t o = off[s]; o < off[s + 1]; ++o)
+      for (std::int64_t o = pieces.Offsets[s]; o < pieces.Offsets[s + 1]; ++o)
       {
-        const std::size_t p = static_cast<std::size_t>(order[o]);
+        const std::size_t p = static_cast<std::size_t>(pieces.Order[o]);
         const std::size_t c = static_cast<std::size_t>(rvd.PieceElement[p]);
-        const std::int32_t* cv = mesh.Cell(c);
-        const std::int64_t v0 = rvd.PieceVertexOffsets[p], v1 = rvd.PieceVertexOffsets[p + 1];
-        lam.resize(static_cast<std::size_t>((v1 - v0) * V));
-        for (std::int64_t i = v0; i < v1; ++i)
-          ToBary(mesh, d, c, rvd.Points.data() + i * A, lam.data() + (i - v0) * V);
-        const double* G = d.Gram.data() + c * V * V;
-        double h[4] = { 0, 0, 0, 0 };
-        for (int i = 0; i < V; ++i)
-        {
-          const double* e = emb.At(cv[i]);
-          for (int k = 0; k < Dim; ++k)
-            h[i] += e[k] * site[k];
-        }
-        // quad(l) = |E l - s|^2 = l^T G l - 2 h^T l + |s|^2 (l need not sum to 1).
-        auto quad = [&](const double* l, double scale) {
-          double r2 = 0.0;
-          for (int a = 0; a < V; ++a)
-          {
-            double ga = 0.0;
-            for (int b = 0; b < V; ++b)
-              ga += G[a * V + b] * l[b];
-            r2 += l[a] * (ga - 2.0 * scale * h[a]);
-          }
-          return r2 + scale * scale * ss;
-        };
-        double F = 0.0, M = 0.0, C[4] = { 0, 0, 0, 0 };
-        auto addSimplex = [&](const double* a, const double* b, const double* cc,
-                            const double* dd) {
-          const double f = FanFraction(K, a, b, cc, dd);
-          const double* vs[4] = { a, b, cc, dd };
-          double sumL[4] = { 0, 0, 0, 0 }, q = 0.0;
-          for (int i = 0; i < V; ++i)
-          {
-            q += quad(vs[i], 1.0);
-            for (int j = 0; j < V; ++j)
-              sumL[j] += vs[i][j];
-          }
-          q += quad(sumL, static_cast<double>(V));
-          F += f;
-          M += f * q;
-          for (int j = 0; j < V; ++j)
-            C[j] += f * sumL[j] / V;
-        };
-        auto L = [&](std::int64_t id) { return lam.data() + (id - v0) * V; };
-        if (K == 2)
-        {
-          for (std::int64_t i = v0 + 1; i + 1 < v1; ++i)
-            addSimplex(L(v0), L(i), L(i + 1), nullptr);
-        }
-        else
-        {
-          const std::int64_t f0 = rvd.PieceFaceOffsets[p], f1 = rvd.PieceFaceOffsets[p + 1];
-          const double* apex = L(rvd.FaceVertices[rvd.FaceOffsets[f0]]);
-          for (std::int64_t f = f0; f < f1; ++f)
-          {
-            const std::int64_t a = rvd.FaceOffsets[f], b = rvd.FaceOffsets[f + 1];
-            for (std::int64_t i = a + 1; i + 1 < b; ++i)
-              addSimplex(apex, L(rvd.FaceVertices[a]), L(rvd.FaceVertices[i]),
-                L(rvd.FaceVertices[i + 1]));
-          }
-        }
-        if (F == 0.0)
+        const PieceMoments m = FanPiece(mesh, emb, d, rvd, p, site, ss, lam);
+        if (m.F == 0.0)
           continue;
-        const double sign = F < 0.0 ? -1.0 : 1.0;
-        const double w = sign * F * d.Measure[c];
-        energy += sign * M * d.Measure[c] / ((K + 1) * (K + 2));
+        const double sign = m.F < 0.0 ? -1.0 : 1.0;
+        const double w = sign * m.F * d.Measure[c];
+        energy += sign * m.M * d.Measure[c] / ((K + 1) * (K + 2));
         // Embedded centroid of the piece: E (C / F), weighted by its embedded measure.
+        const std::int32_t* cv = mesh.Cell(c);
         for (int i = 0; i < V; ++i)
         {
-          const double coef = w * C[i] / F;
+          const double coef = w * m.C[i] / m.F;
           const double* e = emb.At(cv[i]);
           for (int k = 0; k < Dim; ++k)
             z[k] += coef * e[k];
@@ -310,53 +401,12 @@ double LloydPass(const SimplexMesh& mesh, const Embedding& emb, const ElementDat
         continue;
       for (int k = 0; k < Dim; ++k)
         z[k] /= wsum;
-      // Project: candidate elements are those of the cell plus the site's own element, so
-      // the new site is never farther from the centroid than the old one (energy decreases).
-      double bestPhi = std::numeric_limits<double>::infinity(), bestLam[4] = { 0, 0, 0, 0 };
-      std::int32_t bestCell = sites.CellIds[s];
-      bool onBoundary = false;
+      if (keepBoundary && OnBoundary(d, sites, s))
       {
-        const std::uint8_t bm = d.Boundary[static_cast<std::size_t>(bestCell)];
-        for (int a = 0; a < V; ++a)
-          onBoundary = onBoundary || ((bm & (1 << a)) && sites.Bary[s * 4 + a] <= 1e-12);
-      }
-      if (onBoundary && keepBoundary)
-      {
-        fixed[s] = 1;
+        fixed[s] = 1; // stays: keeps the boundary layer that the particle sampler built
         continue;
-      } // stays: keeps the boundary layer that the particle sampler built
-      auto tryCell = [&](std::size_t c) {
-        double l[4] = { 0, 0, 0, 0 };
-        const double phi = ClosestOnElement(mesh, emb, d, c, z.data(), l);
-        if (phi < bestPhi)
-        {
-          bestPhi = phi;
-          bestCell = static_cast<std::int32_t>(c);
-          std::copy(l, l + 4, bestLam);
-        }
-      };
-      tryCell(static_cast<std::size_t>(sites.CellIds[s]));
-      for (std::int64_t o = off[s]; o < off[s + 1]; ++o)
-      {
-        const std::size_t c = static_cast<std::size_t>(rvd.PieceElement[order[o]]);
-        if (c != static_cast<std::size_t>(sites.CellIds[s]))
-          tryCell(c);
       }
-      const std::int32_t* cv = mesh.Cell(static_cast<std::size_t>(bestCell));
-      double* out = next->Coords.data() + s * Dim;
-      double mv = 0.0;
-      for (int k = 0; k < Dim; ++k)
-      {
-        double x = 0.0;
-        for (int i = 0; i < V; ++i)
-          x += bestLam[i] * emb.At(cv[i])[k];
-        mv += (x - site[k]) * (x - site[k]);
-        out[k] = x;
-      }
-      move[s] = std::sqrt(mv);
-      next->CellIds[s] = bestCell;
-      for (int i = 0; i < 4; ++i)
-        next->Bary[s * 4 + i] = i < V ? bestLam[i] : 0.0;
+      move[s] = ProjectCentroid(mesh, emb, d, rvd, pieces, sites, s, z, *next);
     }
   });
   double total = 0.0, mv = 0.0;
@@ -376,7 +426,7 @@ double LloydPass(const SimplexMesh& mesh, const Embedding& emb, const ElementDat
 LloydResult RelaxSitesLloyd(const SimplexMesh& mesh, const Embedding& embedding,
   const SiteSet& sites, int iterations, bool keepBoundarySites)
 {
-  const auto t0 = std::chrono::steady_clock::now();
+  const Stopwatch clock;
   if (iterations < 0)
   {
     throw InputError("RelaxSitesLloyd: the number of Lloyd iterations must be >= 0, got " +
@@ -399,7 +449,7 @@ LloydResult RelaxSitesLloyd(const SimplexMesh& mesh, const Embedding& embedding,
       ++r.IterationsDone;
     }
   }
-  r.Seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  r.Seconds = clock.Seconds();
   return r;
 }
 

@@ -19,7 +19,7 @@ struct ParticleSamplerOptions
 {
   std::size_t NumSites = 1000;   ///< number of particles n, 1 .. 8 * NumPoints
   /// L-BFGS iterations at KernelWidthFactor, >= 0 (the paper: 50; 150 after the warm-up is
-  /// a better mesh within cube2's 2 s meshing budget, see sampling.md).
+  /// a better mesh within cube2's 2 s meshing budget, see Filters/Sampling/README.md).
   int Iterations = 150;
   std::uint64_t Seed = 1;        ///< seeds the initial sampling; same seed -> same output
   double KernelWidthFactor = 0.3; ///< sigma = factor * (|embedded mesh| / n)^{1/k}
@@ -28,7 +28,7 @@ struct ParticleSamplerOptions
   int MaxThreads = 0;            ///< 0: all cores; the result does not depend on it
   /// Iterations at WarmupKernelWidthFactor before the Iterations at KernelWidthFactor (not
   /// in the paper: the narrower kernel evens out the spacing faster, and these iterations
-  /// improve the mesh more than the paper-kernel ones; see sampling.md), >= 0.
+  /// improve the mesh more than the paper-kernel ones; see Filters/Sampling/README.md), >= 0.
   int WarmupIterations = 100;
   double WarmupKernelWidthFactor = 0.25; ///< sigma factor of the warm-up iterations
   /// Initial sites drawn by jittered stratification along a Morton order of the cells

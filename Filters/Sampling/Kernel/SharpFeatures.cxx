@@ -1,3 +1,6 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SharpFeatures: feature lines by the dihedral-angle test on boundary triangles (tets) or cells
+// (triangles), corners where the lines meet or turn.
 #include "SharpFeatures.h"
 
 #include "MeshTopology.h"
@@ -65,75 +68,80 @@ void Validate(const SimplexMesh& mesh, double angle)
       throw InputError("sharp features: cell point id " + std::to_string(id) + " out of range");
 }
 
-} // namespace
-
-SharpFeatures DetectSharpFeatures(const SimplexMesh& mesh, double featureAngleDegrees)
+/// Mesh edges with the owners whose normals are compared: boundary triangles (tets) or cells
+/// (triangles), with a unit normal and a cell containing each owner.
+struct OwnedEdges
 {
-  Validate(mesh, featureAngleDegrees);
-  SharpFeatures out;
-  const std::size_t np = mesh.NumPoints(), nc = mesh.NumCells();
-  out.IsCorner.assign(np, 0);
-  out.PointEdgeOffsets.assign(np + 1, 0);
-  if (featureAngleDegrees >= 180.0)
-    return out;
-  const double cosLimit = std::cos(featureAngleDegrees * kPi / 180.0);
+  std::vector<EdgeRecord> Edges;
+  std::vector<Eigen::Vector3d> Normals; // per owner
+  std::vector<std::int32_t> OwnerCell;  // per owner: a cell containing it
+};
 
-  std::vector<EdgeRecord> edges;    // edges with the owners whose normals are compared
-  std::vector<Eigen::Vector3d> normals; // per owner
-  std::vector<std::int32_t> ownerCell;  // per owner: a cell containing it
-  if (mesh.SimplexDim == 3)
+Eigen::Vector3d UnitOrZero(const Eigen::Vector3d& n)
+{
+  const double len = n.norm();
+  return len > 0.0 ? Eigen::Vector3d(n / len) : Eigen::Vector3d::Zero();
+}
+
+/// Tets: the boundary triangles (no neighbor across them), with outward normals.
+void CollectBoundaryTriangles(const SimplexMesh& mesh, OwnedEdges& out)
+{
+  const std::vector<std::int32_t> adjacency = ComputeElementAdjacency(mesh);
+  for (std::size_t c = 0; c < mesh.NumCells(); ++c)
   {
-    // Boundary triangles (no neighbour across them), with outward normals.
-    const std::vector<std::int32_t> adjacency = ComputeElementAdjacency(mesh);
-    for (std::size_t c = 0; c < nc; ++c)
+    const std::int32_t* ids = mesh.Cell(c);
+    for (int i = 0; i < 4; ++i)
     {
-      const std::int32_t* ids = mesh.Cell(c);
-      for (int i = 0; i < 4; ++i)
-      {
-        if (adjacency[4 * c + static_cast<std::size_t>(i)] >= 0)
-          continue;
-        std::array<std::int32_t, 3> f;
-        int q = 0;
-        for (int j = 0; j < 4; ++j)
-          if (j != i)
-            f[static_cast<std::size_t>(q++)] = ids[j];
-        const Eigen::Vector3d a = PointAt(mesh, f[0]), b = PointAt(mesh, f[1]), d = PointAt(mesh, f[2]);
-        Eigen::Vector3d n = (b - a).cross(d - a);
-        if (n.dot(PointAt(mesh, ids[i]) - a) > 0.0)
-          n = -n;
-        const double len = n.norm();
-        const auto owner = static_cast<std::int32_t>(normals.size());
-        normals.push_back(len > 0.0 ? Eigen::Vector3d(n / len) : Eigen::Vector3d::Zero());
-        ownerCell.push_back(static_cast<std::int32_t>(c));
-        edges.push_back(MakeEdge(f[0], f[1], owner));
-        edges.push_back(MakeEdge(f[1], f[2], owner));
-        edges.push_back(MakeEdge(f[0], f[2], owner));
-      }
+      if (adjacency[4 * c + static_cast<std::size_t>(i)] >= 0)
+        continue;
+      std::array<std::int32_t, 3> f;
+      int q = 0;
+      for (int j = 0; j < 4; ++j)
+        if (j != i)
+          f[static_cast<std::size_t>(q++)] = ids[j];
+      const Eigen::Vector3d a = PointAt(mesh, f[0]), b = PointAt(mesh, f[1]), d = PointAt(mesh, f[2]);
+      Eigen::Vector3d n = (b - a).cross(d - a);
+      if (n.dot(PointAt(mesh, ids[i]) - a) > 0.0)
+        n = -n;
+      const auto owner = static_cast<std::int32_t>(out.Normals.size());
+      out.Normals.push_back(UnitOrZero(n));
+      out.OwnerCell.push_back(static_cast<std::int32_t>(c));
+      out.Edges.push_back(MakeEdge(f[0], f[1], owner));
+      out.Edges.push_back(MakeEdge(f[1], f[2], owner));
+      out.Edges.push_back(MakeEdge(f[0], f[2], owner));
     }
   }
-  else
-  {
-    for (std::size_t c = 0; c < nc; ++c)
-    {
-      const std::int32_t* ids = mesh.Cell(c);
-      const Eigen::Vector3d a = PointAt(mesh, ids[0]), b = PointAt(mesh, ids[1]),
-                            d = PointAt(mesh, ids[2]);
-      const Eigen::Vector3d n = (b - a).cross(d - a);
-      const double len = n.norm();
-      normals.push_back(len > 0.0 ? Eigen::Vector3d(n / len) : Eigen::Vector3d::Zero());
-      ownerCell.push_back(static_cast<std::int32_t>(c));
-      for (int i = 0; i < 3; ++i)
-        edges.push_back(MakeEdge(ids[i], ids[(i + 1) % 3], static_cast<std::int32_t>(c)));
-    }
-  }
-  std::sort(edges.begin(), edges.end());
+}
 
-  // Lines: feature edges, plus (triangle meshes) boundary edges, which only count for corners.
-  struct Line
+/// Triangles: every cell with its normal (its vertex order's).
+void CollectTriangles(const SimplexMesh& mesh, OwnedEdges& out)
+{
+  for (std::size_t c = 0; c < mesh.NumCells(); ++c)
   {
-    std::int32_t A, B, Owner;
-    bool Feature;
-  };
+    const std::int32_t* ids = mesh.Cell(c);
+    const Eigen::Vector3d a = PointAt(mesh, ids[0]), b = PointAt(mesh, ids[1]),
+                          d = PointAt(mesh, ids[2]);
+    out.Normals.push_back(UnitOrZero((b - a).cross(d - a)));
+    out.OwnerCell.push_back(static_cast<std::int32_t>(c));
+    for (int i = 0; i < 3; ++i)
+      out.Edges.push_back(MakeEdge(ids[i], ids[(i + 1) % 3], static_cast<std::int32_t>(c)));
+  }
+}
+
+/// A line of the feature graph: a feature edge, or (triangle meshes) a boundary edge, which
+/// only counts for the corners.
+struct Line
+{
+  std::int32_t A, B, Owner;
+  bool Feature;
+};
+
+/// The lines among the sorted owned edges: edges whose owners' normals differ by more than the
+/// angle (cos below cosLimit), non-manifold edges, and (triangles) the boundary edges.
+std::vector<Line> FindLines(const SimplexMesh& mesh, const OwnedEdges& owned, double cosLimit)
+{
+  const std::vector<EdgeRecord>& edges = owned.Edges;
+  const std::vector<Eigen::Vector3d>& normals = owned.Normals;
   std::vector<Line> lines;
   for (std::size_t i = 0; i < edges.size();)
   {
@@ -161,7 +169,7 @@ SharpFeatures DetectSharpFeatures(const SimplexMesh& mesh, double featureAngleDe
       bool sharp = count > 2;
       if (count == 2)
       {
-        // Consistently oriented neighbours traverse the edge in opposite directions.
+        // Consistently oriented neighbors traverse the edge in opposite directions.
         const Eigen::Vector3d n0 = normals[static_cast<std::size_t>(e.Owner)];
         Eigen::Vector3d n1 = normals[static_cast<std::size_t>(edges[i + 1].Owner)];
         if (edges[i + 1].Forward == e.Forward)
@@ -173,8 +181,15 @@ SharpFeatures DetectSharpFeatures(const SimplexMesh& mesh, double featureAngleDe
     }
     i = j;
   }
+  return lines;
+}
 
-  // Corners: line degree other than 2, or a turn sharper than the feature angle.
+/// Corners: line degree other than 2, or a turn sharper than the feature angle. Fills
+/// IsCorner and the corners with a cell containing each (the first cell listing it).
+void FindCorners(const SimplexMesh& mesh, const std::vector<Line>& lines, double cosLimit,
+  SharpFeatures& out)
+{
+  const std::size_t np = mesh.NumPoints(), nc = mesh.NumCells();
   std::vector<std::int32_t> degree(np, 0);
   std::vector<std::array<std::int32_t, 2>> ends(np, { -1, -1 });
   for (const Line& l : lines)
@@ -200,8 +215,6 @@ SharpFeatures DetectSharpFeatures(const SimplexMesh& mesh, double featureAngleDe
     }
     out.IsCorner[p] = corner ? 1 : 0;
   }
-
-  // Cells containing each corner: the first cell listing it.
   std::vector<std::int32_t> firstCell(np, -1);
   for (std::size_t c = nc; c-- > 0;)
     for (int j = 0; j < mesh.VerticesPerCell(); ++j)
@@ -214,7 +227,14 @@ SharpFeatures DetectSharpFeatures(const SimplexMesh& mesh, double featureAngleDe
       out.CornerLocal.push_back(LocalIndex(mesh, static_cast<std::size_t>(firstCell[p]),
         static_cast<std::int32_t>(p)));
     }
+}
 
+/// The feature edges of `lines` with a cell containing each (its owner's) and the CSR map
+/// point -> incident feature edges.
+void AddFeatureEdges(const SimplexMesh& mesh, const std::vector<Line>& lines,
+  const std::vector<std::int32_t>& ownerCell, SharpFeatures& out)
+{
+  const std::size_t np = mesh.NumPoints();
   for (const Line& l : lines)
   {
     if (!l.Feature)
@@ -239,6 +259,29 @@ SharpFeatures DetectSharpFeatures(const SimplexMesh& mesh, double featureAngleDe
     for (int s = 0; s < 2; ++s)
       out.PointEdges[static_cast<std::size_t>(fill[static_cast<std::size_t>(out.Edges[2 * e + s])]++)] =
         static_cast<std::int32_t>(e);
+}
+
+} // namespace
+
+SharpFeatures DetectSharpFeatures(const SimplexMesh& mesh, double featureAngleDegrees)
+{
+  Validate(mesh, featureAngleDegrees);
+  SharpFeatures out;
+  const std::size_t np = mesh.NumPoints();
+  out.IsCorner.assign(np, 0);
+  out.PointEdgeOffsets.assign(np + 1, 0);
+  if (featureAngleDegrees >= 180.0)
+    return out;
+  const double cosLimit = std::cos(featureAngleDegrees * kPi / 180.0);
+  OwnedEdges owned;
+  if (mesh.SimplexDim == 3)
+    CollectBoundaryTriangles(mesh, owned);
+  else
+    CollectTriangles(mesh, owned);
+  std::sort(owned.Edges.begin(), owned.Edges.end());
+  const std::vector<Line> lines = FindLines(mesh, owned, cosLimit);
+  FindCorners(mesh, lines, cosLimit, out);
+  AddFeatureEdges(mesh, lines, owned.OwnerCell, out);
   return out;
 }
 

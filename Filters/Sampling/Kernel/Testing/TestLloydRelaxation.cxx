@@ -5,6 +5,7 @@
 #include "ParticleSampler.h"
 #include "StructuredMeshes.h"
 #include "AnisoTestChecks.h"
+#include "SiteSpacing.h"
 
 #include <Eigen/Dense>
 
@@ -75,24 +76,7 @@ av::SiteSet SitesAt(const av::SimplexMesh& mesh, const av::Embedding& emb,
 
 double NearestNeighbourCV(const av::SiteSet& s)
 {
-  const std::size_t n = s.NumSites();
-  std::vector<double> nn(n, std::numeric_limits<double>::infinity());
-  for (std::size_t p = 0; p < n; ++p)
-    for (std::size_t q = 0; q < n; ++q)
-      if (p != q)
-      {
-        double d2 = 0.0;
-        for (int d = 0; d < s.Dim; ++d)
-          d2 += (s.At(p)[d] - s.At(q)[d]) * (s.At(p)[d] - s.At(q)[d]);
-        nn[p] = std::min(nn[p], std::sqrt(d2));
-      }
-  double m = 0.0, m2 = 0.0;
-  for (double x : nn)
-    m += x;
-  m /= static_cast<double>(n);
-  for (double x : nn)
-    m2 += (x - m) * (x - m);
-  return std::sqrt(m2 / static_cast<double>(n)) / m;
+  return av_test::CoefficientOfVariation(av_test::NearestDistances(s, s.Dim));
 }
 
 /// Every site: valid cell, barycentrics >= 0 summing to 1, coords = their combination.
