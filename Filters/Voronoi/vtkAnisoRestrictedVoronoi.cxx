@@ -1,10 +1,17 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// vtkAnisoRestrictedVoronoi: converts the inputs, runs the RVD and cell kernels
+// (RestrictedVoronoi, RestrictedVoronoiCells) and turns the cells into VTK data sets.
 #include "vtkAnisoRestrictedVoronoi.h"
 
 #include "RestrictedVoronoi.h"
+#include "RestrictedVoronoiCells.h"
+#include "Stopwatch.h"
 #include "vtkAnisoDataConversion.h"
+#include "vtkAnisoFilterUtilities.h"
 
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
+#include <vtkCellType.h>
 #include <vtkDataSet.h>
 #include <vtkDoubleArray.h>
 #include <vtkFieldData.h>
@@ -12,237 +19,121 @@
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
 #include <vtkIntArray.h>
+#include <vtkNew.h>
 #include <vtkObjectFactory.h>
-#include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
+#include <vtkSmartPointer.h>
 #include <vtkUnsignedCharArray.h>
 #include <vtkUnstructuredGrid.h>
 
 #include <algorithm>
-#include <array>
-#include <chrono>
 #include <cmath>
+#include <string>
 #include <vector>
 
 vtkStandardNewMacro(vtkAnisoRestrictedVoronoi);
 
 namespace
 {
-void AddFieldValue(vtkFieldData* fd, const char* name, double value)
+/// A named cell-data array from per-cell (or per-face) values.
+template <class ArrayT, class T>
+void AddCellArray(vtkDataSet* ds, const char* name, const std::vector<T>& values)
 {
-  vtkNew<vtkDoubleArray> a;
+  vtkNew<ArrayT> a;
   a->SetName(name);
-  a->InsertNextValue(value);
-  fd->AddArray(a);
+  a->SetNumberOfTuples(static_cast<vtkIdType>(values.size()));
+  for (std::size_t i = 0; i < values.size(); ++i)
+    a->SetValue(static_cast<vtkIdType>(i), static_cast<typename ArrayT::ValueType>(values[i]));
+  ds->GetCellData()->AddArray(a);
 }
 
-/// Signed input-space measure (times k!) of cell c: only meaningful for flat 2D and tets.
-double SignedMeasure(const av::SimplexMesh& mesh, std::size_t c)
+/// The cells' points (shared by both outputs).
+vtkSmartPointer<vtkPoints> MakePoints(const av::RestrictedVoronoiCells& cells)
 {
-  const std::int32_t* v = mesh.Cell(c);
-  const int m = mesh.AmbientDim;
-  if (mesh.SimplexDim == 3)
-  {
-    double e[3][3];
-    for (int a = 0; a < 3; ++a)
-      for (int d = 0; d < 3; ++d)
-        e[a][d] = mesh.Point(v[a + 1])[d] - mesh.Point(v[0])[d];
-    return e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) -
-      e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) +
-      e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0]);
-  }
-  if (m == 2)
-  {
-    const double* p0 = mesh.Point(v[0]);
-    const double* p1 = mesh.Point(v[1]);
-    const double* p2 = mesh.Point(v[2]);
-    return (p1[0] - p0[0]) * (p2[1] - p0[1]) - (p1[1] - p0[1]) * (p2[0] - p0[0]);
-  }
-  // Surface triangle: unsigned area (times 2).
-  const double* p0 = mesh.Point(v[0]);
-  const double* p1 = mesh.Point(v[1]);
-  const double* p2 = mesh.Point(v[2]);
-  const double a[3] = { p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2] };
-  const double b[3] = { p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2] };
-  const double c3[3] = {
-    a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]
-  };
-  return std::sqrt(c3[0] * c3[0] + c3[1] * c3[1] + c3[2] * c3[2]);
+  auto points = vtkSmartPointer<vtkPoints>::New();
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(static_cast<vtkIdType>(cells.NumPoints()));
+  std::copy(cells.Points.begin(), cells.Points.end(),
+    static_cast<vtkDoubleArray*>(points->GetData())->GetPointer(0));
+  return points;
 }
 
-using VertexKey = std::array<std::int32_t, 8>;
-
-/// Symbolic identity of an RVD vertex across the elements of one site's cell: the bisector
-/// sites and the global mesh vertices of the sub-simplex (intersection of its facet planes).
-VertexKey MakeKey(const std::int32_t* planes, int k, const std::int32_t* cell)
+/// Output 0: VTK_POLYHEDRON (3D, with their face streams) or VTK_POLYGON (2D) cells with SiteId, Measure,
+/// EmbeddedMeasure, ElementId.
+void FillCellOutput(const av::RestrictedVoronoiCells& cells, vtkPoints* points, vtkUnstructuredGrid* output)
 {
-  VertexKey key;
-  key.fill(-1);
-  std::array<std::int32_t, 4> bis{};
-  int nb = 0;
-  bool onFacet[4] = { false, false, false, false };
-  for (int a = 0; a < k; ++a)
+  const bool volume = cells.SimplexDim == 3;
+  const std::size_t nc = cells.NumCells();
+  vtkNew<vtkCellArray> cellArray;
+  vtkNew<vtkIdTypeArray> faceStream, faceLocations;
+  vtkNew<vtkUnsignedCharArray> types;
+  types->SetNumberOfTuples(static_cast<vtkIdType>(nc));
+  std::vector<vtkIdType> ids;
+  for (std::size_t c = 0; c < nc; ++c)
   {
-    if (planes[a] >= 0)
-      bis[nb++] = planes[a];
-    else
-      onFacet[-planes[a] - 1] = true;
-  }
-  std::sort(bis.begin(), bis.begin() + nb);
-  std::array<std::int32_t, 4> verts{};
-  int nvtx = 0;
-  for (int a = 0; a <= k; ++a)
-    if (!onFacet[a])
-      verts[nvtx++] = cell[a];
-  std::sort(verts.begin(), verts.begin() + nvtx);
-  int n = 0;
-  key[n++] = nb;
-  for (int i = 0; i < nb; ++i)
-    key[n++] = bis[i];
-  for (int i = 0; i < nvtx; ++i)
-    key[n++] = verts[i];
-  return key;
-}
-
-/// Accumulates the output cells and their faces (points never shared between cells).
-struct OutputBuilder
-{
-  int K = 3;
-  double Shrink = 1.0;
-  vtkNew<vtkPoints> Points;
-  vtkNew<vtkCellArray> Cells;
-  vtkNew<vtkIdTypeArray> FaceStream; // polyhedra only
-  vtkNew<vtkIdTypeArray> FaceLocations;
-  std::vector<unsigned char> Types;
-  vtkNew<vtkIntArray> SiteId, ElementId;
-  vtkNew<vtkDoubleArray> Measure, EmbeddedMeasure;
-  vtkNew<vtkCellArray> FacePolys; // faces (3D) or edges (2D) of every cell
-  vtkNew<vtkIntArray> FaceSite, FaceKind, FaceNeighbor;
-
-  // Scratch of the current cell: local points and faces (local ids).
-  std::vector<std::array<double, 3>> P, Q;
-  std::vector<vtkIdType> FaceIds; // concatenated
-  std::vector<int> FaceSizes, Kinds, Neighbors;
-  std::vector<vtkIdType> Loop; // 2D polygon loop (local ids)
-  std::vector<vtkIdType> Ids, Remap;
-
-  OutputBuilder()
-  {
-    this->Points->SetDataTypeToDouble();
-    this->SiteId->SetName("SiteId");
-    this->ElementId->SetName("ElementId");
-    this->Measure->SetName("Measure");
-    this->EmbeddedMeasure->SetName("EmbeddedMeasure");
-    this->FaceSite->SetName("SiteId");
-    this->FaceKind->SetName("FaceKind");
-    this->FaceNeighbor->SetName("NeighborSiteId");
-  }
-
-  void Begin()
-  {
-    this->P.clear();
-    this->FaceIds.clear();
-    this->FaceSizes.clear();
-    this->Kinds.clear();
-    this->Neighbors.clear();
-    this->Loop.clear();
-  }
-
-  void AddFace(const vtkIdType* ids, int n, av::RVDFaceKind kind, std::int32_t nbr)
-  {
-    this->FaceIds.insert(this->FaceIds.end(), ids, ids + n);
-    this->FaceSizes.push_back(n);
-    this->Kinds.push_back(static_cast<int>(kind));
-    this->Neighbors.push_back(kind == av::RVDFaceKind::Bisector ? nbr : -1);
-  }
-
-  /// Drops the points no kept face uses (mesh vertices inside a merged cell, or points only on
-  /// dropped element faces) and renumbers faces and loop.
-  void Compact()
-  {
-    std::vector<vtkIdType>& remap = this->Remap;
-    remap.assign(this->P.size(), -1);
-    this->Q.clear();
-    for (vtkIdType& id : this->FaceIds)
+    if (volume)
     {
-      if (remap[id] < 0)
+      ids.clear();
+      for (std::int64_t i = cells.CellPointOffsets[c]; i < cells.CellPointOffsets[c + 1]; ++i)
+        ids.push_back(i);
+      cellArray->InsertNextCell(static_cast<vtkIdType>(ids.size()), ids.data());
+      faceLocations->InsertNextValue(faceStream->GetNumberOfTuples());
+      const std::int64_t f0 = cells.CellFaceOffsets[c], f1 = cells.CellFaceOffsets[c + 1];
+      faceStream->InsertNextValue(f1 - f0);
+      for (std::int64_t f = f0; f < f1; ++f)
       {
-        remap[id] = static_cast<vtkIdType>(this->Q.size());
-        this->Q.push_back(this->P[id]);
+        faceStream->InsertNextValue(cells.FaceOffsets[f + 1] - cells.FaceOffsets[f]);
+        for (std::int64_t i = cells.FaceOffsets[f]; i < cells.FaceOffsets[f + 1]; ++i)
+          faceStream->InsertNextValue(cells.FaceVertices[i]);
       }
-      id = remap[id];
-    }
-    for (vtkIdType& id : this->Loop)
-      id = remap[id];
-    this->P.swap(this->Q);
-  }
-
-  /// Emits the scratch cell: shrinks it about its vertex centroid, appends points and faces.
-  void End(int site, int element, double measure, double embMeasure)
-  {
-    this->Compact();
-    const std::size_t np = this->P.size();
-    if (np == 0 || this->FaceSizes.empty())
-      return;
-    double c[3] = { 0, 0, 0 };
-    for (const auto& p : this->P)
-      for (int d = 0; d < 3; ++d)
-        c[d] += p[d];
-    for (double& v : c)
-      v /= static_cast<double>(np);
-    const vtkIdType base = this->Points->GetNumberOfPoints();
-    for (const auto& p : this->P)
-      this->Points->InsertNextPoint(c[0] + this->Shrink * (p[0] - c[0]),
-        c[1] + this->Shrink * (p[1] - c[1]),
-        c[2] + this->Shrink * (p[2] - c[2]));
-    const double scale = std::pow(this->Shrink, this->K);
-    if (this->K == 3)
-    {
-      this->Ids.resize(np);
-      for (std::size_t i = 0; i < np; ++i)
-        this->Ids[i] = base + static_cast<vtkIdType>(i);
-      this->Cells->InsertNextCell(static_cast<vtkIdType>(np), this->Ids.data());
-      this->FaceLocations->InsertNextValue(this->FaceStream->GetNumberOfTuples());
-      this->FaceStream->InsertNextValue(static_cast<vtkIdType>(this->FaceSizes.size()));
-      std::size_t off = 0;
-      for (int n : this->FaceSizes)
-      {
-        this->FaceStream->InsertNextValue(n);
-        for (int t = 0; t < n; ++t)
-          this->FaceStream->InsertNextValue(base + this->FaceIds[off + t]);
-        off += n;
-      }
-      this->Types.push_back(VTK_POLYHEDRON);
+      types->SetValue(static_cast<vtkIdType>(c), VTK_POLYHEDRON);
     }
     else
     {
-      this->Ids.resize(this->Loop.size());
-      for (std::size_t i = 0; i < this->Loop.size(); ++i)
-        this->Ids[i] = base + this->Loop[i];
-      this->Cells->InsertNextCell(static_cast<vtkIdType>(this->Ids.size()), this->Ids.data());
-      this->FaceLocations->InsertNextValue(-1);
-      this->Types.push_back(VTK_POLYGON);
-    }
-    this->SiteId->InsertNextValue(site);
-    this->ElementId->InsertNextValue(element);
-    this->Measure->InsertNextValue(measure * scale);
-    this->EmbeddedMeasure->InsertNextValue(embMeasure * scale);
-    std::size_t off = 0;
-    for (std::size_t f = 0; f < this->FaceSizes.size(); ++f)
-    {
-      const int n = this->FaceSizes[f];
-      this->Ids.resize(n);
-      for (int t = 0; t < n; ++t)
-        this->Ids[t] = base + this->FaceIds[off + t];
-      off += n;
-      this->FacePolys->InsertNextCell(n, this->Ids.data());
-      this->FaceSite->InsertNextValue(site);
-      this->FaceKind->InsertNextValue(this->Kinds[f]);
-      this->FaceNeighbor->InsertNextValue(this->Neighbors[f]);
+      const std::int64_t l0 = cells.CellLoopOffsets[c], l1 = cells.CellLoopOffsets[c + 1];
+      ids.assign(cells.LoopPoints.begin() + l0, cells.LoopPoints.begin() + l1);
+      cellArray->InsertNextCell(static_cast<vtkIdType>(ids.size()), ids.data());
+      types->SetValue(static_cast<vtkIdType>(c), VTK_POLYGON);
     }
   }
-};
+  output->SetPoints(points);
+  if (volume)
+    output->SetCells(types, cellArray, faceLocations, faceStream);
+  else
+    output->SetCells(types, cellArray);
+  AddCellArray<vtkIntArray>(output, "SiteId", cells.CellSite);
+  output->GetCellData()->SetActiveScalars("SiteId");
+  AddCellArray<vtkDoubleArray>(output, "Measure", cells.CellMeasure);
+  AddCellArray<vtkDoubleArray>(output, "EmbeddedMeasure", cells.CellEmbeddedMeasure);
+  AddCellArray<vtkIntArray>(output, "ElementId", cells.CellElement);
+}
+
+/// Output 1: the faces (polygons) or edges (lines) of every cell with SiteId, FaceKind,
+/// NeighborSiteId.
+void FillFaceOutput(const av::RestrictedVoronoiCells& cells, vtkPoints* points, vtkPolyData* faces)
+{
+  vtkNew<vtkCellArray> polys;
+  std::vector<vtkIdType> ids;
+  std::vector<int> site(cells.NumFaces());
+  for (std::size_t c = 0; c < cells.NumCells(); ++c)
+    for (std::int64_t f = cells.CellFaceOffsets[c]; f < cells.CellFaceOffsets[c + 1]; ++f)
+    {
+      ids.assign(cells.FaceVertices.begin() + cells.FaceOffsets[f],
+        cells.FaceVertices.begin() + cells.FaceOffsets[f + 1]);
+      polys->InsertNextCell(static_cast<vtkIdType>(ids.size()), ids.data());
+      site[f] = cells.CellSite[c];
+    }
+  faces->SetPoints(points);
+  if (cells.SimplexDim == 3)
+    faces->SetPolys(polys);
+  else
+    faces->SetLines(polys);
+  AddCellArray<vtkIntArray>(faces, "SiteId", site);
+  AddCellArray<vtkIntArray>(faces, "FaceKind", cells.FaceKind);
+  faces->GetCellData()->SetActiveScalars("FaceKind");
+  AddCellArray<vtkIntArray>(faces, "NeighborSiteId", cells.FaceNeighbor);
+}
 } // namespace
 
 vtkAnisoRestrictedVoronoi::vtkAnisoRestrictedVoronoi()
@@ -290,7 +181,7 @@ int vtkAnisoRestrictedVoronoi::RequestData(vtkInformation* request,
   {
     return 1; // empty in, empty out
   }
-  const auto start = std::chrono::steady_clock::now();
+  const av::Stopwatch filterTime;
 
   av::SimplexMesh mesh;
   av::Embedding embedding;
@@ -320,22 +211,13 @@ int vtkAnisoRestrictedVoronoi::RequestData(vtkInformation* request,
   options.ElementEnd = numberOfElements * (piece + 1) / numberOfPieces;
   av::RestrictedVoronoiDiagram rvd;
   double kernelSeconds = 0.0;
-  try
+  if (!vtkAnisoFilterUtilities::RunKernel(this, "restricted Voronoi diagram", [&] {
+        av::ValidateRestrictedVoronoiInput(mesh, embedding, sites);
+        const av::Stopwatch kernelTime;
+        rvd = av::ComputeRestrictedVoronoi(mesh, embedding, sites, options);
+        kernelSeconds = kernelTime.Seconds();
+      }))
   {
-    av::ValidateRestrictedVoronoiInput(mesh, embedding, sites);
-    const auto kernelStart = std::chrono::steady_clock::now();
-    rvd = av::ComputeRestrictedVoronoi(mesh, embedding, sites, options);
-    kernelSeconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - kernelStart).count();
-  }
-  catch (const av::InputError& e)
-  {
-    vtkErrorMacro(<< e.what());
-    return 0;
-  }
-  catch (const std::exception& e)
-  {
-    vtkErrorMacro("restricted Voronoi diagram failed: " << e.what());
     return 0;
   }
   if (this->GetAbortExecute())
@@ -344,198 +226,30 @@ int vtkAnisoRestrictedVoronoi::RequestData(vtkInformation* request,
   }
   this->UpdateProgress(0.6);
 
-  const int K = mesh.SimplexDim, adim = mesh.AmbientDim;
-  const bool orientable = K == 3 || adim == 2;
-  std::vector<unsigned char> flip(mesh.NumCells(), 0);
-  double domain = 0.0;
-  for (std::size_t c = 0; c < mesh.NumCells(); ++c)
+  av::RestrictedVoronoiCellOptions cellOptions;
+  cellOptions.MergeBySite = this->MergeBySite;
+  cellOptions.ShrinkFactor = this->ShrinkFactor;
+  cellOptions.Abort = [this] { return this->GetAbortExecute() != 0; };
+  av::RestrictedVoronoiCells cells;
+  if (!vtkAnisoFilterUtilities::RunKernel(this, "restricted Voronoi cells",
+        [&] { cells = av::BuildRestrictedVoronoiCells(mesh, rvd, cellOptions); }))
   {
-    const double s = SignedMeasure(mesh, c);
-    flip[c] = orientable && s < 0;
-    domain += std::abs(s) / (K == 3 ? 6.0 : 2.0);
-  }
-
-  OutputBuilder out;
-  out.K = K;
-  out.Shrink = this->ShrinkFactor;
-  auto point = [&](std::int64_t v)
-  {
-    const double* x = rvd.Points.data() + v * adim;
-    return std::array<double, 3>{ x[0], x[1], adim == 3 ? x[2] : 0.0 };
-  };
-
-  std::vector<vtkIdType> pieceIds;
-  // Emits piece p on its own (MergeBySite off, or a 2D cell that is not one simple loop).
-  auto emitPiece = [&](std::size_t p)
-  {
-    out.Begin();
-    const std::int64_t v0 = rvd.PieceVertexOffsets[p], v1 = rvd.PieceVertexOffsets[p + 1];
-    const bool f = flip[rvd.PieceElement[p]];
-    for (std::int64_t v = v0; v < v1; ++v)
-      out.P.push_back(point(v));
-    if (K == 2)
-    {
-      for (std::int64_t v = v0; v < v1; ++v)
-        out.Loop.push_back(f ? v1 - 1 - v : v - v0);
-    }
-    std::vector<vtkIdType>& ids = pieceIds;
-    for (std::int64_t fc = rvd.PieceFaceOffsets[p]; fc < rvd.PieceFaceOffsets[p + 1]; ++fc)
-    {
-      ids.clear();
-      for (std::int64_t i = rvd.FaceOffsets[fc]; i < rvd.FaceOffsets[fc + 1]; ++i)
-        ids.push_back(rvd.FaceVertices[i] - v0);
-      if (f)
-        std::reverse(ids.begin(), ids.end());
-      out.AddFace(ids.data(), static_cast<int>(ids.size()), rvd.FaceKind[fc], rvd.FaceNeighbor[fc]);
-    }
-    out.End(
-      rvd.PieceSite[p], rvd.PieceElement[p], rvd.PieceMeasure[p], rvd.PieceEmbeddedMeasure[p]);
-  };
-
-  const std::size_t np = rvd.NumPieces();
-  std::size_t nonEmpty = 0;
-  if (!this->MergeBySite)
-  {
-    for (std::size_t p = 0; p < np; ++p)
-      emitPiece(p);
-    std::vector<unsigned char> seen(sites.NumSites(), 0);
-    for (std::size_t p = 0; p < np; ++p)
-      seen[rvd.PieceSite[p]] = 1;
-    nonEmpty = static_cast<std::size_t>(std::count(seen.begin(), seen.end(), 1));
-  }
-  else
-  {
-    std::vector<std::pair<VertexKey, std::int64_t>> keys;
-    std::vector<vtkIdType> localOf, ids, nextOf, loop;
-    for (std::size_t p0 = 0; p0 < np;)
-    {
-      std::size_t p1 = p0;
-      const std::int32_t site = rvd.PieceSite[p0];
-      double measure = 0.0, embMeasure = 0.0;
-      while (p1 < np && rvd.PieceSite[p1] == site)
-      {
-        measure += rvd.PieceMeasure[p1];
-        embMeasure += rvd.PieceEmbeddedMeasure[p1];
-        ++p1;
-      }
-      ++nonEmpty;
-      // The site's vertices are contiguous: deduplicate them by their symbolic key.
-      const std::int64_t vb = rvd.PieceVertexOffsets[p0], ve = rvd.PieceVertexOffsets[p1];
-      keys.clear();
-      for (std::size_t p = p0; p < p1; ++p)
-      {
-        const std::int32_t* cell = mesh.Cell(rvd.PieceElement[p]);
-        for (std::int64_t v = rvd.PieceVertexOffsets[p]; v < rvd.PieceVertexOffsets[p + 1]; ++v)
-          keys.emplace_back(MakeKey(rvd.VertexPlanes.data() + v * K, K, cell), v);
-      }
-      std::sort(keys.begin(), keys.end());
-      out.Begin();
-      localOf.assign(static_cast<std::size_t>(ve - vb), -1);
-      for (std::size_t i = 0; i < keys.size(); ++i)
-      {
-        if (i == 0 || keys[i].first != keys[i - 1].first)
-          out.P.push_back(point(keys[i].second));
-        localOf[keys[i].second - vb] = static_cast<vtkIdType>(out.P.size() - 1);
-      }
-      for (std::size_t p = p0; p < p1; ++p)
-      {
-        const bool f = flip[rvd.PieceElement[p]];
-        for (std::int64_t fc = rvd.PieceFaceOffsets[p]; fc < rvd.PieceFaceOffsets[p + 1]; ++fc)
-        {
-          ids.clear();
-          for (std::int64_t i = rvd.FaceOffsets[fc]; i < rvd.FaceOffsets[fc + 1]; ++i)
-          {
-            const vtkIdType l = localOf[rvd.FaceVertices[i] - vb];
-            if (ids.empty() || ids.back() != l)
-              ids.push_back(l);
-          }
-          while (ids.size() > 1 && ids.front() == ids.back())
-            ids.pop_back();
-          if (ids.size() < static_cast<std::size_t>(K))
-            continue; // collapsed (degenerate) face
-          if (f)
-            std::reverse(ids.begin(), ids.end());
-          out.AddFace(
-            ids.data(), static_cast<int>(ids.size()), rvd.FaceKind[fc], rvd.FaceNeighbor[fc]);
-        }
-      }
-      bool ok = true;
-      if (K == 2)
-      {
-        // Chain the kept edges into one loop; anything else (holes, several components,
-        // inconsistent orientation) falls back to one polygon per piece.
-        const std::size_t nl = out.P.size(), ne = out.FaceSizes.size();
-        nextOf.assign(nl, -1);
-        for (std::size_t e = 0; e < ne && ok; ++e)
-        {
-          const vtkIdType a = out.FaceIds[2 * e], b = out.FaceIds[2 * e + 1];
-          if (nextOf[a] >= 0)
-            ok = false;
-          nextOf[a] = b;
-        }
-        loop.clear();
-        if (ok && ne > 0)
-        {
-          vtkIdType v = out.FaceIds[0];
-          do
-          {
-            loop.push_back(v);
-            v = nextOf[v];
-          } while (v >= 0 && v != out.FaceIds[0] && loop.size() <= ne);
-          ok = v == out.FaceIds[0] && loop.size() == ne;
-        }
-        out.Loop = loop;
-      }
-      if (ok)
-      {
-        out.End(site, -1, measure, embMeasure);
-      }
-      else
-      {
-        for (std::size_t p = p0; p < p1; ++p)
-          emitPiece(p);
-      }
-      p0 = p1;
-      if ((nonEmpty & 1023) == 0 && this->GetAbortExecute())
-        break;
-    }
+    return 0;
   }
   this->UpdateProgress(0.9);
 
-  output->SetPoints(out.Points);
-  vtkNew<vtkUnsignedCharArray> types;
-  types->SetNumberOfTuples(static_cast<vtkIdType>(out.Types.size()));
-  std::copy(out.Types.begin(), out.Types.end(), types->GetPointer(0));
-  if (K == 3)
-    output->SetCells(types, out.Cells, out.FaceLocations, out.FaceStream);
-  else
-    output->SetCells(types, out.Cells);
-  output->GetCellData()->AddArray(out.SiteId);
-  output->GetCellData()->SetActiveScalars("SiteId");
-  output->GetCellData()->AddArray(out.Measure);
-  output->GetCellData()->AddArray(out.EmbeddedMeasure);
-  output->GetCellData()->AddArray(out.ElementId);
-
-  faces->SetPoints(out.Points);
-  if (K == 3)
-    faces->SetPolys(out.FacePolys);
-  else
-    faces->SetLines(out.FacePolys);
-  faces->GetCellData()->AddArray(out.FaceSite);
-  faces->GetCellData()->AddArray(out.FaceKind);
-  faces->GetCellData()->SetActiveScalars("FaceKind");
-  faces->GetCellData()->AddArray(out.FaceNeighbor);
-
-  double total = 0.0;
-  for (double m : rvd.PieceMeasure)
-    total += m;
+  const vtkSmartPointer<vtkPoints> points = MakePoints(cells);
+  FillCellOutput(cells, points, output);
+  FillFaceOutput(cells, points, faces);
+  const double total = cells.TotalMeasure, domain = cells.DomainMeasure;
   this->TotalMeasure = total;
   this->DomainMeasure = domain;
-  const double seconds =
-    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double seconds = filterTime.Seconds();
+  const std::size_t nonEmpty = cells.NumNonEmptySites;
   for (vtkDataObject* o :
     { static_cast<vtkDataObject*>(output), static_cast<vtkDataObject*>(faces) })
   {
+    using vtkAnisoFilterUtilities::AddFieldValue;
     vtkFieldData* fd = o->GetFieldData();
     AddFieldValue(fd, "TotalMeasure", total);
     AddFieldValue(fd, "DomainMeasure", domain);

@@ -114,39 +114,41 @@ void CheckNearestSite(const av::RestrictedVoronoiDiagram& r, const av::SiteSet& 
                               << worst << ")");
 }
 
+// Area (input space) of face f; 2D: the edge's length.
+double FaceMeasureOf(const av::RestrictedVoronoiDiagram& r, std::size_t f)
+{
+  const int ad = r.AmbientDim;
+  const std::int64_t a = r.FaceOffsets[f], b = r.FaceOffsets[f + 1];
+  const double* p0 = &r.Points[r.FaceVertices[a] * ad];
+  if (r.SimplexDim == 2)
+  {
+    const double* p1 = &r.Points[r.FaceVertices[a + 1] * ad];
+    double l = 0.0;
+    for (int d = 0; d < ad; ++d)
+      l += (p1[d] - p0[d]) * (p1[d] - p0[d]);
+    return std::sqrt(l);
+  }
+  double n[3] = { 0, 0, 0 };
+  for (std::int64_t i = a + 1; i + 1 < b; ++i)
+  {
+    const double* p1 = &r.Points[r.FaceVertices[i] * ad];
+    const double* p2 = &r.Points[r.FaceVertices[i + 1] * ad];
+    const double u[3] = { p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2] };
+    const double v[3] = { p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2] };
+    n[0] += u[1] * v[2] - u[2] * v[1];
+    n[1] += u[2] * v[0] - u[0] * v[2];
+    n[2] += u[0] * v[1] - u[1] * v[0];
+  }
+  return 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+}
+
 // Sum of the polygon areas (input space) of faces of a given kind; 2D: edge lengths.
 double FaceMeasure(const av::RestrictedVoronoiDiagram& r, av::RVDFaceKind kind)
 {
   double total = 0.0;
-  const int ad = r.AmbientDim;
   for (std::size_t f = 0; f < r.NumFaces(); ++f)
-  {
-    if (r.FaceKind[f] != kind)
-      continue;
-    const std::int64_t a = r.FaceOffsets[f], b = r.FaceOffsets[f + 1];
-    const double* p0 = &r.Points[r.FaceVertices[a] * ad];
-    if (r.SimplexDim == 2)
-    {
-      const double* p1 = &r.Points[r.FaceVertices[a + 1] * ad];
-      double l = 0.0;
-      for (int d = 0; d < ad; ++d)
-        l += (p1[d] - p0[d]) * (p1[d] - p0[d]);
-      total += std::sqrt(l);
-      continue;
-    }
-    double n[3] = { 0, 0, 0 };
-    for (std::int64_t i = a + 1; i + 1 < b; ++i)
-    {
-      const double* p1 = &r.Points[r.FaceVertices[i] * ad];
-      const double* p2 = &r.Points[r.FaceVertices[i + 1] * ad];
-      const double u[3] = { p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2] };
-      const double v[3] = { p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2] };
-      n[0] += u[1] * v[2] - u[2] * v[1];
-      n[1] += u[2] * v[0] - u[0] * v[2];
-      n[2] += u[0] * v[1] - u[1] * v[0];
-    }
-    total += 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-  }
+    if (r.FaceKind[f] == kind)
+      total += FaceMeasureOf(r, f);
   return total;
 }
 
@@ -154,39 +156,10 @@ double FaceMeasure(const av::RestrictedVoronoiDiagram& r, av::RVDFaceKind kind)
 void CheckBisectorSymmetry(const av::RestrictedVoronoiDiagram& r, const char* name)
 {
   std::map<std::pair<int, int>, double> area;
-  const int ad = r.AmbientDim;
   for (std::size_t p = 0; p < r.NumPieces(); ++p)
     for (std::int64_t f = r.PieceFaceOffsets[p]; f < r.PieceFaceOffsets[p + 1]; ++f)
-    {
-      if (r.FaceKind[f] != av::RVDFaceKind::Bisector)
-        continue;
-      const std::int64_t a = r.FaceOffsets[f], b = r.FaceOffsets[f + 1];
-      const double* p0 = &r.Points[r.FaceVertices[a] * ad];
-      double m = 0.0;
-      if (r.SimplexDim == 2)
-      {
-        const double* p1 = &r.Points[r.FaceVertices[a + 1] * ad];
-        for (int d = 0; d < ad; ++d)
-          m += (p1[d] - p0[d]) * (p1[d] - p0[d]);
-        m = std::sqrt(m);
-      }
-      else
-      {
-        double n[3] = { 0, 0, 0 };
-        for (std::int64_t i = a + 1; i + 1 < b; ++i)
-        {
-          const double* p1 = &r.Points[r.FaceVertices[i] * ad];
-          const double* p2 = &r.Points[r.FaceVertices[i + 1] * ad];
-          const double u[3] = { p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2] };
-          const double v[3] = { p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2] };
-          n[0] += u[1] * v[2] - u[2] * v[1];
-          n[1] += u[2] * v[0] - u[0] * v[2];
-          n[2] += u[0] * v[1] - u[1] * v[0];
-        }
-        m = 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-      }
-      area[{ r.PieceSite[p], r.FaceNeighbor[f] }] += m;
-    }
+      if (r.FaceKind[f] == av::RVDFaceKind::Bisector)
+        area[{ r.PieceSite[p], r.FaceNeighbor[f] }] += FaceMeasureOf(r, static_cast<std::size_t>(f));
   int bad = 0;
   for (const auto& kv : area)
   {

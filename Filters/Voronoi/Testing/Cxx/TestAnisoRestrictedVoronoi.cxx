@@ -135,114 +135,144 @@ double FaceArea(vtkPolyData* faces, int kind)
   }
   return total;
 }
-} // namespace
 
-int TestAnisoRestrictedVoronoi(int, char*[])
+/// The box (bounds of the source) and the sites of the pipeline.
+struct Box
 {
-  vtkNew<vtkAnisoAnalyticMetricSource> source;
-  source->SetPreset(1); // Cube1
-  source->SetResolution(6);
-  vtkNew<vtkAnisoEmbedding> embedding;
-  embedding->SetInputConnection(source->GetOutputPort());
-  embedding->SetTargetDimension(5);
-  embedding->SetIterations(10);
-  vtkNew<vtkAnisoParticleSampler> sampler;
-  sampler->SetInputConnection(embedding->GetOutputPort());
-  sampler->SetNumberOfSites(100);
-  sampler->SetIterations(10);
-  vtkNew<vtkAnisoRestrictedVoronoi> rvd;
-  rvd->SetInputConnection(0, embedding->GetOutputPort());
-  rvd->SetInputConnection(1, sampler->GetOutputPort());
-  auto t0 = std::chrono::steady_clock::now();
-  rvd->Update();
-  std::printf("pipeline: %.3f s\n", Seconds(t0));
+  double Bounds[6];
+  double Volume, Area;
+  int NumSites;
+};
 
-  double bounds[6];
-  source->GetOutput()->GetBounds(bounds);
-  const double lx = bounds[1] - bounds[0], ly = bounds[3] - bounds[2], lz = bounds[5] - bounds[4];
-  const double boxVolume = lx * ly * lz, boxArea = 2 * (lx * ly + ly * lz + lz * lx);
-  const int numSites = static_cast<int>(sampler->GetOutput()->GetNumberOfPoints());
-  AV_CHECK(numSites == 100);
+/// Cube1 (6^3 grid) -> 5D embedding -> 100 sites -> RVD, run once.
+struct Pipeline
+{
+  vtkNew<vtkAnisoAnalyticMetricSource> Source;
+  vtkNew<vtkAnisoEmbedding> Embedding;
+  vtkNew<vtkAnisoParticleSampler> Sampler;
+  vtkNew<vtkAnisoRestrictedVoronoi> Voronoi;
+  Box Domain;
 
-  vtkUnstructuredGrid* cells = rvd->GetOutput();
-  vtkPolyData* faces = vtkPolyData::SafeDownCast(rvd->GetOutputDataObject(1));
-  AV_CHECK(faces != nullptr);
-  AV_CHECK(cells->GetNumberOfCells() == numSites); // merged: one cell per site
+  Pipeline()
+  {
+    this->Source->SetPreset(1); // Cube1
+    this->Source->SetResolution(6);
+    this->Embedding->SetInputConnection(this->Source->GetOutputPort());
+    this->Embedding->SetTargetDimension(5);
+    this->Embedding->SetIterations(10);
+    this->Sampler->SetInputConnection(this->Embedding->GetOutputPort());
+    this->Sampler->SetNumberOfSites(100);
+    this->Sampler->SetIterations(10);
+    this->Voronoi->SetInputConnection(0, this->Embedding->GetOutputPort());
+    this->Voronoi->SetInputConnection(1, this->Sampler->GetOutputPort());
+    auto t0 = std::chrono::steady_clock::now();
+    this->Voronoi->Update();
+    std::printf("pipeline: %.3f s\n", Seconds(t0));
+    double* b = this->Domain.Bounds;
+    this->Source->GetOutput()->GetBounds(b);
+    const double lx = b[1] - b[0], ly = b[3] - b[2], lz = b[5] - b[4];
+    this->Domain.Volume = lx * ly * lz;
+    this->Domain.Area = 2 * (lx * ly + ly * lz + lz * lx);
+    this->Domain.NumSites = static_cast<int>(this->Sampler->GetOutput()->GetNumberOfPoints());
+  }
+
+  vtkPolyData* Faces() { return vtkPolyData::SafeDownCast(this->Voronoi->GetOutputDataObject(1)); }
+};
+
+/// Merged cells: one closed, outward polyhedron per site whose volume is its Measure, and
+/// together the box.
+PolyhedraCheck TestMergedCells(Pipeline& p)
+{
+  const Box& box = p.Domain;
+  AV_CHECK(box.NumSites == 100);
+  vtkUnstructuredGrid* cells = p.Voronoi->GetOutput();
+  AV_CHECK(p.Faces() != nullptr);
+  AV_CHECK(cells->GetNumberOfCells() == box.NumSites); // merged: one cell per site
   PolyhedraCheck merged = CheckPolyhedra(cells);
   std::printf("merged: %lld cells, sum Measure %.15g, divergence volume %.15g, box %.15g, "
               "max |vol - Measure| / Measure %.3g\n",
     static_cast<long long>(cells->GetNumberOfCells()),
     merged.TotalMeasure,
     merged.TotalVolume,
-    boxVolume,
+    box.Volume,
     merged.MaxVolumeError);
   AV_CHECK(merged.NonPolyhedra == 0);
   AV_CHECK(merged.OpenCells == 0);
-  AV_CHECK_NEAR(merged.TotalMeasure / boxVolume, 1.0, 1e-9);
+  AV_CHECK_NEAR(merged.TotalMeasure / box.Volume, 1.0, 1e-9);
   AV_CHECK(merged.MaxVolumeError < 1e-8);
-  AV_CHECK(static_cast<int>(merged.MeasureBySite.size()) == numSites);
+  AV_CHECK(static_cast<int>(merged.MeasureBySite.size()) == box.NumSites);
   for (const auto& s : merged.MeasureBySite)
     AV_CHECK(s.second > 0);
   AV_CHECK(FieldValue(cells, "RelativeVolumeError") < 1e-9);
-  AV_CHECK_NEAR(FieldValue(cells, "DomainMeasure"), boxVolume, 1e-12 * boxVolume);
-  AV_CHECK(FieldValue(cells, "NumberOfVoronoiCells") == numSites);
+  AV_CHECK_NEAR(FieldValue(cells, "DomainMeasure"), box.Volume, 1e-12 * box.Volume);
+  AV_CHECK(FieldValue(cells, "NumberOfVoronoiCells") == box.NumSites);
+  return merged;
+}
 
-  // Faces: boundary faces tile the box surface; bisector faces come in equal-area pairs.
+/// Faces: boundary faces tile the box surface; bisector faces come in equal-area pairs.
+void TestMergedFaces(Pipeline& p)
+{
+  vtkPolyData* faces = p.Faces();
   const double boundaryArea = FaceArea(faces, 1);
-  std::printf("boundary face area %.15g, box surface %.15g\n", boundaryArea, boxArea);
-  AV_CHECK_NEAR(boundaryArea / boxArea, 1.0, 1e-9);
+  std::printf("boundary face area %.15g, box surface %.15g\n", boundaryArea, p.Domain.Area);
+  AV_CHECK_NEAR(boundaryArea / p.Domain.Area, 1.0, 1e-9);
   AV_CHECK(FaceArea(faces, 2) == 0.0); // merged cells have no element faces
+  std::map<std::pair<int, int>, double> bis;
+  vtkDataArray* kinds = faces->GetCellData()->GetArray("FaceKind");
+  vtkDataArray* fs = faces->GetCellData()->GetArray("SiteId");
+  vtkDataArray* nb = faces->GetCellData()->GetArray("NeighborSiteId");
+  AV_CHECK(kinds && fs && nb);
+  vtkIdType n;
+  const vtkIdType* ids;
+  vtkIdType c = 0;
+  vtkCellArray* polys = faces->GetPolys();
+  for (polys->InitTraversal(); polys->GetNextCell(n, ids); ++c)
   {
-    std::map<std::pair<int, int>, double> bis;
-    vtkDataArray* kinds = faces->GetCellData()->GetArray("FaceKind");
-    vtkDataArray* fs = faces->GetCellData()->GetArray("SiteId");
-    vtkDataArray* nb = faces->GetCellData()->GetArray("NeighborSiteId");
-    AV_CHECK(kinds && fs && nb);
-    vtkIdType n;
-    const vtkIdType* ids;
-    vtkIdType c = 0;
-    vtkCellArray* polys = faces->GetPolys();
-    for (polys->InitTraversal(); polys->GetNextCell(n, ids); ++c)
+    if (kinds->GetTuple1(c) != 0)
     {
-      if (kinds->GetTuple1(c) != 0)
-      {
-        AV_CHECK(nb->GetTuple1(c) == -1);
-        continue;
-      }
-      double a[3];
-      AreaVector(faces->GetPoints(), ids, n, a);
-      bis[{ static_cast<int>(fs->GetTuple1(c)), static_cast<int>(nb->GetTuple1(c)) }] +=
-        std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+      AV_CHECK(nb->GetTuple1(c) == -1);
+      continue;
     }
-    double worst = 0;
-    for (const auto& e : bis)
-    {
-      auto rev = bis.find({ e.first.second, e.first.first });
-      const double other = rev == bis.end() ? 0.0 : rev->second;
-      worst = std::max(worst, std::abs(e.second - other) / e.second);
-    }
-    std::printf("bisector pairs %zu, worst area asymmetry %.3g\n", bis.size(), worst);
-    AV_CHECK(!bis.empty());
-    AV_CHECK(worst < 1e-8);
+    double a[3];
+    AreaVector(faces->GetPoints(), ids, n, a);
+    bis[{ static_cast<int>(fs->GetTuple1(c)), static_cast<int>(nb->GetTuple1(c)) }] +=
+      std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
   }
+  double worst = 0;
+  for (const auto& e : bis)
+  {
+    auto rev = bis.find({ e.first.second, e.first.first });
+    const double other = rev == bis.end() ? 0.0 : rev->second;
+    worst = std::max(worst, std::abs(e.second - other) / e.second);
+  }
+  std::printf("bisector pairs %zu, worst area asymmetry %.3g\n", bis.size(), worst);
+  AV_CHECK(!bis.empty());
+  AV_CHECK(worst < 1e-8);
+}
 
-  // Pieces: one polyhedron per (cell, element); per site they add up to the merged cell.
+/// Pieces: one polyhedron per (cell, element); per site they add up to the merged cell.
+void TestPieces(Pipeline& p, const PolyhedraCheck& merged)
+{
+  vtkAnisoRestrictedVoronoi* rvd = p.Voronoi;
   rvd->MergeBySiteOff();
   rvd->Update();
   PolyhedraCheck pieces = CheckPolyhedra(rvd->GetOutput());
   std::printf("pieces: %lld cells\n", static_cast<long long>(rvd->GetOutput()->GetNumberOfCells()));
-  AV_CHECK(rvd->GetOutput()->GetNumberOfCells() > numSites);
+  AV_CHECK(rvd->GetOutput()->GetNumberOfCells() > p.Domain.NumSites);
   AV_CHECK(pieces.OpenCells == 0 && pieces.NonPolyhedra == 0);
   AV_CHECK(pieces.MaxVolumeError < 1e-8);
   double worstSite = 0;
   for (const auto& s : merged.MeasureBySite)
     worstSite = std::max(worstSite, std::abs(pieces.MeasureBySite[s.first] - s.second) / s.second);
   AV_CHECK(worstSite < 1e-12);
-  AV_CHECK_NEAR(
-    FaceArea(vtkPolyData::SafeDownCast(rvd->GetOutputDataObject(1)), 1) / boxArea, 1.0, 1e-9);
-
-  // Shrink: geometry scaled about each cell's centroid (volume x 0.125, boundary area x 0.25).
+  AV_CHECK_NEAR(FaceArea(p.Faces(), 1) / p.Domain.Area, 1.0, 1e-9);
   rvd->MergeBySiteOn();
+}
+
+/// Shrink: geometry scaled about each cell's centroid (volume x 0.125, boundary area x 0.25).
+void TestShrink(Pipeline& p, const PolyhedraCheck& merged)
+{
+  vtkAnisoRestrictedVoronoi* rvd = p.Voronoi;
   rvd->SetShrinkFactor(0.5);
   rvd->Update();
   PolyhedraCheck shrunk = CheckPolyhedra(rvd->GetOutput());
@@ -250,26 +280,28 @@ int TestAnisoRestrictedVoronoi(int, char*[])
   AV_CHECK_NEAR(shrunk.TotalMeasure / merged.TotalMeasure, 0.125, 1e-12);
   AV_CHECK_NEAR(shrunk.TotalVolume / merged.TotalVolume, 0.125, 1e-9);
   AV_CHECK(shrunk.MaxVolumeError < 1e-8);
-  AV_CHECK_NEAR(
-    FaceArea(vtkPolyData::SafeDownCast(rvd->GetOutputDataObject(1)), 1) / boxArea, 0.25, 1e-9);
-  AV_CHECK(rvd->GetOutput()->GetNumberOfPoints() ==
-    vtkPolyData::SafeDownCast(rvd->GetOutputDataObject(1))->GetNumberOfPoints());
+  AV_CHECK_NEAR(FaceArea(p.Faces(), 1) / p.Domain.Area, 0.25, 1e-9);
+  AV_CHECK(rvd->GetOutput()->GetNumberOfPoints() == p.Faces()->GetNumberOfPoints());
   AV_CHECK(FieldValue(rvd->GetOutput(), "RelativeVolumeError") < 1e-9); // the true cells
   rvd->SetShrinkFactor(1.0);
+}
 
-  // User-given sites (points only): located in the mesh, same diagram.
+/// User-given sites (points only): located in the mesh, same diagram; a site outside the
+/// mesh is an error, no output, no crash.
+void TestLocatedSites(Pipeline& p, const PolyhedraCheck& merged)
+{
   vtkNew<vtkPolyData> plain;
   {
     vtkNew<vtkPoints> pts;
-    pts->DeepCopy(sampler->GetOutput()->GetPoints());
+    pts->DeepCopy(p.Sampler->GetOutput()->GetPoints());
     plain->SetPoints(pts);
   }
   vtkNew<vtkAnisoRestrictedVoronoi> located;
-  located->SetInputConnection(0, embedding->GetOutputPort());
+  located->SetInputConnection(0, p.Embedding->GetOutputPort());
   located->SetInputData(1, plain);
   located->Update();
   PolyhedraCheck loc = CheckPolyhedra(located->GetOutput());
-  AV_CHECK(located->GetOutput()->GetNumberOfCells() == numSites);
+  AV_CHECK(located->GetOutput()->GetNumberOfCells() == p.Domain.NumSites);
   double worstLoc = 0;
   for (const auto& s : merged.MeasureBySite)
     worstLoc = std::max(worstLoc, std::abs(loc.MeasureBySite[s.first] - s.second) / s.second);
@@ -278,8 +310,7 @@ int TestAnisoRestrictedVoronoi(int, char*[])
   // solves are ill-conditioned; 1e-16 changes of the located barycentrics move ~1e-7.
   AV_CHECK(worstLoc < 1e-5);
 
-  // A site outside the mesh: an error, no output, no crash.
-  plain->GetPoints()->SetPoint(3, bounds[1] + 1.0, 0.5, 0.5);
+  plain->GetPoints()->SetPoint(3, p.Domain.Bounds[1] + 1.0, 0.5, 0.5);
   plain->Modified();
   vtkNew<EventCounter> errors;
   located->AddObserver(vtkCommand::ErrorEvent, errors);
@@ -287,6 +318,16 @@ int TestAnisoRestrictedVoronoi(int, char*[])
   AV_CHECK(errors->Errors > 0);
   AV_CHECK(errors->Last.find("outside the mesh") != std::string::npos);
   std::printf("outside site -> \"%s\"\n", errors->Last.c_str());
+}
+} // namespace
 
+int TestAnisoRestrictedVoronoi(int, char*[])
+{
+  Pipeline p;
+  const PolyhedraCheck merged = TestMergedCells(p);
+  TestMergedFaces(p);
+  TestPieces(p, merged);
+  TestShrink(p, merged);
+  TestLocatedSites(p, merged);
   return AV_TEST_RESULT();
 }
