@@ -32,8 +32,9 @@ struct MeshingPipelineOptions
   int ImproveRounds = 1;
   int OdtIterations = 3;      ///< ODT steps per round (0: sliver pushes only)
   bool PerturbSlivers = true; ///< sliver pushes in each round (tet meshes)
-  /// Per site, nonzero: never moved by the improvement rounds (the sampler's corner and
-  /// feature-line sites). nullptr: every site may move. Must outlive the call.
+  /// Per site, nonzero: never pushed by the sliver perturbation (the sampler's corner and
+  /// feature-line sites; the ODT steps keep them anyway, as they keep every site whose cell
+  /// meets the domain boundary). nullptr: every site may be pushed. Must outlive the call.
   const std::vector<std::uint8_t>* FixedSites = nullptr;
   /// Insert sites at the Voronoi vertices of inverted elements (paper §4.2); false: only
   /// compute and report (RepairRestrictedDelaunay with MaxRounds 0).
