@@ -49,8 +49,11 @@ double DomainMeasure(const av::SimplexMesh& mesh)
 
 /// The sites of the stage: the particle sampler, then the optional Lloyd steps. `fixed`
 /// gets the corner and feature-line sites, which the improvement rounds must not move.
-av::SiteSet SampleSites(const av::SimplexMesh& mesh, const av::Embedding& embedding,
-  const MeshStageOptions& options, std::vector<std::uint8_t>& fixed, MeshStageResult& r)
+av::SiteSet SampleSites(const av::SimplexMesh& mesh,
+  const av::Embedding& embedding,
+  const MeshStageOptions& options,
+  std::vector<std::uint8_t>& fixed,
+  MeshStageResult& r)
 {
   const av::Stopwatch sampleWatch;
   av::ParticleSamplerOptions so;
@@ -82,8 +85,8 @@ av::SiteSet SampleSites(const av::SimplexMesh& mesh, const av::Embedding& embedd
 }
 
 /// The meshing options of the stage.
-av::MeshingPipelineOptions PipelineOptions(
-  const MeshStageOptions& options, const std::vector<std::uint8_t>* fixed)
+av::MeshingPipelineOptions PipelineOptions(const MeshStageOptions& options,
+  const std::vector<std::uint8_t>* fixed)
 {
   av::MeshingPipelineOptions po;
   po.ImproveRounds = options.ImproveRounds;
@@ -121,8 +124,10 @@ void CopyMeshingCounts(const av::MeshingPipelineResult& m, MeshStageResult& r)
 }
 
 /// The dual's covered volume and its §5.2 quality against `metric` at the final sites.
-void MeasureDualMesh(const av::SimplexMesh& mesh, const av::MetricField& metric,
-  const av::DelaunayRepairResult& repaired, MeshStageResult& r)
+void MeasureDualMesh(const av::SimplexMesh& mesh,
+  const av::MetricField& metric,
+  const av::DelaunayRepairResult& repaired,
+  MeshStageResult& r)
 {
   const av::RestrictedVoronoiDiagram& rvd = repaired.Voronoi;
   const av::RestrictedDelaunayMesh& rdt = repaired.Delaunay;
@@ -210,8 +215,10 @@ std::size_t DefaultSitesFor(av::AnalyticPreset preset)
   return 1000;
 }
 
-MeshStageResult RunMeshStage(const av::SimplexMesh& mesh, const av::MetricField& metric,
-  const av::Embedding& embedding, const MeshStageOptions& options)
+MeshStageResult RunMeshStage(const av::SimplexMesh& mesh,
+  const av::MetricField& metric,
+  const av::Embedding& embedding,
+  const MeshStageOptions& options)
 {
   MeshStageResult r;
   const av::Stopwatch meshWatch;

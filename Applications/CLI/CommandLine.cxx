@@ -119,7 +119,8 @@ Options ParseCommandLine(int argc, char* argv[])
   for (int i = 1; i < argc; ++i)
   {
     const std::string a = argv[i];
-    auto next = [&]() -> const char* {
+    auto next = [&]() -> const char*
+    {
       if (i + 1 >= argc)
         Fail(a + " needs a value", 2);
       return argv[++i];
@@ -195,7 +196,6 @@ Options ParseCommandLine(int argc, char* argv[])
   CheckOptions(o);
   return o;
 }
-
 
 void Fail(const std::string& message, int code)
 {

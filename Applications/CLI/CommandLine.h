@@ -13,7 +13,8 @@ struct Options
 {
   std::string Input, Metric, Sol, OutputDir;
   int Step = 0, Resolution = 0, Sites = 2000, Dim = 8, Iterations = 50, SampleIterations = 150;
-  int WarmupIterations = 100, Seed = 1, Smooth = 0, Refine = 0, RepairRounds = 10, ImproveRounds = 1, OdtIterations = 3;
+  int WarmupIterations = 100, Seed = 1, Smooth = 0, Refine = 0, RepairRounds = 10,
+      ImproveRounds = 1, OdtIterations = 3;
   double FeatureAngle = 30.0;
   bool Features = true;
   double Mu = 100.0, Shrink = 0.8, MinEigenvalue = 1e-3, MaxAnisotropy = 25.0;

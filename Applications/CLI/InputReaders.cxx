@@ -15,8 +15,8 @@
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkSTLReader.h>
-#include <vtkTrivialProducer.h>
 #include <vtkTriangleFilter.h>
+#include <vtkTrivialProducer.h>
 #include <vtkXMLGenericDataObjectReader.h>
 #include <vtksys/SystemTools.hxx>
 
@@ -44,8 +44,9 @@ vtkSmartPointer<vtkAlgorithm> ReadOffSurface(const std::string& path)
   vtkNew<vtkCellArray> triangles;
   for (std::size_t c = 0; c < surfaceMesh.NumCells(); ++c)
   {
-    const vtkIdType ids[3] = { surfaceMesh.Cell(c)[0], surfaceMesh.Cell(c)[1],
-      surfaceMesh.Cell(c)[2] };
+    const vtkIdType ids[3] = {
+      surfaceMesh.Cell(c)[0], surfaceMesh.Cell(c)[1], surfaceMesh.Cell(c)[2]
+    };
     triangles->InsertNextCell(3, ids);
   }
   grid->SetPoints(points);

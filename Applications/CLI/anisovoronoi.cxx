@@ -132,8 +132,7 @@ void RunSource(const Options& o, MeshingStages& s, StageRunner& runner)
   const std::string presetName = o.Metric.substr(7);
   auto source = vtkSmartPointer<vtkAnisoAnalyticMetricSource>::New();
   if (!source->SetPresetByName(presetName.c_str()))
-    Fail("unknown preset '" + presetName +
-        "' (gaussian2d cube1 cube2 cube3 sphere-cyl sphere-cos)",
+    Fail("unknown preset '" + presetName + "' (gaussian2d cube1 cube2 cube3 sphere-cyl sphere-cos)",
       2);
   if (o.Resolution != 0 && o.Resolution < 3)
     Fail("--resolution must be 0 or >= 3", 2);
@@ -169,8 +168,9 @@ vtkIdType FillMissedPoints(vtkUnstructuredGrid* refined, vtkDataSet* coarse, vtk
 
 /// 2b. --refine: TetGen on the boundary surface of the simplices, their point data probed onto
 /// the new mesh; returns its producer.
-vtkSmartPointer<vtkAlgorithm> RunRefinement(
-  const Options& o, vtkAnisoSimplexMesh* simplices, StageRunner& runner)
+vtkSmartPointer<vtkAlgorithm> RunRefinement(const Options& o,
+  vtkAnisoSimplexMesh* simplices,
+  StageRunner& runner)
 {
   vtkDataSet* coarse = vtkDataSet::SafeDownCast(simplices->GetOutputDataObject(0));
   if (!coarse || coarse->GetNumberOfCells() == 0 || coarse->GetCellType(0) != VTK_TETRA)
@@ -212,7 +212,9 @@ vtkSmartPointer<vtkAlgorithm> MakeTensorMetric(const Options& o, vtkAlgorithm* d
     ds->GetCellData()->GetArray(array.c_str());
   if (ds && !ds->GetPointData()->GetArray(array.c_str()) && !onCells)
     Fail("the input has no point or cell array named '" + array + "'");
-  m->SetInputArrayToProcess(0, 0, 0,
+  m->SetInputArrayToProcess(0,
+    0,
+    0,
     onCells ? vtkDataObject::FIELD_ASSOCIATION_CELLS : vtkDataObject::FIELD_ASSOCIATION_POINTS,
     array.c_str());
   m->SetInterpretation(o.TensorAsMetric ? vtkAnisoTensorToMetric::TENSOR_AS_METRIC
@@ -278,8 +280,10 @@ std::string RunInputStages(const Options& o, MeshingStages& s, StageRunner& runn
 /// 4. to 6.: embedding, sites, the dual mesh (with the repair's inserted sites), then the
 /// restricted Voronoi diagram of its vertices = the final sites (shrunken cells for display)
 /// and the quality of the dual mesh.
-void RunMeshingStages(
-  const Options& o, const std::string& metricName, MeshingStages& s, StageRunner& runner)
+void RunMeshingStages(const Options& o,
+  const std::string& metricName,
+  MeshingStages& s,
+  StageRunner& runner)
 {
   s.Embedding->SetInputConnection(s.Metric->GetOutputPort());
   s.Embedding->SetInputArrayToProcess(
@@ -343,8 +347,9 @@ std::size_t NumberOfCells(vtkDataObject* data)
 }
 
 /// The keys of report.json (the benchmark's), in order, as JSON values.
-std::vector<std::pair<std::string, std::string>> ReportEntries(
-  const Options& o, MeshingStages& s, const StageRunner& runner)
+std::vector<std::pair<std::string, std::string>> ReportEntries(const Options& o,
+  MeshingStages& s,
+  const StageRunner& runner)
 {
   vtkDataObject* embedded = s.Embedding->GetOutputDataObject(0);
   vtkDataSet* meshIn = vtkDataSet::SafeDownCast(embedded);
@@ -356,8 +361,8 @@ std::vector<std::pair<std::string, std::string>> ReportEntries(
   if (meshIn && meshIn->GetPointData()->GetArray("Stretch"))
     meshIn->GetPointData()->GetArray("Stretch")->GetRange(stretchRange);
   const double repairSeconds = FieldValue(rdtOut, "RepairSeconds");
-  const double meshSeconds = runner.SecondsOf(SamplingStage(o)) +
-    runner.SecondsOf(VoronoiStage) + runner.SecondsOf(DelaunayStage);
+  const double meshSeconds = runner.SecondsOf(SamplingStage(o)) + runner.SecondsOf(VoronoiStage) +
+    runner.SecondsOf(DelaunayStage);
   std::vector<std::pair<std::string, std::string>> report = {
     { "input", "\"" + (o.Input.empty() ? o.Metric : o.Input) + "\"" },
     { "metric", "\"" + o.Metric + "\"" },
@@ -376,8 +381,7 @@ std::vector<std::pair<std::string, std::string>> ReportEntries(
     { "sample_iterations", std::to_string(o.SampleIterations) },
     { "warmup_iterations", std::to_string(o.WarmupIterations) },
     { "corner_sites", JsonNumber(FieldValue(sitesOut, "NumCornerSites")) },
-    { "feature_line_sites",
-      JsonNumber(FieldValue(sitesOut, "NumFeatureLineSites")) },
+    { "feature_line_sites", JsonNumber(FieldValue(sitesOut, "NumFeatureLineSites")) },
     { "sample_seconds", JsonNumber(runner.SecondsOf(SamplingStage(o))) },
     { "rvd_seconds", JsonNumber(runner.SecondsOf(VoronoiStage)) },
     { "rdt_seconds", JsonNumber(runner.SecondsOf(DelaunayStage) - repairSeconds) },
@@ -410,7 +414,9 @@ std::vector<std::pair<std::string, std::string>> ReportEntries(
 }
 
 /// 7. report.json.
-void WriteReport(const std::string& dir, const Options& o, MeshingStages& s,
+void WriteReport(const std::string& dir,
+  const Options& o,
+  MeshingStages& s,
   const StageRunner& runner)
 {
   const std::vector<std::pair<std::string, std::string>> report = ReportEntries(o, s, runner);

@@ -37,8 +37,11 @@ using vtkAnisoFilterUtilities::AddFieldValue;
 /// Output point data: the sites' arrays, recomputed for moved sites and extended to the
 /// inserted ones ("CellId" / "Barycentric" are theirs, arrays the mesh also has are
 /// interpolated, others 0).
-void ExtendPointData(vtkDataSet* sitesInput, vtkDataSet* meshInput,
-  const av::SimplexMesh& mesh, const av::SiteSet& sites, const std::vector<std::uint8_t>& moved,
+void ExtendPointData(vtkDataSet* sitesInput,
+  vtkDataSet* meshInput,
+  const av::SimplexMesh& mesh,
+  const av::SiteSet& sites,
+  const std::vector<std::uint8_t>& moved,
   vtkUnstructuredGrid* output)
 {
   vtkPointData* in = sitesInput->GetPointData();
@@ -119,8 +122,10 @@ void ExtendPointData(vtkDataSet* sitesInput, vtkDataSet* meshInput,
 /// The sampler's corner and feature-line sites ("FeatureKind" != 0), which the improvement
 /// rounds must not push off their features; empty when the sites have no such array. False
 /// (with `error`) when the array does not have one component per site.
-bool FixedSitesFromFeatureKind(
-  vtkDataSet* sitesInput, std::size_t numSites, std::vector<std::uint8_t>& fixed, std::string& error)
+bool FixedSitesFromFeatureKind(vtkDataSet* sitesInput,
+  std::size_t numSites,
+  std::vector<std::uint8_t>& fixed,
+  std::string& error)
 {
   vtkDataArray* kind = sitesInput->GetPointData()->GetArray("FeatureKind");
   if (!kind)
@@ -140,7 +145,8 @@ bool FixedSitesFromFeatureKind(
 }
 
 /// Points (the sites in input space) and cells of the dual mesh.
-void SetMeshGeometry(const av::RestrictedDelaunayMesh& rdt, std::size_t numSites,
+void SetMeshGeometry(const av::RestrictedDelaunayMesh& rdt,
+  std::size_t numSites,
   vtkUnstructuredGrid* output)
 {
   const int adim = rdt.AmbientDim, nv = rdt.SimplexDim + 1;
@@ -198,8 +204,8 @@ void AddRunFieldData(const av::MeshingPipelineResult& result, double seconds, vt
   AddFieldValue(fd, "RepairRounds", static_cast<double>(repaired.Rounds));
   AddFieldValue(fd, "RepairStalled", repaired.Stalled ? 1.0 : 0.0);
   AddFieldValue(fd, "NumInvertedBeforeRepair", static_cast<double>(repaired.InitialInverted));
-  AddFieldValue(fd, "NumNonManifoldFacesBeforeRepair",
-    static_cast<double>(repaired.InitialNonManifoldFaces));
+  AddFieldValue(
+    fd, "NumNonManifoldFacesBeforeRepair", static_cast<double>(repaired.InitialNonManifoldFaces));
   AddFieldValue(fd, "RepairSeconds", result.RepairSeconds);
   AddFieldValue(fd, "NumSliversPerturbed", static_cast<double>(result.NumSlivers));
   AddFieldValue(fd, "NumMovedSites", static_cast<double>(result.NumMovedSites));
@@ -208,8 +214,8 @@ void AddRunFieldData(const av::MeshingPipelineResult& result, double seconds, vt
 }
 
 /// The pipeline options of the filter's parameters; progress and abort go through `self`.
-av::MeshingPipelineOptions MeshingOptions(
-  vtkAnisoRestrictedDelaunay* self, const std::vector<std::uint8_t>* fixedSites)
+av::MeshingPipelineOptions MeshingOptions(vtkAnisoRestrictedDelaunay* self,
+  const std::vector<std::uint8_t>* fixedSites)
 {
   av::MeshingPipelineOptions options;
   options.ImproveRounds = self->GetImprovementRounds();
@@ -218,7 +224,8 @@ av::MeshingPipelineOptions MeshingOptions(
   options.Repair = self->GetRepairInverted();
   options.MaxRepairRounds = self->GetMaxRepairRounds();
   options.RepairNonManifold = self->GetRepairNonManifold();
-  options.Progress = [self](av::MeshingStep step) {
+  options.Progress = [self](av::MeshingStep step)
+  {
     if (self->GetAbortExecute())
     {
       return false;
@@ -243,26 +250,25 @@ av::MeshingPipelineOptions MeshingOptions(
 }
 
 /// What the repair left (or, with RepairInverted off, did not try), as a warning.
-void WarnAboutBadElements(vtkAnisoRestrictedDelaunay* self, const av::DelaunayRepairResult& repaired)
+void WarnAboutBadElements(vtkAnisoRestrictedDelaunay* self,
+  const av::DelaunayRepairResult& repaired)
 {
   const av::RestrictedDelaunayMesh& rdt = repaired.Delaunay;
   if (rdt.NumInverted == 0 && rdt.NumNonManifoldFaces == 0)
   {
     return;
   }
-  const char* why = !self->GetRepairInverted()
-    ? "(RepairInverted is off)"
-    : repaired.Stalled ? "left: the repair stopped because insertions "
-                         "made more elements inverted than they "
-                         "removed (the embedding is too poor here: "
-                         "more embedding iterations or a finer input "
-                         "mesh help); the best state is kept"
-                       : "left after the repair (more repair rounds, "
-                         "more sites or a better embedding reduce them)";
-  vtkWarningWithObjectMacro(self, "the dual mesh has " << rdt.NumInverted
-                                                       << " inverted element(s) and "
-                                                       << rdt.NumNonManifoldFaces
-                                                       << " non-manifold face(s) " << why);
+  const char* why = !self->GetRepairInverted() ? "(RepairInverted is off)"
+    : repaired.Stalled                         ? "left: the repair stopped because insertions "
+                                                 "made more elements inverted than they "
+                                                 "removed (the embedding is too poor here: "
+                                                 "more embedding iterations or a finer input "
+                                                 "mesh help); the best state is kept"
+                                               : "left after the repair (more repair rounds, "
+                                                 "more sites or a better embedding reduce them)";
+  vtkWarningWithObjectMacro(self,
+    "the dual mesh has " << rdt.NumInverted << " inverted element(s) and "
+                         << rdt.NumNonManifoldFaces << " non-manifold face(s) " << why);
 }
 
 } // namespace
@@ -284,8 +290,9 @@ int vtkAnisoRestrictedDelaunay::FillInputPortInformation(int, vtkInformation* in
   return 1;
 }
 
-int vtkAnisoRestrictedDelaunay::RequestUpdateExtent(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
+int vtkAnisoRestrictedDelaunay::RequestUpdateExtent(vtkInformation*,
+  vtkInformationVector** inputVector,
+  vtkInformationVector*)
 {
   vtkAnisoDataConversion::RequestWholeInputs(inputVector, this->GetNumberOfInputPorts());
   return 1;
@@ -314,8 +321,13 @@ int vtkAnisoRestrictedDelaunay::RequestData(vtkInformation* request,
   av::SiteSet sites;
   std::string error;
   std::vector<std::uint8_t> fixedSites;
-  if (!vtkAnisoDataConversion::ToVoronoiInputs(input, this->GetInputArrayToProcess(0, inputVector),
-        sitesInput, mesh, embedding, sites, error) ||
+  if (!vtkAnisoDataConversion::ToVoronoiInputs(input,
+        this->GetInputArrayToProcess(0, inputVector),
+        sitesInput,
+        mesh,
+        embedding,
+        sites,
+        error) ||
     !FixedSitesFromFeatureKind(sitesInput, sites.NumSites(), fixedSites, error))
   {
     vtkErrorMacro(<< error);
@@ -324,10 +336,15 @@ int vtkAnisoRestrictedDelaunay::RequestData(vtkInformation* request,
   this->UpdateProgress(0.1);
 
   av::MeshingPipelineResult result;
-  if (!vtkAnisoFilterUtilities::RunKernel(this, "restricted Delaunay mesh", [&] {
-        result = av::RunMeshingPipeline(
-          mesh, embedding, sites, MeshingOptions(this, fixedSites.empty() ? nullptr : &fixedSites));
-      }))
+  if (!vtkAnisoFilterUtilities::RunKernel(this,
+        "restricted Delaunay mesh",
+        [&]
+        {
+          result = av::RunMeshingPipeline(mesh,
+            embedding,
+            sites,
+            MeshingOptions(this, fixedSites.empty() ? nullptr : &fixedSites));
+        }))
   {
     return 0;
   }

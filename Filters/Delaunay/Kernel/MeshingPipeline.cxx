@@ -38,17 +38,22 @@ void MarkMoved(const SiteSet& before, const SiteSet& after, std::vector<std::uin
   for (std::size_t i = 0; i < before.NumSites(); ++i)
   {
     moved[i] = moved[i] || after.CellIds[i] != before.CellIds[i] ||
-      !std::equal(after.Bary.begin() + 4 * i, after.Bary.begin() + 4 * i + 4,
-        before.Bary.begin() + 4 * i);
+      !std::equal(
+        after.Bary.begin() + 4 * i, after.Bary.begin() + 4 * i + 4, before.Bary.begin() + 4 * i);
   }
 }
 
 /// The improvement rounds: ImproveSites, then the RVD and its dual of the moved sites, until
 /// ImproveRounds rounds are done or one moves no site. Updates `sites`, `rvd`, `rdt` and the
 /// round counts of `result`; false when the caller aborted.
-bool ImproveSiteRounds(const SimplexMesh& mesh, const Embedding& embedding,
-  const MeshingPipelineOptions& options, const RestrictedVoronoiOptions& voronoi, SiteSet& sites,
-  RestrictedVoronoiDiagram& rvd, RestrictedDelaunayMesh& rdt, MeshingPipelineResult& result)
+bool ImproveSiteRounds(const SimplexMesh& mesh,
+  const Embedding& embedding,
+  const MeshingPipelineOptions& options,
+  const RestrictedVoronoiOptions& voronoi,
+  SiteSet& sites,
+  RestrictedVoronoiDiagram& rvd,
+  RestrictedDelaunayMesh& rdt,
+  MeshingPipelineResult& result)
 {
   SiteImprovementOptions improve;
   improve.OdtIterations = options.OdtIterations;
@@ -83,8 +88,10 @@ MeshingPipelineResult Aborted(MeshingPipelineResult&& result)
 }
 } // namespace
 
-MeshingPipelineResult RunMeshingPipeline(const SimplexMesh& mesh, const Embedding& embedding,
-  const SiteSet& sites, const MeshingPipelineOptions& options)
+MeshingPipelineResult RunMeshingPipeline(const SimplexMesh& mesh,
+  const Embedding& embedding,
+  const SiteSet& sites,
+  const MeshingPipelineOptions& options)
 {
   ValidateRestrictedVoronoiInput(mesh, embedding, sites);
   ValidateOptions(options, sites.NumSites());
@@ -120,8 +127,8 @@ MeshingPipelineResult RunMeshingPipeline(const SimplexMesh& mesh, const Embeddin
     return Aborted(std::move(result));
 
   watch.Restart();
-  result.Repaired = RepairRestrictedDelaunay(
-    mesh, embedding, current, std::move(rvd), std::move(rdt), repair);
+  result.Repaired =
+    RepairRestrictedDelaunay(mesh, embedding, current, std::move(rvd), std::move(rdt), repair);
   result.RepairSeconds = watch.Seconds();
   return result;
 }

@@ -54,15 +54,15 @@ struct MeshingPipelineResult
   /// Per input site, 1 where the improvement rounds changed its cell id or barycentric
   /// coordinates (inserted sites are not in it).
   std::vector<std::uint8_t> Moved;
-  std::size_t NumMovedSites = 0;  ///< count of Moved
+  std::size_t NumMovedSites = 0;    ///< count of Moved
   std::size_t NumOdtMovedSites = 0; ///< sites moved by the first round's ODT steps
   std::size_t NumSlivers = 0;       ///< slivers (embedded dihedral < 15 deg) of the first round
   int ImproveRoundsDone = 0;        ///< rounds that moved sites
   bool Aborted = false;             ///< Progress returned false; the rest is incomplete
-  double VoronoiSeconds = 0.0; ///< element adjacency and the first restricted Voronoi diagram
-  double DelaunaySeconds = 0.0; ///< the first restricted Delaunay mesh
-  double ImproveSeconds = 0.0;  ///< improvement rounds, their RVD + RDT included
-  double RepairSeconds = 0.0;   ///< the repair (its rounds after the last RVD + RDT)
+  double VoronoiSeconds = 0.0;      ///< element adjacency and the first restricted Voronoi diagram
+  double DelaunaySeconds = 0.0;     ///< the first restricted Delaunay mesh
+  double ImproveSeconds = 0.0;      ///< improvement rounds, their RVD + RDT included
+  double RepairSeconds = 0.0;       ///< the repair (its rounds after the last RVD + RDT)
 };
 
 /**
@@ -73,8 +73,10 @@ struct MeshingPipelineResult
  * once for all of them. Deterministic. Throws InputError on bad input (inconsistent mesh,
  * embedding or sites, FixedSites not one per site, negative counts).
  */
-MeshingPipelineResult RunMeshingPipeline(const SimplexMesh& mesh, const Embedding& embedding,
-  const SiteSet& sites, const MeshingPipelineOptions& options = MeshingPipelineOptions());
+MeshingPipelineResult RunMeshingPipeline(const SimplexMesh& mesh,
+  const Embedding& embedding,
+  const SiteSet& sites,
+  const MeshingPipelineOptions& options = MeshingPipelineOptions());
 
 } // namespace av
 

@@ -15,15 +15,21 @@ namespace av_test
 inline av::Embedding FoldedEmbedding(const av::SimplexMesh& m, double amp, double w)
 {
   const int k = m.SimplexDim;
-  return MakeEmbedding(m, 8, [=](const double* x, int col) {
-    const double z = k == 3 ? x[2] : 0.0;
-    switch (col % 3)
+  return MakeEmbedding(m,
+    8,
+    [=](const double* x, int col)
     {
-      case 0: return amp * std::sin(w * x[0] + 0.3 * col);
-      case 1: return amp * std::cos(w * x[1] + 0.7 * z);
-      default: return amp * std::sin(w * (x[0] + x[1] + z));
-    }
-  });
+      const double z = k == 3 ? x[2] : 0.0;
+      switch (col % 3)
+      {
+        case 0:
+          return amp * std::sin(w * x[0] + 0.3 * col);
+        case 1:
+          return amp * std::cos(w * x[1] + 0.7 * z);
+        default:
+          return amp * std::sin(w * (x[0] + x[1] + z));
+      }
+    });
 }
 
 /// A mesh, its folded embedding and `n` random sites (RandomSites with `seed`).

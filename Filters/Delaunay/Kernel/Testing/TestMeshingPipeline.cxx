@@ -2,10 +2,10 @@
 // RunMeshingPipeline: the same result as its steps called one by one, no inverted element
 // left on folded embeddings (input-space signed areas), moved flags that are exactly the
 // sites that changed, fixed sites that never move, and aborts where the callback asks.
-#include "MeshingPipeline.h"
-#include "SiteImprovement.h"
 #include "AnisoTestChecks.h"
 #include "FoldedTestCases.h"
+#include "MeshingPipeline.h"
+#include "SiteImprovement.h"
 #include "VoronoiTestMeshes.h"
 
 #include <algorithm>
@@ -63,7 +63,7 @@ void CheckFolded(const FoldedCase& c, const char* what)
   AV_CHECK(!r.Aborted && r.ImproveRoundsDone == 1);
   AV_CHECK(r.NumOdtMovedSites > 0 && r.NumMovedSites > 0);
   AV_CHECK(m.SimplexDim == 3 || r.NumSlivers == 0); // triangles have no slivers
-  AV_CHECK(r.Repaired.InitialInverted > 0); // the case exercises the repair
+  AV_CHECK(r.Repaired.InitialInverted > 0);         // the case exercises the repair
   AV_CHECK(r.Repaired.Converged && r.Repaired.Delaunay.NumInverted == 0);
   AV_CHECK(NegativeCells(r.Repaired.Delaunay) == 0);
   CheckMoved(s, r);
@@ -138,8 +138,8 @@ void TestFixedSites()
   o.OdtIterations = 0;
   o.FixedSites = &fixed;
   const av::MeshingPipelineResult r = av::RunMeshingPipeline(m, e, s, o);
-  std::cout << "fixed sites: " << r.NumSlivers << " slivers, moved " << r.NumMovedSites
-            << " in " << r.ImproveRoundsDone << " round(s)" << std::endl;
+  std::cout << "fixed sites: " << r.NumSlivers << " slivers, moved " << r.NumMovedSites << " in "
+            << r.ImproveRoundsDone << " round(s)" << std::endl;
   AV_CHECK(r.NumSlivers > 0 && r.NumMovedSites > 0 && r.ImproveRoundsDone >= 1);
   AV_CHECK(r.NumOdtMovedSites == 0);
   CheckMoved(s, r);
@@ -163,15 +163,18 @@ void TestAbort()
   av::MeshingPipelineOptions o;
   o.ImproveRounds = 2;
   std::vector<av::MeshingStep> steps;
-  o.Progress = [&](av::MeshingStep step) {
+  o.Progress = [&](av::MeshingStep step)
+  {
     steps.push_back(step);
     return true;
   };
   const av::MeshingPipelineResult r = av::RunMeshingPipeline(m, e, s, o);
   AV_CHECK(!r.Aborted && r.ImproveRoundsDone == 2);
   const std::vector<av::MeshingStep> expected = { av::MeshingStep::Voronoi,
-    av::MeshingStep::Delaunay, av::MeshingStep::ImprovementRound,
-    av::MeshingStep::ImprovementRound, av::MeshingStep::Improvement };
+    av::MeshingStep::Delaunay,
+    av::MeshingStep::ImprovementRound,
+    av::MeshingStep::ImprovementRound,
+    av::MeshingStep::Improvement };
   AV_CHECK(steps == expected);
   AV_CHECK(r.Repaired.Sites.NumSites() >= s.NumSites());
 
