@@ -1,18 +1,16 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The "mesh" stage of anisovoronoi-bench: sampling, av::RunMeshingPipeline, the dual's quality.
 #include "MeshStage.h"
 
 #include "LloydRelaxation.h"
-#include "MeshTopology.h"
 #include "MeshQuality.h"
+#include "MeshTopology.h"
+#include "MeshingPipeline.h"
 #include "ParticleSampler.h"
-#include "RestrictedDelaunay.h"
-#include "RestrictedDelaunayRefinement.h"
-#include "RestrictedVoronoi.h"
-#include "SiteImprovement.h"
-#include "StructuredMeshes.h"
+#include "Stopwatch.h"
 
 #include <Eigen/Dense>
 
-#include <chrono>
 #include <cmath>
 #include <limits>
 #include <utility>
@@ -21,12 +19,6 @@ namespace avbench
 {
 namespace
 {
-using Clock = std::chrono::steady_clock;
-double Since(Clock::time_point t0)
-{
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
-
 /// Total area / volume of the input mesh (input space).
 double DomainMeasure(const av::SimplexMesh& mesh)
 {
@@ -53,6 +45,131 @@ double DomainMeasure(const av::SimplexMesh& mesh)
     }
   }
   return total;
+}
+
+/// The sites of the stage: the particle sampler, then the optional Lloyd steps. `fixed`
+/// gets the corner and feature-line sites, which the improvement rounds must not move.
+av::SiteSet SampleSites(const av::SimplexMesh& mesh,
+  const av::Embedding& embedding,
+  const MeshStageOptions& options,
+  std::vector<std::uint8_t>& fixed,
+  MeshStageResult& r)
+{
+  const av::Stopwatch sampleWatch;
+  av::ParticleSamplerOptions so;
+  so.NumSites = options.Sites;
+  so.Iterations = options.SampleIterations;
+  so.WarmupIterations = options.WarmupIterations;
+  so.Seed = options.Seed;
+  so.KernelWidthFactor = options.KernelWidthFactor;
+  so.PreserveSharpFeatures = options.PreserveSharpFeatures;
+  so.FeatureAngle = options.FeatureAngle;
+  av::ParticleSamplerResult sampled = av::SampleParticles(mesh, embedding, so);
+  r.SampleSeconds = sampleWatch.Seconds();
+  r.CornerSites = sampled.NumCornerSites;
+  r.FeatureLineSites = sampled.NumFeatureLineSites;
+  // Corner and feature-line sites stay where the sampler put them (the ODT steps keep every
+  // site whose cell meets the boundary anyway).
+  fixed.resize(sampled.FeatureKind.size());
+  for (std::size_t i = 0; i < fixed.size(); ++i)
+    fixed[i] = sampled.FeatureKind[i] != 0 ? 1 : 0;
+  if (options.LloydIterations > 0)
+  {
+    const av::Stopwatch lloydWatch;
+    av::LloydResult lr =
+      av::RelaxSitesLloyd(mesh, embedding, sampled.Sites, options.LloydIterations);
+    sampled.Sites = std::move(lr.Sites);
+    r.LloydSeconds = lloydWatch.Seconds();
+  }
+  return std::move(sampled.Sites);
+}
+
+/// The meshing options of the stage.
+av::MeshingPipelineOptions PipelineOptions(const MeshStageOptions& options,
+  const std::vector<std::uint8_t>* fixed)
+{
+  av::MeshingPipelineOptions po;
+  po.ImproveRounds = options.ImproveRounds;
+  po.OdtIterations = options.OdtIterations;
+  po.PerturbSlivers = options.PerturbSlivers;
+  po.FixedSites = fixed;
+  po.Repair = options.Repair;
+  po.MaxRepairRounds = options.MaxRepairRounds;
+  po.RepairNonManifold = options.RepairNonManifold;
+  return po;
+}
+
+/// Timings and counts of the meshing run.
+void CopyMeshingCounts(const av::MeshingPipelineResult& m, MeshStageResult& r)
+{
+  r.RvdSeconds = m.VoronoiSeconds;
+  r.RdtSeconds = m.DelaunaySeconds;
+  r.ImproveSeconds = m.ImproveSeconds;
+  r.RepairSeconds = m.RepairSeconds;
+  r.SliversPerturbed = m.NumSlivers;
+  r.OdtMovedSites = m.NumOdtMovedSites;
+  const av::DelaunayRepairResult& repaired = m.Repaired;
+  r.InsertedSites = repaired.NumInserted;
+  r.RepairRounds = repaired.Rounds;
+  r.InvertedPerRound = repaired.InvertedPerRound;
+  r.RepairStalled = repaired.Stalled;
+  r.RdtInvertedBeforeRepair = repaired.InitialInverted;
+  r.NonManifoldFacesBeforeRepair = repaired.InitialNonManifoldFaces;
+  r.Sites = repaired.NumInputSites;
+  r.RvdPieces = repaired.Voronoi.NumPieces();
+  r.Cells = repaired.Delaunay.NumCells();
+  r.RdtInverted = repaired.Delaunay.NumInverted;
+  r.NonManifoldFaces = repaired.Delaunay.NumNonManifoldFaces;
+  r.UnusedSites = repaired.Delaunay.NumUnusedSites;
+}
+
+/// The dual's covered volume and its §5.2 quality against `metric` at the final sites.
+void MeasureDualMesh(const av::SimplexMesh& mesh,
+  const av::MetricField& metric,
+  const av::DelaunayRepairResult& repaired,
+  MeshStageResult& r)
+{
+  const av::RestrictedVoronoiDiagram& rvd = repaired.Voronoi;
+  const av::RestrictedDelaunayMesh& rdt = repaired.Delaunay;
+  const av::SiteSet& sites = repaired.Sites;
+  double pieces = 0.0;
+  for (double v : rvd.PieceMeasure)
+  {
+    pieces += v;
+  }
+  const double domain = DomainMeasure(mesh);
+  r.RvdVolumeError = std::abs(pieces - domain) / domain;
+
+  av::SimplexMesh dual;
+  dual.AmbientDim = rdt.AmbientDim;
+  dual.SimplexDim = rdt.SimplexDim;
+  dual.Points = rdt.Points;
+  dual.Cells = rdt.Cells;
+  const av::MeshQualityResult q =
+    av::EvaluateMeshQuality(dual, av::InterpolateMetricAtSites(mesh, metric, sites));
+  if (dual.SimplexDim == dual.AmbientDim)
+  {
+    // How much of the domain the dual mesh covers (corners and edges cut off lower it).
+    double covered = 0.0;
+    for (std::size_t c = 0; c < dual.NumCells(); ++c)
+      covered += std::abs(av::CellMeasure(dual, c));
+    r.DualVolumeRatio = covered / domain;
+  }
+  {
+    const std::vector<double> ge =
+      av::SimplexQualityInEmbedding(rdt.Cells, rdt.SimplexDim, sites.Coords, sites.Dim);
+    double sum = 0.0;
+    for (double g : ge)
+      sum += g;
+    r.GAvgEmbedded = ge.empty() ? 0.0 : sum / static_cast<double>(ge.size());
+  }
+  r.GMin = q.Summary.GMin;
+  r.GAvg = q.Summary.GAvg;
+  r.ThetaMin = q.Summary.ThetaMin;
+  r.ThetaAvg = q.Summary.ThetaAvg;
+  r.PercentBad = q.Summary.PercentBad;
+  r.Inverted = q.Summary.NumInverted;
+  r.PercentEdgesInUnitRange = q.Summary.PercentEdgesInUnitRange;
 }
 } // namespace
 
@@ -98,141 +215,20 @@ std::size_t DefaultSitesFor(av::AnalyticPreset preset)
   return 1000;
 }
 
-MeshStageResult RunMeshStage(const av::SimplexMesh& mesh, const av::MetricField& metric,
-  const av::Embedding& embedding, const MeshStageOptions& options)
+MeshStageResult RunMeshStage(const av::SimplexMesh& mesh,
+  const av::MetricField& metric,
+  const av::Embedding& embedding,
+  const MeshStageOptions& options)
 {
   MeshStageResult r;
-  const auto t0 = Clock::now();
-
-  av::ParticleSamplerOptions so;
-  so.NumSites = options.Sites;
-  so.Iterations = options.SampleIterations;
-  so.WarmupIterations = options.WarmupIterations;
-  so.Seed = options.Seed;
-  so.KernelWidthFactor = options.KernelWidthFactor;
-  so.PreserveSharpFeatures = options.PreserveSharpFeatures;
-  so.FeatureAngle = options.FeatureAngle;
-  av::ParticleSamplerResult sampled = av::SampleParticles(mesh, embedding, so);
-  r.SampleSeconds = Since(t0);
-  r.CornerSites = sampled.NumCornerSites;
-  r.FeatureLineSites = sampled.NumFeatureLineSites;
-  // Corner and feature-line sites stay where the sampler put them (the ODT steps keep every
-  // site whose cell meets the boundary anyway).
-  std::vector<std::uint8_t> fixedSites(sampled.FeatureKind.size());
-  for (std::size_t i = 0; i < fixedSites.size(); ++i)
-    fixedSites[i] = sampled.FeatureKind[i] != 0 ? 1 : 0;
-  if (options.LloydIterations > 0)
-  {
-    const auto tl = Clock::now();
-    av::LloydResult lr =
-      av::RelaxSitesLloyd(mesh, embedding, sampled.Sites, options.LloydIterations);
-    sampled.Sites = std::move(lr.Sites);
-    r.LloydSeconds = Since(tl);
-  }
-
-  const auto t1 = Clock::now();
-  av::DelaunayRepairOptions ro; // its Voronoi options: no geometry, the dual needs only records
-  ro.MaxRounds = options.Repair ? options.MaxRepairRounds : 0;
-  ro.RepairNonManifold = options.RepairNonManifold;
-  // Computed once for all the diagrams and site moves on this mesh.
-  const std::vector<std::int32_t> adjacency = av::ComputeElementAdjacency(mesh);
-  ro.Voronoi.ElementAdjacency = &adjacency;
-  av::RestrictedVoronoiDiagram rvd0 =
-    av::ComputeRestrictedVoronoi(mesh, embedding, sampled.Sites, ro.Voronoi);
-  r.RvdSeconds = Since(t1);
-
-  const auto t2 = Clock::now();
-  av::RestrictedDelaunayMesh rdt0 =
-    av::ComputeRestrictedDelaunay(mesh, embedding, sampled.Sites, rvd0);
-  r.RdtSeconds = Since(t2);
-
-  // Site improvement rounds: ODT steps and sliver pushes, then the RVD and its dual again.
-  const auto ts = Clock::now();
-  for (int round = 0; round < options.ImproveRounds; ++round)
-  {
-    av::SiteImprovementOptions io;
-    io.OdtIterations = options.OdtIterations;
-    io.PerturbSlivers = options.PerturbSlivers;
-    io.ElementAdjacency = &adjacency;
-    io.Sliver.FixedSites = &fixedSites;
-    const av::SiteImprovementResult im =
-      av::ImproveSites(mesh, embedding, sampled.Sites, rvd0, rdt0, io);
-    if (round == 0)
-    {
-      r.SliversPerturbed = im.NumSlivers;
-      r.OdtMovedSites = im.NumOdtMoved;
-    }
-    if (im.NumMovedSites == 0)
-    {
-      break;
-    }
-    sampled.Sites = std::move(im.Sites);
-    rvd0 = av::ComputeRestrictedVoronoi(mesh, embedding, sampled.Sites, ro.Voronoi);
-    rdt0 = av::ComputeRestrictedDelaunay(mesh, embedding, sampled.Sites, rvd0);
-  }
-  r.ImproveSeconds = Since(ts);
-
-  const auto t3 = Clock::now();
-  const std::size_t sampledSites = sampled.Sites.NumSites();
-  av::DelaunayRepairResult repaired = av::RepairRestrictedDelaunay(
-    mesh, embedding, sampled.Sites, std::move(rvd0), std::move(rdt0), ro);
-  r.RepairSeconds = Since(t3);
-  r.MeshSeconds = Since(t0);
-  const av::RestrictedVoronoiDiagram& rvd = repaired.Voronoi;
-  const av::RestrictedDelaunayMesh& rdt = repaired.Delaunay;
-  sampled.Sites = std::move(repaired.Sites);
-  r.InsertedSites = repaired.NumInserted;
-  r.RepairRounds = repaired.Rounds;
-  r.InvertedPerRound = repaired.InvertedPerRound;
-  r.RepairStalled = repaired.Stalled;
-  r.RdtInvertedBeforeRepair = repaired.InitialInverted;
-  r.NonManifoldFacesBeforeRepair = repaired.InitialNonManifoldFaces;
-
-  r.Sites = sampledSites;
-  r.RvdPieces = rvd.NumPieces();
-  double pieces = 0.0;
-  for (double v : rvd.PieceMeasure)
-  {
-    pieces += v;
-  }
-  const double domain = DomainMeasure(mesh);
-  r.RvdVolumeError = std::abs(pieces - domain) / domain;
-
-  r.Cells = rdt.NumCells();
-  r.RdtInverted = rdt.NumInverted;
-  r.NonManifoldFaces = rdt.NumNonManifoldFaces;
-  r.UnusedSites = rdt.NumUnusedSites;
-
-  av::SimplexMesh dual;
-  dual.AmbientDim = rdt.AmbientDim;
-  dual.SimplexDim = rdt.SimplexDim;
-  dual.Points = rdt.Points;
-  dual.Cells = rdt.Cells;
-  const av::MeshQualityResult q =
-    av::EvaluateMeshQuality(dual, av::InterpolateMetricAtSites(mesh, metric, sampled.Sites));
-  if (dual.SimplexDim == dual.AmbientDim)
-  {
-    // How much of the domain the dual mesh covers (corners and edges cut off lower it).
-    double covered = 0.0;
-    for (std::size_t c = 0; c < dual.NumCells(); ++c)
-      covered += std::abs(av::CellMeasure(dual, c));
-    r.DualVolumeRatio = covered / domain;
-  }
-  {
-    const std::vector<double> ge = av::SimplexQualityInEmbedding(
-      rdt.Cells, rdt.SimplexDim, sampled.Sites.Coords, sampled.Sites.Dim);
-    double sum = 0.0;
-    for (double g : ge)
-      sum += g;
-    r.GAvgEmbedded = ge.empty() ? 0.0 : sum / static_cast<double>(ge.size());
-  }
-  r.GMin = q.Summary.GMin;
-  r.GAvg = q.Summary.GAvg;
-  r.ThetaMin = q.Summary.ThetaMin;
-  r.ThetaAvg = q.Summary.ThetaAvg;
-  r.PercentBad = q.Summary.PercentBad;
-  r.Inverted = q.Summary.NumInverted;
-  r.PercentEdgesInUnitRange = q.Summary.PercentEdgesInUnitRange;
+  const av::Stopwatch meshWatch;
+  std::vector<std::uint8_t> fixedSites;
+  const av::SiteSet sites = SampleSites(mesh, embedding, options, fixedSites, r);
+  const av::MeshingPipelineResult meshed =
+    av::RunMeshingPipeline(mesh, embedding, sites, PipelineOptions(options, &fixedSites));
+  r.MeshSeconds = meshWatch.Seconds();
+  CopyMeshingCounts(meshed, r);
+  MeasureDualMesh(mesh, metric, meshed.Repaired, r);
   return r;
 }
 

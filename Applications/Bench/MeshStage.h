@@ -1,5 +1,6 @@
-// MeshStage: the "mesh" stage of anisovoronoi-bench (sampling, restricted Voronoi, restricted
-// Delaunay and the §5.2 quality of the dual mesh), kept apart from the JSON / CLI code.
+// SPDX-License-Identifier: BSD-3-Clause
+// MeshStage: the "mesh" stage of anisovoronoi-bench (sampling, then av::RunMeshingPipeline, then
+// the §5.2 quality of the dual mesh), kept apart from the JSON / CLI code.
 #ifndef av_bench_MeshStage_h
 #define av_bench_MeshStage_h
 
@@ -50,7 +51,8 @@ struct MeshStageResult
   std::size_t Sites = 0;
   std::size_t CornerSites = 0, FeatureLineSites = 0; ///< of the sampled sites
   double DualVolumeRatio = 0.0; ///< dual mesh volume / domain volume (tets; 1 = covered)
-  double SampleSeconds = 0.0, LloydSeconds = 0.0, RvdSeconds = 0.0, RdtSeconds = 0.0;
+  double SampleSeconds = 0.0, LloydSeconds = 0.0;
+  double RvdSeconds = 0.0, RdtSeconds = 0.0; ///< the first RVD (with the adjacency) and RDT
   double ImproveSeconds = 0.0; ///< site improvement rounds (their RVD + RDT included)
   std::size_t OdtMovedSites = 0;    ///< sites moved by the first round's ODT steps
   std::size_t SliversPerturbed = 0; ///< slivers (embedded dihedral < 15 deg) of the first round

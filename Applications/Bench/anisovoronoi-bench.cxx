@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // anisovoronoi-bench: runs a stage of the pipeline on one of the paper's analytic test cases and
 // prints one JSON object per line (machine-readable, comparable with the paper's tables).
 //
@@ -6,9 +7,11 @@
 #include "AnalyticMetrics.h"
 #include "EdgeLengthError.h"
 #include "EmbeddingSolver.h"
+#include "JsonLine.h"
 #include "MeshStage.h"
 #include "MetricAlgebra.h"
 #include "ReferenceEmbedding.h"
+#include "Stopwatch.h"
 #include "StructuredMeshes.h"
 #include "TetMesher.h"
 
@@ -17,7 +20,6 @@
 
 #include <sys/resource.h>
 
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -33,78 +35,8 @@
 
 namespace
 {
-using Clock = std::chrono::steady_clock;
-double Since(Clock::time_point t0)
-{
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
+using avbench::JsonLine;
 const double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-/// Ordered key/value pairs printed as one JSON object on one line (non-finite numbers -> null).
-class JsonLine
-{
-public:
-  void Set(const std::string& key, const std::string& value)
-  {
-    std::string esc = "\"";
-    for (char c : value)
-    {
-      if (c == '"' || c == '\\')
-      {
-        esc += '\\';
-      }
-      esc += c;
-    }
-    this->Put(key, esc + "\"");
-  }
-  void Set(const std::string& key, const char* value) { this->Set(key, std::string(value)); }
-  void Set(const std::string& key, double value)
-  {
-    if (!std::isfinite(value))
-    {
-      this->Put(key, "null");
-      return;
-    }
-    char buf[64];
-    std::snprintf(buf, sizeof(buf), "%.6g", value);
-    this->Put(key, buf);
-  }
-  void Set(const std::string& key, long long value) { this->Put(key, std::to_string(value)); }
-  void Set(const std::string& key, int value) { this->Put(key, std::to_string(value)); }
-  void Set(const std::string& key, std::size_t value) { this->Put(key, std::to_string(value)); }
-  void Set(const std::string& key, bool value) { this->Put(key, value ? "true" : "false"); }
-  void Set(const std::string& key, const std::vector<std::size_t>& values)
-  {
-    std::string s = "[";
-    for (std::size_t i = 0; i < values.size(); ++i)
-      s += (i ? ", " : "") + std::to_string(values[i]);
-    this->Put(key, s + "]");
-  }
-  std::string Str() const
-  {
-    std::string s = "{";
-    for (std::size_t i = 0; i < this->Items.size(); ++i)
-    {
-      s += (i ? ", \"" : "\"") + this->Items[i].first + "\": " + this->Items[i].second;
-    }
-    return s + "}";
-  }
-
-private:
-  void Put(const std::string& key, const std::string& raw)
-  {
-    for (auto& kv : this->Items)
-    {
-      if (kv.first == key)
-      {
-        kv.second = raw;
-        return;
-      }
-    }
-    this->Items.emplace_back(key, raw);
-  }
-  std::vector<std::pair<std::string, std::string>> Items;
-};
 
 struct Args
 {
@@ -187,7 +119,7 @@ Case BuildCase(const Args& a)
   c.Preset = av::AnalyticPresetFromName(a.CaseName);
   c.Paper = PaperFor(c.Preset);
   const av::AnalyticDomain d = av::RecommendedDomain(c.Preset);
-  const auto t0 = Clock::now();
+  const av::Stopwatch watch;
   if (d.IsBall)
   {
     std::size_t target = d.BallVertices;
@@ -223,7 +155,7 @@ Case BuildCase(const Args& a)
     c.MeshDescription = "kuhn-" + std::to_string(n[0]) + "x" + std::to_string(n[1]) + "x" + std::to_string(n[2]);
   }
   c.Metric = av::EvaluateAnalyticMetric(c.Preset, c.Mesh);
-  c.MeshSeconds = Since(t0);
+  c.MeshSeconds = watch.Seconds();
   return c;
 }
 
@@ -247,29 +179,27 @@ void StretchRange(const Case& c, double& smin, double& smax)
   }
 }
 
-/// Stage "embed": the high-d embedding and its §5.1 edge length error (kept in *keep if given).
-void StageEmbed(const Args& a, const Case& c, JsonLine& out, av::Embedding* keep = nullptr)
+/// The preset's exact isometric embedding (ReferenceEmbedding.h) instead of the solver: what
+/// the rest of the pipeline gives when the embedding is not the limit.
+void EmbedReference(const Case& c, int dim, JsonLine& out, av::Embedding* keep)
 {
-  const int dim = a.Dim > 0 ? a.Dim : (c.Mesh.AmbientDim == 2 ? 3 : 8);
-  if (a.Reference)
+  const av::Stopwatch watch;
+  av::Embedding ref = av::ComputeReferenceEmbedding(c.Preset, c.Mesh, dim);
+  const double seconds = watch.Seconds();
+  const av::EdgeLengthErrorResult e = av::ComputeEdgeLengthError(c.Mesh, c.Metric, ref);
+  out.Set("embedding", "reference");
+  out.Set("dim", dim);
+  out.Set("L_avg", e.AveragePercent);
+  out.Set("L_max", e.MaxPercent);
+  out.Set("embed_seconds", seconds);
+  if (keep)
   {
-    // The preset's exact isometric embedding (ReferenceEmbedding.h): what the rest of the
-    // pipeline gives when the embedding is not the limit.
-    const auto t0 = Clock::now();
-    av::Embedding ref = av::ComputeReferenceEmbedding(c.Preset, c.Mesh, dim);
-    const double seconds = Since(t0);
-    const av::EdgeLengthErrorResult e = av::ComputeEdgeLengthError(c.Mesh, c.Metric, ref);
-    out.Set("embedding", "reference");
-    out.Set("dim", dim);
-    out.Set("L_avg", e.AveragePercent);
-    out.Set("L_max", e.MaxPercent);
-    out.Set("embed_seconds", seconds);
-    if (keep)
-    {
-      *keep = std::move(ref);
-    }
-    return;
+    *keep = std::move(ref);
   }
+}
+
+av::EmbeddingOptions EmbeddingOptionsFor(const Args& a, const Case& c, int dim)
+{
   av::EmbeddingOptions o;
   o.TargetDim = dim;
   o.Iterations = a.Iterations >= 0 ? a.Iterations : (c.Preset == av::AnalyticPreset::Gaussian2D ? 20 : 50);
@@ -279,34 +209,15 @@ void StageEmbed(const Args& a, const Case& c, JsonLine& out, av::Embedding* keep
   o.SinglePrecisionSolve = !a.DoubleSolve;
   o.ElementMeasureWeighting = a.Weighted;
   o.Initialisation = a.Init == "random" ? av::EmbeddingInitialisation::Random : av::EmbeddingInitialisation::Smooth;
+  return o;
+}
 
-  std::unique_ptr<av::EdgeLengthErrorEvaluator> evaluator;
-  if (a.TrackError)
-  {
-    evaluator.reset(new av::EdgeLengthErrorEvaluator(c.Mesh, c.Metric));
-  }
-  int reached = -1;
-  double trackSeconds = 0.0;
-  if (evaluator && std::isfinite(c.Paper.LAvg))
-  {
-    // Error per iteration; its cost is measured and left out of embed_seconds.
-    o.Progress = [&](const av::EmbeddingProgress& p) {
-      const auto t0 = Clock::now();
-      if (reached < 0 &&
-        evaluator->Evaluate(p.Solver->CurrentEmbedding()).AveragePercent <= c.Paper.LAvg)
-      {
-        reached = p.Iteration;
-      }
-      trackSeconds += Since(t0);
-      return true;
-    };
-  }
-  const auto t0 = Clock::now();
-  av::EmbeddingResult r = av::ComputeEmbedding(c.Mesh, c.Metric, o);
-  const double embedSeconds = Since(t0) - trackSeconds;
-  const av::EdgeLengthErrorResult e = evaluator ? evaluator->Evaluate(r.Embedded)
-                                                : av::ComputeEdgeLengthError(c.Mesh, c.Metric, r.Embedded);
-
+/// The keys of the "embed" report of a solver run (`reached`: first iteration at the paper's
+/// L_avg, -1 if none).
+void ReportEmbedding(const Args& a, const Case& c, const av::EmbeddingOptions& o,
+  const av::EmbeddingResult& r, const av::EdgeLengthErrorResult& e, double embedSeconds,
+  int reached, JsonLine& out)
+{
   out.Set("embedding", "solver");
   out.Set("dim", o.TargetDim);
   out.Set("iterations", r.IterationsDone);
@@ -337,15 +248,54 @@ void StageEmbed(const Args& a, const Case& c, JsonLine& out, av::Embedding* keep
   out.Set("init", a.Init);
   out.Set("weighted", a.Weighted);
   out.Set("seed", static_cast<long long>(a.Seed));
+}
+
+/// Stage "embed": the high-d embedding and its §5.1 edge length error (kept in *keep if given).
+void StageEmbed(const Args& a, const Case& c, JsonLine& out, av::Embedding* keep = nullptr)
+{
+  const int dim = a.Dim > 0 ? a.Dim : (c.Mesh.AmbientDim == 2 ? 3 : 8);
+  if (a.Reference)
+  {
+    EmbedReference(c, dim, out, keep);
+    return;
+  }
+  av::EmbeddingOptions o = EmbeddingOptionsFor(a, c, dim);
+  std::unique_ptr<av::EdgeLengthErrorEvaluator> evaluator;
+  if (a.TrackError)
+  {
+    evaluator.reset(new av::EdgeLengthErrorEvaluator(c.Mesh, c.Metric));
+  }
+  int reached = -1;
+  double trackSeconds = 0.0;
+  if (evaluator && std::isfinite(c.Paper.LAvg))
+  {
+    // Error per iteration; its cost is measured and left out of embed_seconds.
+    o.Progress = [&](const av::EmbeddingProgress& p) {
+      const av::Stopwatch trackWatch;
+      if (reached < 0 &&
+        evaluator->Evaluate(p.Solver->CurrentEmbedding()).AveragePercent <= c.Paper.LAvg)
+      {
+        reached = p.Iteration;
+      }
+      trackSeconds += trackWatch.Seconds();
+      return true;
+    };
+  }
+  const av::Stopwatch watch;
+  av::EmbeddingResult r = av::ComputeEmbedding(c.Mesh, c.Metric, o);
+  const double embedSeconds = watch.Seconds() - trackSeconds;
+  const av::EdgeLengthErrorResult e = evaluator ? evaluator->Evaluate(r.Embedded)
+                                                : av::ComputeEdgeLengthError(c.Mesh, c.Metric, r.Embedded);
+  ReportEmbedding(a, c, o, r, e, embedSeconds, reached, out);
   if (keep)
   {
     *keep = std::move(r.Embedded);
   }
 }
 
-/// Stage "mesh" (and "all" = embed + mesh keys): sampling, RVD, RDT and the dual's quality.
-/// The embedding is computed first; with "mesh" only its dimension is reported.
-void StageMesh(const Args& a, const Case& c, JsonLine& out)
+/// The embedding the mesh stage works on: with "all" its full "embed" report goes to `out`,
+/// with "mesh" only its kind and dimension.
+av::Embedding EmbedForMesh(const Args& a, const Case& c, JsonLine& out)
 {
   av::Embedding embedded;
   if (a.Stage == "all")
@@ -361,6 +311,11 @@ void StageMesh(const Args& a, const Case& c, JsonLine& out)
     out.Set("embedding", a.Reference ? "reference" : "solver");
     out.Set("dim", embedded.Dim);
   }
+  return embedded;
+}
+
+avbench::MeshStageOptions MeshStageOptionsFor(const Args& a, const Case& c)
+{
   avbench::MeshStageOptions o;
   o.Sites = a.Sites > 0 ? a.Sites : avbench::DefaultSitesFor(c.Preset);
   o.SampleIterations = a.SampleIterations;
@@ -376,7 +331,13 @@ void StageMesh(const Args& a, const Case& c, JsonLine& out)
   o.PerturbSlivers = a.PerturbSlivers;
   o.PreserveSharpFeatures = a.Features;
   o.FeatureAngle = a.FeatureAngle;
-  const avbench::MeshStageResult r = avbench::RunMeshStage(c.Mesh, c.Metric, embedded, o);
+  return o;
+}
+
+/// The keys of the "mesh" report.
+void ReportMesh(const Case& c, const avbench::MeshStageOptions& o,
+  const avbench::MeshStageResult& r, JsonLine& out)
+{
   const avbench::PaperMeshValues p = avbench::PaperMeshValuesFor(c.Preset);
   out.Set("sites", r.Sites);
   out.Set("sharp_features", o.PreserveSharpFeatures);
@@ -435,6 +396,15 @@ void StageMesh(const Args& a, const Case& c, JsonLine& out)
   }
 }
 
+/// Stage "mesh" (and "all" = embed + mesh keys): sampling, RVD, RDT and the dual's quality.
+/// The embedding is computed first; with "mesh" only its dimension is reported.
+void StageMesh(const Args& a, const Case& c, JsonLine& out)
+{
+  const av::Embedding embedded = EmbedForMesh(a, c, out);
+  const avbench::MeshStageOptions o = MeshStageOptionsFor(a, c);
+  ReportMesh(c, o, avbench::RunMeshStage(c.Mesh, c.Metric, embedded, o), out);
+}
+
 using StageFn = std::function<void(const Args&, const Case&, JsonLine&)>;
 const std::map<std::string, StageFn>& Stages()
 {
@@ -485,6 +455,31 @@ void Usage(std::ostream& os)
         "                    of the solver (all presets but sphere-cos): separates the\n"
         "                    embedding's share of a quality loss from the rest\n"
         "Prints one JSON object per case on stdout.\n";
+}
+
+/// Throws std::runtime_error for option values out of range.
+void CheckArgs(const Args& a)
+{
+  if (a.Init != "smooth" && a.Init != "random")
+  {
+    throw std::runtime_error("--init must be smooth or random");
+  }
+  if (a.WarmupIterations < 0)
+  {
+    throw std::runtime_error("--warmup-iterations must be >= 0");
+  }
+  if (a.ImproveRounds < 0 || a.OdtIterations < 0)
+  {
+    throw std::runtime_error("--improve-rounds and --odt-iterations must be >= 0");
+  }
+  if (a.RepairRounds < 0)
+  {
+    throw std::runtime_error("--repair-rounds must be >= 0");
+  }
+  if (a.Resolution != -1 && a.Resolution < 2)
+  {
+    throw std::runtime_error("--resolution must be >= 2");
+  }
 }
 
 bool Parse(int argc, char** argv, Args& a)
@@ -566,27 +561,41 @@ bool Parse(int argc, char** argv, Args& a)
     else
       throw std::runtime_error("unknown argument '" + k + "'");
   }
-  if (a.Init != "smooth" && a.Init != "random")
-  {
-    throw std::runtime_error("--init must be smooth or random");
-  }
-  if (a.WarmupIterations < 0)
-  {
-    throw std::runtime_error("--warmup-iterations must be >= 0");
-  }
-  if (a.ImproveRounds < 0 || a.OdtIterations < 0)
-  {
-    throw std::runtime_error("--improve-rounds and --odt-iterations must be >= 0");
-  }
-  if (a.RepairRounds < 0)
-  {
-    throw std::runtime_error("--repair-rounds must be >= 0");
-  }
-  if (a.Resolution != -1 && a.Resolution < 2)
-  {
-    throw std::runtime_error("--resolution must be >= 2");
-  }
+  CheckArgs(a);
   return !a.CaseName.empty();
+}
+/// Builds case `name`, runs `stage` on it and prints its JSON line; false on error (the line
+/// then has an "error" key).
+bool RunCase(const Args& args, const std::string& name, const StageFn& stage, int threads)
+{
+  JsonLine out;
+  out.Set("case", name);
+  out.Set("stage", args.Stage);
+  bool ok = true;
+  try
+  {
+    Args a = args;
+    a.CaseName = name;
+    const Case c = BuildCase(a);
+    double smin, smax;
+    StretchRange(c, smin, smax);
+    out.Set("mesh", c.MeshDescription);
+    out.Set("input_vertices", c.Mesh.NumPoints());
+    out.Set("input_elements", c.Mesh.NumCells());
+    out.Set("stretch_min", smin);
+    out.Set("stretch_max", smax);
+    out.Set("input_mesh_seconds", c.MeshSeconds);
+    stage(a, c, out);
+    out.Set("threads", threads);
+    out.Set("peak_rss_mb", PeakRssMb());
+  }
+  catch (const std::exception& e)
+  {
+    out.Set("error", e.what());
+    ok = false;
+  }
+  std::cout << out.Str() << std::endl;
+  return ok;
 }
 } // namespace
 
@@ -631,32 +640,7 @@ int main(int argc, char** argv)
   int status = 0;
   for (const std::string& name : cases)
   {
-    JsonLine out;
-    out.Set("case", name);
-    out.Set("stage", args.Stage);
-    try
-    {
-      Args a = args;
-      a.CaseName = name;
-      const Case c = BuildCase(a);
-      double smin, smax;
-      StretchRange(c, smin, smax);
-      out.Set("mesh", c.MeshDescription);
-      out.Set("input_vertices", c.Mesh.NumPoints());
-      out.Set("input_elements", c.Mesh.NumCells());
-      out.Set("stretch_min", smin);
-      out.Set("stretch_max", smax);
-      out.Set("input_mesh_seconds", c.MeshSeconds);
-      stage->second(a, c, out);
-      out.Set("threads", threads);
-      out.Set("peak_rss_mb", PeakRssMb());
-    }
-    catch (const std::exception& e)
-    {
-      out.Set("error", e.what());
-      status = 1;
-    }
-    std::cout << out.Str() << std::endl;
+    status = RunCase(args, name, stage->second, threads) ? status : 1;
   }
   return status;
 }

@@ -1,48 +1,47 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// vtkAnisoRestrictedDelaunay: converts its inputs, runs av::RunMeshingPipeline (RVD, RDT,
+// site improvement rounds, repair) and builds the dual mesh with its point and field data.
 #include "vtkAnisoRestrictedDelaunay.h"
 
-#include "RestrictedDelaunay.h"
-#include "RestrictedDelaunayRefinement.h"
-#include "SiteImprovement.h"
-#include "RestrictedVoronoi.h"
+#include "MeshingPipeline.h"
+#include "Stopwatch.h"
 #include "vtkAnisoDataConversion.h"
+#include "vtkAnisoFilterUtilities.h"
 
-#include <vtkCellArray.h>
 #include <vtkCellData.h>
-#include <vtkDataSet.h>
 #include <vtkDataArray.h>
-#include <vtkDoubleArray.h>
-#include <vtkIdList.h>
+#include <vtkDataSet.h>
 #include <vtkFieldData.h>
+#include <vtkIdList.h>
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
+#include <vtkNew.h>
 #include <vtkObjectFactory.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
+#include <vtkSmartPointer.h>
 #include <vtkUnsignedCharArray.h>
 #include <vtkUnstructuredGrid.h>
 
 #include <algorithm>
-#include <chrono>
-#include <limits>
-#include <utility>
+#include <cstdint>
+#include <string>
+#include <vector>
 
 vtkStandardNewMacro(vtkAnisoRestrictedDelaunay);
 
 namespace
 {
-void AddFieldValue(vtkFieldData* fd, const char* name, double value)
-{
-  vtkNew<vtkDoubleArray> a;
-  a->SetName(name);
-  a->InsertNextValue(value);
-  fd->AddArray(a);
-}
+using vtkAnisoFilterUtilities::AddFieldValue;
 
 /// Output point data: the sites' arrays, recomputed for moved sites and extended to the
 /// inserted ones ("CellId" / "Barycentric" are theirs, arrays the mesh also has are
 /// interpolated, others 0).
-void ExtendPointData(vtkDataSet* sitesInput, vtkDataSet* meshInput,
-  const av::SimplexMesh& mesh, const av::SiteSet& sites, const std::vector<char>& moved,
+void ExtendPointData(vtkDataSet* sitesInput,
+  vtkDataSet* meshInput,
+  const av::SimplexMesh& mesh,
+  const av::SiteSet& sites,
+  const std::vector<std::uint8_t>& moved,
   vtkUnstructuredGrid* output)
 {
   vtkPointData* in = sitesInput->GetPointData();
@@ -119,7 +118,160 @@ void ExtendPointData(vtkDataSet* sitesInput, vtkDataSet* meshInput,
     }
   }
 }
+
+/// The sampler's corner and feature-line sites ("FeatureKind" != 0), which the improvement
+/// rounds must not push off their features; empty when the sites have no such array. False
+/// (with `error`) when the array does not have one component per site.
+bool FixedSitesFromFeatureKind(vtkDataSet* sitesInput,
+  std::size_t numSites,
+  std::vector<std::uint8_t>& fixed,
+  std::string& error)
+{
+  vtkDataArray* kind = sitesInput->GetPointData()->GetArray("FeatureKind");
+  if (!kind)
+  {
+    return true;
+  }
+  if (kind->GetNumberOfComponents() != 1 ||
+    kind->GetNumberOfTuples() != static_cast<vtkIdType>(numSites))
+  {
+    error = "sites: the FeatureKind array must have one component per site";
+    return false;
+  }
+  fixed.resize(numSites);
+  for (std::size_t i = 0; i < fixed.size(); ++i)
+    fixed[i] = kind->GetTuple1(static_cast<vtkIdType>(i)) != 0.0 ? 1 : 0;
+  return true;
 }
+
+/// Points (the sites in input space) and cells of the dual mesh.
+void SetMeshGeometry(const av::RestrictedDelaunayMesh& rdt,
+  std::size_t numSites,
+  vtkUnstructuredGrid* output)
+{
+  const int adim = rdt.AmbientDim, nv = rdt.SimplexDim + 1;
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(static_cast<vtkIdType>(numSites));
+  for (std::size_t i = 0; i < numSites; ++i)
+  {
+    const double* x = rdt.Points.data() + i * adim;
+    points->SetPoint(static_cast<vtkIdType>(i), x[0], x[1], adim == 3 ? x[2] : 0.0);
+  }
+  output->SetPoints(points);
+  const std::size_t nc = rdt.NumCells();
+  output->AllocateExact(static_cast<vtkIdType>(nc), nv);
+  vtkIdType ids[4];
+  const int type = rdt.SimplexDim == 3 ? VTK_TETRA : VTK_TRIANGLE;
+  for (std::size_t c = 0; c < nc; ++c)
+  {
+    for (int a = 0; a < nv; ++a)
+      ids[a] = rdt.Cells[c * nv + a];
+    output->InsertNextCell(type, nv, ids);
+  }
+}
+
+/// "InsertedSite" point data and "Inverted" cell data.
+void AddRepairFlags(const av::DelaunayRepairResult& repaired, vtkUnstructuredGrid* output)
+{
+  const av::RestrictedDelaunayMesh& rdt = repaired.Delaunay;
+  const std::size_t ns = repaired.Sites.NumSites(), nc = rdt.NumCells();
+  vtkNew<vtkUnsignedCharArray> insertedFlag;
+  insertedFlag->SetName("InsertedSite");
+  insertedFlag->SetNumberOfTuples(static_cast<vtkIdType>(ns));
+  for (std::size_t i = 0; i < ns; ++i)
+  {
+    insertedFlag->SetValue(static_cast<vtkIdType>(i), i >= repaired.NumInputSites ? 1 : 0);
+  }
+  output->GetPointData()->AddArray(insertedFlag);
+  vtkNew<vtkUnsignedCharArray> inverted;
+  inverted->SetName("Inverted");
+  inverted->SetNumberOfTuples(static_cast<vtkIdType>(nc));
+  std::copy(rdt.Inverted.begin(), rdt.Inverted.end(), inverted->GetPointer(0));
+  output->GetCellData()->AddArray(inverted);
+}
+
+/// The counts and timings of the run as one-value field data.
+void AddRunFieldData(const av::MeshingPipelineResult& result, double seconds, vtkFieldData* fd)
+{
+  const av::DelaunayRepairResult& repaired = result.Repaired;
+  const av::RestrictedDelaunayMesh& rdt = repaired.Delaunay;
+  AddFieldValue(fd, "NumInverted", static_cast<double>(rdt.NumInverted));
+  AddFieldValue(fd, "NumNonManifoldFaces", static_cast<double>(rdt.NumNonManifoldFaces));
+  AddFieldValue(fd, "NumOpenInteriorFaces", static_cast<double>(rdt.NumOpenInteriorFaces));
+  AddFieldValue(fd, "NumUnusedSites", static_cast<double>(rdt.NumUnusedSites));
+  AddFieldValue(fd, "NumInsertedSites", static_cast<double>(repaired.NumInserted));
+  AddFieldValue(fd, "RepairRounds", static_cast<double>(repaired.Rounds));
+  AddFieldValue(fd, "RepairStalled", repaired.Stalled ? 1.0 : 0.0);
+  AddFieldValue(fd, "NumInvertedBeforeRepair", static_cast<double>(repaired.InitialInverted));
+  AddFieldValue(
+    fd, "NumNonManifoldFacesBeforeRepair", static_cast<double>(repaired.InitialNonManifoldFaces));
+  AddFieldValue(fd, "RepairSeconds", result.RepairSeconds);
+  AddFieldValue(fd, "NumSliversPerturbed", static_cast<double>(result.NumSlivers));
+  AddFieldValue(fd, "NumMovedSites", static_cast<double>(result.NumMovedSites));
+  AddFieldValue(fd, "NumOdtMovedSites", static_cast<double>(result.NumOdtMovedSites));
+  AddFieldValue(fd, "DelaunaySeconds", seconds);
+}
+
+/// The pipeline options of the filter's parameters; progress and abort go through `self`.
+av::MeshingPipelineOptions MeshingOptions(vtkAnisoRestrictedDelaunay* self,
+  const std::vector<std::uint8_t>* fixedSites)
+{
+  av::MeshingPipelineOptions options;
+  options.ImproveRounds = self->GetImprovementRounds();
+  options.OdtIterations = self->GetOdtIterations();
+  options.FixedSites = fixedSites;
+  options.Repair = self->GetRepairInverted();
+  options.MaxRepairRounds = self->GetMaxRepairRounds();
+  options.RepairNonManifold = self->GetRepairNonManifold();
+  options.Progress = [self](av::MeshingStep step)
+  {
+    if (self->GetAbortExecute())
+    {
+      return false;
+    }
+    switch (step)
+    {
+      case av::MeshingStep::Voronoi:
+        self->UpdateProgress(0.5);
+        break;
+      case av::MeshingStep::Delaunay:
+        self->UpdateProgress(0.6);
+        break;
+      case av::MeshingStep::Improvement:
+        self->UpdateProgress(0.8);
+        break;
+      case av::MeshingStep::ImprovementRound:
+        break;
+    }
+    return true;
+  };
+  return options;
+}
+
+/// What the repair left (or, with RepairInverted off, did not try), as a warning.
+void WarnAboutBadElements(vtkAnisoRestrictedDelaunay* self,
+  const av::DelaunayRepairResult& repaired)
+{
+  const av::RestrictedDelaunayMesh& rdt = repaired.Delaunay;
+  if (rdt.NumInverted == 0 && rdt.NumNonManifoldFaces == 0)
+  {
+    return;
+  }
+  const char* why = !self->GetRepairInverted() ? "(RepairInverted is off)"
+    : repaired.Stalled                         ? "left: the repair stopped because insertions "
+                                                 "made more elements inverted than they "
+                                                 "removed (the embedding is too poor here: "
+                                                 "more embedding iterations or a finer input "
+                                                 "mesh help); the best state is kept"
+                                               : "left after the repair (more repair rounds, "
+                                                 "more sites or a better embedding reduce them)";
+  vtkWarningWithObjectMacro(self,
+    "the dual mesh has " << rdt.NumInverted << " inverted element(s) and "
+                         << rdt.NumNonManifoldFaces << " non-manifold face(s) " << why);
+}
+
+} // namespace
 
 vtkAnisoRestrictedDelaunay::vtkAnisoRestrictedDelaunay()
 {
@@ -138,8 +290,9 @@ int vtkAnisoRestrictedDelaunay::FillInputPortInformation(int, vtkInformation* in
   return 1;
 }
 
-int vtkAnisoRestrictedDelaunay::RequestUpdateExtent(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
+int vtkAnisoRestrictedDelaunay::RequestUpdateExtent(vtkInformation*,
+  vtkInformationVector** inputVector,
+  vtkInformationVector*)
 {
   vtkAnisoDataConversion::RequestWholeInputs(inputVector, this->GetNumberOfInputPorts());
   return 1;
@@ -161,192 +314,64 @@ int vtkAnisoRestrictedDelaunay::RequestData(vtkInformation* request,
   {
     return 1; // empty in, empty out
   }
-  const auto start = std::chrono::steady_clock::now();
+  const av::Stopwatch watch;
 
   av::SimplexMesh mesh;
   av::Embedding embedding;
   av::SiteSet sites;
   std::string error;
-  if (!vtkAnisoDataConversion::ToVoronoiInputs(input, this->GetInputArrayToProcess(0, inputVector),
-        sitesInput, mesh, embedding, sites, error))
+  std::vector<std::uint8_t> fixedSites;
+  if (!vtkAnisoDataConversion::ToVoronoiInputs(input,
+        this->GetInputArrayToProcess(0, inputVector),
+        sitesInput,
+        mesh,
+        embedding,
+        sites,
+        error) ||
+    !FixedSitesFromFeatureKind(sitesInput, sites.NumSites(), fixedSites, error))
   {
     vtkErrorMacro(<< error);
     return 0;
   }
   this->UpdateProgress(0.1);
 
-  av::DelaunayRepairResult repaired;
-  std::vector<char> moved(sites.NumSites(), 0); // by the improvement rounds
-  std::size_t numSlivers = 0;
-  std::size_t numOdtMoved = 0; // by the first round's ODT steps
-  auto repairStart = std::chrono::steady_clock::now();
-  double repairSeconds = 0.0;
-  try
+  av::MeshingPipelineResult result;
+  if (!vtkAnisoFilterUtilities::RunKernel(this,
+        "restricted Delaunay mesh",
+        [&]
+        {
+          result = av::RunMeshingPipeline(mesh,
+            embedding,
+            sites,
+            MeshingOptions(this, fixedSites.empty() ? nullptr : &fixedSites));
+        }))
   {
-    av::ValidateRestrictedVoronoiInput(mesh, embedding, sites);
-    av::DelaunayRepairOptions options; // its Voronoi options: no geometry, records only
-    options.MaxRounds = this->RepairInverted ? this->MaxRepairRounds : 0;
-    options.RepairNonManifold = this->RepairNonManifold;
-    // Computed once for every diagram and site move below.
-    const std::vector<std::int32_t> adjacency = av::ComputeElementAdjacency(mesh);
-    options.Voronoi.ElementAdjacency = &adjacency;
-    av::RestrictedVoronoiDiagram rvd =
-      av::ComputeRestrictedVoronoi(mesh, embedding, sites, options.Voronoi);
-    if (this->GetAbortExecute())
-    {
-      return 1;
-    }
-    this->UpdateProgress(0.5);
-    av::RestrictedDelaunayMesh rdt = av::ComputeRestrictedDelaunay(mesh, embedding, sites, rvd);
-    if (this->GetAbortExecute())
-    {
-      return 1;
-    }
-    this->UpdateProgress(0.6);
-    av::SiteImprovementOptions improve;
-    improve.OdtIterations = this->OdtIterations;
-    improve.ElementAdjacency = &adjacency;
-    // The sampler's corner and feature-line sites ("FeatureKind" != 0) are not pushed off
-    // their features.
-    std::vector<std::uint8_t> fixedSites;
-    if (vtkDataArray* kind = sitesInput->GetPointData()->GetArray("FeatureKind"))
-    {
-      if (kind->GetNumberOfComponents() != 1 ||
-        kind->GetNumberOfTuples() != static_cast<vtkIdType>(sites.NumSites()))
-      {
-        vtkErrorMacro("sites: the FeatureKind array must have one component per site");
-        return 0;
-      }
-      fixedSites.resize(sites.NumSites());
-      for (std::size_t i = 0; i < fixedSites.size(); ++i)
-        fixedSites[i] = kind->GetTuple1(static_cast<vtkIdType>(i)) != 0.0 ? 1 : 0;
-      improve.Sliver.FixedSites = &fixedSites;
-    }
-    for (int round = 0; round < this->ImprovementRounds; ++round)
-    {
-      av::SiteImprovementResult sp = av::ImproveSites(mesh, embedding, sites, rvd, rdt, improve);
-      if (sp.NumMovedSites == 0)
-      {
-        break;
-      }
-      for (std::size_t i = 0; i < sites.NumSites(); ++i)
-      {
-        moved[i] = moved[i] || sp.Sites.CellIds[i] != sites.CellIds[i] ||
-          !std::equal(sp.Sites.Bary.begin() + 4 * i, sp.Sites.Bary.begin() + 4 * i + 4,
-            sites.Bary.begin() + 4 * i);
-      }
-      numSlivers += round == 0 ? sp.NumSlivers : 0;
-      numOdtMoved += round == 0 ? sp.NumOdtMoved : 0;
-      sites = std::move(sp.Sites);
-      rvd = av::ComputeRestrictedVoronoi(mesh, embedding, sites, options.Voronoi);
-      rdt = av::ComputeRestrictedDelaunay(mesh, embedding, sites, rvd);
-      if (this->GetAbortExecute())
-      {
-        return 1;
-      }
-    }
-    this->UpdateProgress(0.8);
-    repairStart = std::chrono::steady_clock::now();
-    repaired = av::RepairRestrictedDelaunay(
-      mesh, embedding, sites, std::move(rvd), std::move(rdt), options);
-    repairSeconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - repairStart).count();
-  }
-  catch (const av::InputError& e)
-  {
-    vtkErrorMacro(<< e.what());
     return 0;
   }
-  catch (const std::exception& e)
+  if (result.Aborted)
   {
-    vtkErrorMacro("restricted Delaunay mesh failed: " << e.what());
-    return 0;
+    return 1;
   }
 
-  const av::RestrictedDelaunayMesh& rdt = repaired.Delaunay;
-  const std::size_t ns = repaired.Sites.NumSites();
-  const int adim = rdt.AmbientDim, nv = rdt.SimplexDim + 1;
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToDouble();
-  points->SetNumberOfPoints(static_cast<vtkIdType>(ns));
-  for (std::size_t i = 0; i < ns; ++i)
-  {
-    const double* x = rdt.Points.data() + i * adim;
-    points->SetPoint(static_cast<vtkIdType>(i), x[0], x[1], adim == 3 ? x[2] : 0.0);
-  }
-  output->SetPoints(points);
-  const std::size_t nc = rdt.NumCells();
-  output->AllocateExact(static_cast<vtkIdType>(nc), nv);
-  vtkIdType ids[4];
-  const int type = rdt.SimplexDim == 3 ? VTK_TETRA : VTK_TRIANGLE;
-  for (std::size_t c = 0; c < nc; ++c)
-  {
-    for (int a = 0; a < nv; ++a)
-      ids[a] = rdt.Cells[c * nv + a];
-    output->InsertNextCell(type, nv, ids);
-  }
+  const av::DelaunayRepairResult& repaired = result.Repaired;
+  SetMeshGeometry(repaired.Delaunay, repaired.Sites.NumSites(), output);
   // Point ids are site ids: the sites' point data carries over unchanged, extended for the
   // inserted sites.
-  const std::size_t numMoved = static_cast<std::size_t>(std::count(moved.begin(), moved.end(), 1));
-  if (repaired.NumInserted == 0 && numMoved == 0)
+  if (repaired.NumInserted == 0 && result.NumMovedSites == 0)
   {
     output->GetPointData()->ShallowCopy(sitesInput->GetPointData());
   }
   else
   {
-    ExtendPointData(sitesInput, input, mesh, repaired.Sites, moved, output);
+    ExtendPointData(sitesInput, input, mesh, repaired.Sites, result.Moved, output);
   }
-  vtkNew<vtkUnsignedCharArray> insertedFlag;
-  insertedFlag->SetName("InsertedSite");
-  insertedFlag->SetNumberOfTuples(static_cast<vtkIdType>(ns));
-  for (std::size_t i = 0; i < ns; ++i)
-  {
-    insertedFlag->SetValue(static_cast<vtkIdType>(i), i >= repaired.NumInputSites ? 1 : 0);
-  }
-  output->GetPointData()->AddArray(insertedFlag);
-  vtkNew<vtkUnsignedCharArray> inverted;
-  inverted->SetName("Inverted");
-  inverted->SetNumberOfTuples(static_cast<vtkIdType>(nc));
-  std::copy(rdt.Inverted.begin(), rdt.Inverted.end(), inverted->GetPointer(0));
-  output->GetCellData()->AddArray(inverted);
-
-  this->NumberOfInverted = static_cast<vtkIdType>(rdt.NumInverted);
-  this->NumberOfNonManifoldFaces = static_cast<vtkIdType>(rdt.NumNonManifoldFaces);
+  AddRepairFlags(repaired, output);
+  this->NumberOfInverted = static_cast<vtkIdType>(repaired.Delaunay.NumInverted);
+  this->NumberOfNonManifoldFaces = static_cast<vtkIdType>(repaired.Delaunay.NumNonManifoldFaces);
   this->NumberOfInsertedSites = static_cast<vtkIdType>(repaired.NumInserted);
   this->NumberOfRepairRounds = repaired.Rounds;
-  vtkFieldData* fd = output->GetFieldData();
-  AddFieldValue(fd, "NumInverted", static_cast<double>(rdt.NumInverted));
-  AddFieldValue(fd, "NumNonManifoldFaces", static_cast<double>(rdt.NumNonManifoldFaces));
-  AddFieldValue(fd, "NumOpenInteriorFaces", static_cast<double>(rdt.NumOpenInteriorFaces));
-  AddFieldValue(fd, "NumUnusedSites", static_cast<double>(rdt.NumUnusedSites));
-  AddFieldValue(fd, "NumInsertedSites", static_cast<double>(repaired.NumInserted));
-  AddFieldValue(fd, "RepairRounds", static_cast<double>(repaired.Rounds));
-  AddFieldValue(fd, "RepairStalled", repaired.Stalled ? 1.0 : 0.0);
-  AddFieldValue(fd, "NumInvertedBeforeRepair", static_cast<double>(repaired.InitialInverted));
-  AddFieldValue(fd, "NumNonManifoldFacesBeforeRepair",
-    static_cast<double>(repaired.InitialNonManifoldFaces));
-  AddFieldValue(fd, "RepairSeconds", repairSeconds);
-  AddFieldValue(fd, "NumSliversPerturbed", static_cast<double>(numSlivers));
-  AddFieldValue(fd, "NumMovedSites", static_cast<double>(numMoved));
-  AddFieldValue(fd, "NumOdtMovedSites", static_cast<double>(numOdtMoved));
-  AddFieldValue(fd,
-    "DelaunaySeconds",
-    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-  if (rdt.NumInverted > 0 || rdt.NumNonManifoldFaces > 0)
-  {
-    vtkWarningMacro("the dual mesh has " << rdt.NumInverted << " inverted element(s) and "
-                                         << rdt.NumNonManifoldFaces << " non-manifold face(s) "
-                                         << (!this->RepairInverted
-                                                ? "(RepairInverted is off)"
-                                                : repaired.Stalled
-                                                ? "left: the repair stopped because insertions "
-                                                  "made more elements inverted than they "
-                                                  "removed (the embedding is too poor here: "
-                                                  "more embedding iterations or a finer input "
-                                                  "mesh help); the best state is kept"
-                                                : "left after the repair (more repair rounds, "
-                                                  "more sites or a better embedding reduce them)"));
-  }
+  AddRunFieldData(result, watch.Seconds(), output->GetFieldData());
+  WarnAboutBadElements(this, repaired);
   this->UpdateProgress(1.0);
   return 1;
 }

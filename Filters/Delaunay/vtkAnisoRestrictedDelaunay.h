@@ -1,7 +1,12 @@
+// SPDX-License-Identifier: BSD-3-Clause
 /**
  * @class vtkAnisoRestrictedDelaunay
  * @brief The anisotropic mesh: the dual (restricted Delaunay triangulation) of the restricted
  * Voronoi diagram of sites on the embedded mesh (paper §4.2), mapped back to the input space.
+ *
+ * The meshing itself is av::RunMeshingPipeline (Kernel/MeshingPipeline.h: RVD, RDT, site
+ * improvement rounds, repair), shared with the CLI and the benchmark; this class converts the
+ * inputs, maps its parameters to the pipeline's options and builds the output.
  *
  * Inputs as vtkAnisoRestrictedVoronoi: port 0 the embedded mesh (embedding point array chosen
  * with SetInputArrayToProcess(0, ...), default "Embedding"), port 1 the sites (output of

@@ -64,31 +64,15 @@ double FrameOrientation(const double* const* v, int k, int dim, const double* co
 // Relative volume (k! V / (sum of squared edges)^(k/2)) below which a simplex is flat; a
 // regular tetrahedron has 0.048, a regular triangle 0.29.
 constexpr double kFlatTolerance = 1e-7;
-} // namespace
 
-RestrictedDelaunayMesh ComputeRestrictedDelaunay(const SimplexMesh& mesh,
-  const Embedding& embedding, const SiteSet& sites, const RestrictedVoronoiDiagram& rvd)
+using VoronoiVertexRecord = std::pair<Key, std::int32_t>; // sorted site ids, element
+
+// The Voronoi vertices of `rvd` by site set, sorted, each kept once with its lowest element.
+std::vector<VoronoiVertexRecord> UniqueVoronoiVertices(
+  const RestrictedVoronoiDiagram& rvd, int nv, std::size_t ns)
 {
-  ValidateRestrictedVoronoiInput(mesh, embedding, sites);
-  const int k = mesh.SimplexDim, nv = k + 1;
-  if (rvd.SimplexDim != k || rvd.Dim != embedding.Dim || rvd.NumSites != sites.NumSites() ||
-    rvd.VoronoiVertexSites.size() != rvd.VoronoiVertexElement.size() * nv)
-    throw InputError("RestrictedDelaunay: the Voronoi diagram was not computed from this "
-                     "mesh / embedding / site set");
-  const std::size_t ns = sites.NumSites();
-  const int adim = mesh.AmbientDim, dim = embedding.Dim;
-
-  RestrictedDelaunayMesh out;
-  out.SimplexDim = k;
-  out.AmbientDim = adim;
-  out.Points.resize(ns * adim);
-  for (std::size_t s = 0; s < ns; ++s)
-    for (int d = 0; d < adim; ++d)
-      out.Points[s * adim + d] = sites.At(s)[d];
-
-  // Deduplicate Voronoi vertices by site set, keeping the lowest element.
   const std::size_t nvv = rvd.VoronoiVertexElement.size();
-  std::vector<std::pair<Key, std::int32_t>> recs(nvv);
+  std::vector<VoronoiVertexRecord> recs(nvv);
   for (std::size_t i = 0; i < nvv; ++i)
   {
     Key key = { -1, -1, -1, -1 };
@@ -105,52 +89,57 @@ RestrictedDelaunayMesh ComputeRestrictedDelaunay(const SimplexMesh& mesh,
   recs.erase(std::unique(recs.begin(), recs.end(),
                [](const auto& a, const auto& b) { return a.first == b.first; }),
     recs.end());
-  const std::size_t nc = recs.size();
-  out.Cells.resize(nc * nv);
-  out.CellElement.resize(nc);
-  out.Inverted.assign(nc, 0);
+  return recs;
+}
 
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nc), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t c = r.begin(); c != r.end(); ++c)
-    {
-      Key key = recs[c].first;
-      const std::int32_t e = recs[c].second;
-      const std::int32_t* cell = mesh.Cell(e);
-      const double* ev[4];
-      const double* xv[4];
-      const double* ep[4];
-      const double* xp[4];
-      for (int a = 0; a < nv; ++a)
-      {
-        ev[a] = embedding.At(cell[a]);
-        xv[a] = mesh.Point(cell[a]);
-      }
-      for (int a = 0; a < nv; ++a)
-        ep[a] = sites.At(key[a]);
-      double oe = FrameOrientation(ev, k, dim, ep);
-      if (oe < 0.0)
-      {
-        std::swap(key[0], key[1]);
-        std::swap(ep[0], ep[1]);
-        oe = -oe;
-      }
-      for (int a = 0; a < nv; ++a)
-        xp[a] = out.Points.data() + std::size_t(key[a]) * adim;
-      double l2 = 0.0;
-      const double oi = FrameOrientation(xv, k, adim, xp, &l2);
-      // Flat counts as inverted: a simplex whose volume is round-off next to its edges (e.g.
-      // four sites on a flat boundary face whose embedded images are not quite coplanar) is
-      // no usable element, and the repair breaks it up like an inverted one.
-      const double flat = kFlatTolerance * std::pow(l2, 0.5 * k);
-      out.Inverted[c] = (oe > 0.0 && oi > flat) ? 0 : 1;
-      for (int a = 0; a < nv; ++a)
-        out.Cells[c * nv + a] = key[a];
-      out.CellElement[c] = e;
-    }
-  });
-  out.NumInverted = static_cast<std::size_t>(std::count(out.Inverted.begin(), out.Inverted.end(), 1));
+// Cell c of `out` from its Voronoi vertex record: sites ordered so that the simplex is
+// positive in the element's embedded frame, flagged inverted when its back-projection to the
+// element's input frame is not positive or is flat.
+inline void OrientCell(const SimplexMesh& mesh, const Embedding& embedding, const SiteSet& sites,
+  const VoronoiVertexRecord& rec, std::size_t c, RestrictedDelaunayMesh& out)
+{
+  const int k = mesh.SimplexDim, nv = k + 1, adim = mesh.AmbientDim, dim = embedding.Dim;
+  Key key = rec.first;
+  const std::int32_t e = rec.second;
+  const std::int32_t* cell = mesh.Cell(e);
+  const double* ev[4];
+  const double* xv[4];
+  const double* ep[4];
+  const double* xp[4];
+  for (int a = 0; a < nv; ++a)
+  {
+    ev[a] = embedding.At(cell[a]);
+    xv[a] = mesh.Point(cell[a]);
+  }
+  for (int a = 0; a < nv; ++a)
+    ep[a] = sites.At(key[a]);
+  double oe = FrameOrientation(ev, k, dim, ep);
+  if (oe < 0.0)
+  {
+    std::swap(key[0], key[1]);
+    std::swap(ep[0], ep[1]);
+    oe = -oe;
+  }
+  for (int a = 0; a < nv; ++a)
+    xp[a] = out.Points.data() + std::size_t(key[a]) * adim;
+  double l2 = 0.0;
+  const double oi = FrameOrientation(xv, k, adim, xp, &l2);
+  // Flat counts as inverted: a simplex whose volume is round-off next to its edges (e.g.
+  // four sites on a flat boundary face whose embedded images are not quite coplanar) is
+  // no usable element, and the repair breaks it up like an inverted one.
+  const double flat = kFlatTolerance * std::pow(l2, 0.5 * k);
+  out.Inverted[c] = (oe > 0.0 && oi > flat) ? 0 : 1;
+  for (int a = 0; a < nv; ++a)
+    out.Cells[c * nv + a] = key[a];
+  out.CellElement[c] = e;
+}
 
-  // Face sharing.
+// NumNonManifoldFaces (faces of more than two cells) and NumOpenInteriorFaces (faces of one
+// cell that are not dual to a boundary face of `rvd`) of `out`.
+void CountFaceSharing(const RestrictedVoronoiDiagram& rvd, RestrictedDelaunayMesh& out)
+{
+  const int k = out.SimplexDim, nv = k + 1;
+  const std::size_t nc = out.NumCells();
   std::vector<Key> faces;
   faces.reserve(nc * nv);
   for (std::size_t c = 0; c < nc; ++c)
@@ -188,6 +177,41 @@ RestrictedDelaunayMesh ComputeRestrictedDelaunay(const SimplexMesh& mesh,
       ++out.NumOpenInteriorFaces;
     i = j;
   }
+}
+} // namespace
+
+RestrictedDelaunayMesh ComputeRestrictedDelaunay(const SimplexMesh& mesh,
+  const Embedding& embedding, const SiteSet& sites, const RestrictedVoronoiDiagram& rvd)
+{
+  ValidateRestrictedVoronoiInput(mesh, embedding, sites);
+  const int k = mesh.SimplexDim, nv = k + 1;
+  if (rvd.SimplexDim != k || rvd.Dim != embedding.Dim || rvd.NumSites != sites.NumSites() ||
+    rvd.VoronoiVertexSites.size() != rvd.VoronoiVertexElement.size() * nv)
+    throw InputError("RestrictedDelaunay: the Voronoi diagram was not computed from this "
+                     "mesh / embedding / site set");
+  const std::size_t ns = sites.NumSites();
+  const int adim = mesh.AmbientDim;
+
+  RestrictedDelaunayMesh out;
+  out.SimplexDim = k;
+  out.AmbientDim = adim;
+  out.Points.resize(ns * adim);
+  for (std::size_t s = 0; s < ns; ++s)
+    for (int d = 0; d < adim; ++d)
+      out.Points[s * adim + d] = sites.At(s)[d];
+
+  const std::vector<VoronoiVertexRecord> recs = UniqueVoronoiVertices(rvd, nv, ns);
+  const std::size_t nc = recs.size();
+  out.Cells.resize(nc * nv);
+  out.CellElement.resize(nc);
+  out.Inverted.assign(nc, 0);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nc), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t c = r.begin(); c != r.end(); ++c)
+      OrientCell(mesh, embedding, sites, recs[c], c, out);
+  });
+  out.NumInverted = static_cast<std::size_t>(std::count(out.Inverted.begin(), out.Inverted.end(), 1));
+
+  CountFaceSharing(rvd, out);
   std::vector<char> used(ns, 0);
   for (std::int32_t s : out.Cells)
     used[s] = 1;

@@ -96,9 +96,7 @@ std::vector<std::uint8_t> NonManifoldCells(const RestrictedDelaunayMesh& rdt)
 
 namespace
 {
-DelaunayRepairResult Repair(const SimplexMesh& mesh, const Embedding& embedding,
-  const SiteSet& sites, RestrictedVoronoiDiagram* voronoi, RestrictedDelaunayMesh* delaunay,
-  const DelaunayRepairOptions& options)
+void ValidateRepairOptions(const DelaunayRepairOptions& options)
 {
   if (options.MaxRounds < 0)
     throw InputError("RepairRestrictedDelaunay: MaxRounds must be >= 0");
@@ -109,36 +107,139 @@ DelaunayRepairResult Repair(const SimplexMesh& mesh, const Embedding& embedding,
   if (options.Voronoi.ElementBegin != 0 || options.Voronoi.ElementEnd >= 0)
     throw InputError("RepairRestrictedDelaunay: the repair needs the whole mesh (leave "
                      "ElementBegin / ElementEnd at their defaults)");
-  const int k = mesh.SimplexDim, nv = k + 1, dim = embedding.Dim;
+}
 
+/// Throws when the caller's diagram and dual were not computed from `sites` on `mesh`.
+void CheckGivenDual(const SimplexMesh& mesh, const SiteSet& sites,
+  const RestrictedVoronoiDiagram& voronoi, const RestrictedDelaunayMesh& delaunay)
+{
+  if (voronoi.NumSites != sites.NumSites() || delaunay.SimplexDim != mesh.SimplexDim ||
+    delaunay.AmbientDim != mesh.AmbientDim ||
+    delaunay.Points.size() != sites.NumSites() * std::size_t(mesh.AmbientDim) ||
+    delaunay.Inverted.size() != delaunay.NumCells() ||
+    delaunay.CellElement.size() != delaunay.NumCells())
+    throw InputError("RepairRestrictedDelaunay: the given Voronoi diagram / Delaunay mesh "
+                     "were not computed from these sites");
+}
+
+/// The cells to repair: the inverted ones, and with `nonManifold` those around faces shared
+/// by more than two cells.
+std::vector<std::uint8_t> BadCells(const RestrictedDelaunayMesh& rdt, bool nonManifold)
+{
+  std::vector<std::uint8_t> bad = rdt.Inverted;
+  if (nonManifold)
+  {
+    const std::vector<std::uint8_t> nm = NonManifoldCells(rdt);
+    for (std::size_t c = 0; c < bad.size(); ++c)
+      bad[c] = bad[c] | nm[c];
+  }
+  return bad;
+}
+
+/// The sites one round inserts: embedded positions (Dim each), elements, barycentric
+/// coordinates (4 each).
+struct Insertions
+{
+  std::vector<double> Coords;
+  std::vector<std::int32_t> Elements;
+  std::vector<double> Bary;
+};
+
+/// One candidate per bad cell, at its dual Voronoi vertex; candidates closer than
+/// MinDistanceFraction of their circumradius to the cell's sites or to an accepted candidate,
+/// and cells without a solvable vertex, are skipped (counted in `numSkipped`).
+Insertions CollectInsertions(const SimplexMesh& mesh, const Embedding& embedding,
+  const SiteSet& sites, const RestrictedDelaunayMesh& rdt, const std::vector<std::uint8_t>& bad,
+  double minDistanceFraction, std::size_t& numSkipped)
+{
+  const int nv = mesh.SimplexDim + 1, dim = embedding.Dim;
+  // Candidates in cell order (deterministic); the number of bad cells is small, so the
+  // quadratic proximity check against this round's accepted candidates is cheap.
+  Insertions accepted;
+  Eigen::VectorXd p(dim);
+  for (std::size_t c = 0; c < bad.size(); ++c)
+  {
+    if (!bad[c])
+      continue;
+    const std::int32_t* ids = rdt.Cells.data() + c * nv;
+    const std::int32_t e = rdt.CellElement[c];
+    double b[4], r2 = 0.0;
+    if (!ComputeDualVoronoiVertex(mesh, embedding, sites, ids, e, b, r2) || !(r2 > 0.0))
+    {
+      ++numSkipped;
+      continue;
+    }
+    const std::int32_t* cell = mesh.Cell(e);
+    p.setZero();
+    for (int a = 0; a < nv; ++a)
+      p += b[a] * Eigen::Map<const Eigen::VectorXd>(embedding.At(cell[a]), dim);
+    const double minD2 = minDistanceFraction * minDistanceFraction * r2;
+    bool nearby = false;
+    // Guard against round-off: the simplex's own sites are the nearest ones (at r).
+    for (int a = 0; a < nv && !nearby; ++a)
+      nearby = (p - Eigen::Map<const Eigen::VectorXd>(sites.At(ids[a]), dim)).squaredNorm() < minD2;
+    for (std::size_t q = 0; q < accepted.Coords.size() && !nearby; q += dim)
+      nearby = (p - Eigen::Map<const Eigen::VectorXd>(accepted.Coords.data() + q, dim))
+                 .squaredNorm() < minD2;
+    if (nearby)
+    {
+      ++numSkipped;
+      continue;
+    }
+    accepted.Coords.insert(accepted.Coords.end(), p.data(), p.data() + dim);
+    accepted.Elements.push_back(e);
+    accepted.Bary.insert(accepted.Bary.end(), b, b + 4);
+  }
+  return accepted;
+}
+
+/// The state with the fewest bad elements so far, saved before each insertion that starts
+/// from it (a later round can be worse).
+struct BestState
+{
+  SiteSet Sites;
+  RestrictedVoronoiDiagram Voronoi;
+  RestrictedDelaunayMesh Delaunay;
+  int Rounds = 0;
+  std::size_t InsertedRounds = 0;
+
+  void Save(const DelaunayRepairResult& out)
+  {
+    this->Sites = out.Sites;
+    this->Voronoi = out.Voronoi;
+    this->Delaunay = out.Delaunay;
+    this->Rounds = out.Rounds;
+    this->InsertedRounds = out.InsertedPerRound.size();
+  }
+  /// Puts the saved state back into `out` (the later rounds' sites are dropped).
+  void Restore(DelaunayRepairResult& out)
+  {
+    out.Sites = std::move(this->Sites);
+    out.Voronoi = std::move(this->Voronoi);
+    out.Delaunay = std::move(this->Delaunay);
+    out.Rounds = this->Rounds;
+    out.InsertedPerRound.resize(this->InsertedRounds);
+  }
+};
+
+DelaunayRepairResult Repair(const SimplexMesh& mesh, const Embedding& embedding,
+  const SiteSet& sites, RestrictedVoronoiDiagram* voronoi, RestrictedDelaunayMesh* delaunay,
+  const DelaunayRepairOptions& options)
+{
+  ValidateRepairOptions(options);
   DelaunayRepairResult out;
   out.Sites = sites;
   out.NumInputSites = sites.NumSites();
   SiteSet previousSites; // sites of out.Voronoi after an insertion round
   bool havePrevious = false;
-  // The state with the fewest bad elements so far, saved before each insertion that starts
-  // from it (a later round can be worse).
-  struct State
-  {
-    SiteSet Sites;
-    RestrictedVoronoiDiagram Voronoi;
-    RestrictedDelaunayMesh Delaunay;
-    int Rounds = 0;
-    std::size_t InsertedRounds = 0;
-  } best;
+  BestState best;
   std::size_t bestBad = 0;
   int roundsSinceBest = 0;
   for (int round = 0;; ++round)
   {
     if (round == 0 && voronoi)
     {
-      if (voronoi->NumSites != sites.NumSites() || delaunay->SimplexDim != k ||
-        delaunay->AmbientDim != mesh.AmbientDim ||
-        delaunay->Points.size() != sites.NumSites() * std::size_t(mesh.AmbientDim) ||
-        delaunay->Inverted.size() != delaunay->NumCells() ||
-        delaunay->CellElement.size() != delaunay->NumCells())
-        throw InputError("RepairRestrictedDelaunay: the given Voronoi diagram / Delaunay mesh "
-                         "were not computed from these sites");
+      CheckGivenDual(mesh, sites, *voronoi, *delaunay);
       out.Voronoi = std::move(*voronoi);
       out.Delaunay = std::move(*delaunay);
     }
@@ -180,81 +281,26 @@ DelaunayRepairResult Repair(const SimplexMesh& mesh, const Embedding& embedding,
     {
       if (!currentIsBest)
       {
-        out.Sites = std::move(best.Sites);
-        out.Voronoi = std::move(best.Voronoi);
-        out.Delaunay = std::move(best.Delaunay);
-        out.Rounds = best.Rounds;
-        out.InsertedPerRound.resize(best.InsertedRounds);
+        best.Restore(out);
         out.Stalled = true;
       }
       break;
     }
     if (currentIsBest)
-    {
-      best.Sites = out.Sites;
-      best.Voronoi = out.Voronoi;
-      best.Delaunay = out.Delaunay;
-      best.Rounds = out.Rounds;
-      best.InsertedRounds = out.InsertedPerRound.size();
-    }
+      best.Save(out);
 
-    std::vector<std::uint8_t> bad = rdt.Inverted;
-    if (nonManifold)
-    {
-      const std::vector<std::uint8_t> nm = NonManifoldCells(rdt);
-      for (std::size_t c = 0; c < bad.size(); ++c)
-        bad[c] = bad[c] | nm[c];
-    }
-    // Candidates in cell order (deterministic); the number of bad cells is small, so the
-    // quadratic proximity check against this round's accepted candidates is cheap.
-    std::vector<double> accepted; // embedded positions, dim each
-    std::vector<std::int32_t> acceptedElement;
-    std::vector<double> acceptedBary; // 4 each
-    Eigen::VectorXd p(dim);
-    for (std::size_t c = 0; c < bad.size(); ++c)
-    {
-      if (!bad[c])
-        continue;
-      const std::int32_t* ids = rdt.Cells.data() + c * nv;
-      const std::int32_t e = rdt.CellElement[c];
-      double b[4], r2 = 0.0;
-      if (!ComputeDualVoronoiVertex(mesh, embedding, out.Sites, ids, e, b, r2) || !(r2 > 0.0))
-      {
-        ++out.NumSkipped;
-        continue;
-      }
-      const std::int32_t* cell = mesh.Cell(e);
-      p.setZero();
-      for (int a = 0; a < nv; ++a)
-        p += b[a] * Eigen::Map<const Eigen::VectorXd>(embedding.At(cell[a]), dim);
-      const double minD2 = options.MinDistanceFraction * options.MinDistanceFraction * r2;
-      bool nearby = false;
-      // Guard against round-off: the simplex's own sites are the nearest ones (at r).
-      for (int a = 0; a < nv && !nearby; ++a)
-        nearby = (p - Eigen::Map<const Eigen::VectorXd>(out.Sites.At(ids[a]), dim)).squaredNorm() <
-          minD2;
-      for (std::size_t q = 0; q < accepted.size() && !nearby; q += dim)
-        nearby =
-          (p - Eigen::Map<const Eigen::VectorXd>(accepted.data() + q, dim)).squaredNorm() < minD2;
-      if (nearby)
-      {
-        ++out.NumSkipped;
-        continue;
-      }
-      accepted.insert(accepted.end(), p.data(), p.data() + dim);
-      acceptedElement.push_back(e);
-      acceptedBary.insert(acceptedBary.end(), b, b + 4);
-    }
-    if (acceptedElement.empty())
+    const Insertions accepted = CollectInsertions(mesh, embedding, out.Sites, rdt,
+      BadCells(rdt, nonManifold), options.MinDistanceFraction, out.NumSkipped);
+    if (accepted.Elements.empty())
       break; // every candidate was skipped: no progress possible
     // Appended after the scan: all candidates of a round come from the same site set.
     previousSites = out.Sites;
     havePrevious = true;
-    out.Sites.Coords.insert(out.Sites.Coords.end(), accepted.begin(), accepted.end());
+    out.Sites.Coords.insert(out.Sites.Coords.end(), accepted.Coords.begin(), accepted.Coords.end());
     out.Sites.CellIds.insert(
-      out.Sites.CellIds.end(), acceptedElement.begin(), acceptedElement.end());
-    out.Sites.Bary.insert(out.Sites.Bary.end(), acceptedBary.begin(), acceptedBary.end());
-    out.InsertedPerRound.push_back(acceptedElement.size());
+      out.Sites.CellIds.end(), accepted.Elements.begin(), accepted.Elements.end());
+    out.Sites.Bary.insert(out.Sites.Bary.end(), accepted.Bary.begin(), accepted.Bary.end());
+    out.InsertedPerRound.push_back(accepted.Elements.size());
     out.Rounds = round + 1;
   }
   out.NumInserted = out.Sites.NumSites() - out.NumInputSites;

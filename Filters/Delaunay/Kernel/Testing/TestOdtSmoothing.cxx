@@ -44,28 +44,15 @@ double MeanQuality(const av::RestrictedDelaunayMesh& rdt, const av::SiteSet& s)
   return total / static_cast<double>(n);
 }
 
-// Checks one ODT step on `mesh` with random sites: quality up, exact ODT targets, boundary
-// sites kept, sites on the mesh.
-void CheckOdt(const av::SimplexMesh& mesh, int dim, std::size_t numSites)
+// Reference targets: measure-weighted mean of circumcentres, computed independently
+// (circumcentre as the point of the simplex's hull equidistant from its vertices, by a
+// least-squares solve of the bisector equations): the sums acc (dim per site) and weights w.
+void ReferenceOdtSums(const av::RestrictedDelaunayMesh& rdt, const av::SiteSet& sites, int dim,
+  std::vector<double>& acc, std::vector<double>& w)
 {
-  const av::Embedding emb = Identity(mesh, dim);
-  const av::SiteSet sites = av_test::RandomSites(mesh, emb, static_cast<int>(numSites), 7);
-  const av::RestrictedVoronoiOptions vo = av::DelaunayRepairOptions().Voronoi;
-  const av::RestrictedVoronoiDiagram rvd = av::ComputeRestrictedVoronoi(mesh, emb, sites, vo);
-  const av::RestrictedDelaunayMesh rdt = av::ComputeRestrictedDelaunay(mesh, emb, sites, rvd);
-  const double before = MeanQuality(rdt, sites);
-
-  av::OdtSmoothingOptions o;
-  const av::OdtSmoothingResult r = av::SmoothSitesOdt(mesh, emb, sites, rvd, rdt, o);
-  AV_CHECK(r.Sites.NumSites() == sites.NumSites());
-  AV_CHECK(r.NumMovedSites > numSites / 4);
-  AV_CHECK(r.NumFixedSites > 0);
-
-  // Reference targets: measure-weighted mean of circumcentres, computed independently
-  // (circumcentre as the point of the simplex's hull equidistant from its vertices, by a
-  // least-squares solve of the bisector equations).
   const int k = rdt.SimplexDim, nv = k + 1;
-  std::vector<double> acc(sites.NumSites() * dim, 0.0), w(sites.NumSites(), 0.0);
+  acc.assign(sites.NumSites() * dim, 0.0);
+  w.assign(sites.NumSites(), 0.0);
   for (std::size_t c = 0; c < rdt.NumCells(); ++c)
   {
     const std::int32_t* id = rdt.Cells.data() + nv * c;
@@ -87,6 +74,27 @@ void CheckOdt(const av::SimplexMesh& mesh, int dim, std::size_t numSites)
         acc[id[a] * dim + d] += vol * (sites.At(id[0])[d] + (E * l)[d]);
     }
   }
+}
+
+// Checks one ODT step on `mesh` with random sites: quality up, exact ODT targets, boundary
+// sites kept, sites on the mesh.
+void CheckOdt(const av::SimplexMesh& mesh, int dim, std::size_t numSites)
+{
+  const av::Embedding emb = Identity(mesh, dim);
+  const av::SiteSet sites = av_test::RandomSites(mesh, emb, static_cast<int>(numSites), 7);
+  const av::RestrictedVoronoiOptions vo = av::DelaunayRepairOptions().Voronoi;
+  const av::RestrictedVoronoiDiagram rvd = av::ComputeRestrictedVoronoi(mesh, emb, sites, vo);
+  const av::RestrictedDelaunayMesh rdt = av::ComputeRestrictedDelaunay(mesh, emb, sites, rvd);
+  const double before = MeanQuality(rdt, sites);
+
+  av::OdtSmoothingOptions o;
+  const av::OdtSmoothingResult r = av::SmoothSitesOdt(mesh, emb, sites, rvd, rdt, o);
+  AV_CHECK(r.Sites.NumSites() == sites.NumSites());
+  AV_CHECK(r.NumMovedSites > numSites / 4);
+  AV_CHECK(r.NumFixedSites > 0);
+
+  std::vector<double> acc, w;
+  ReferenceOdtSums(rdt, sites, dim, acc, w);
   std::vector<char> bnd(sites.NumSites(), 0);
   for (std::int32_t id : rvd.BoundaryDualFaces)
     bnd[id] = 1;

@@ -108,6 +108,33 @@ std::set<Key> CellSet(const av::RestrictedDelaunayMesh& d)
   return out;
 }
 
+// A mesh of well-spread sites on a mild embedding: every site used, nothing inverted, a
+// manifold without open interior faces, positive in input space.
+void CheckCleanMesh(const av::RestrictedDelaunayMesh& d)
+{
+  AV_CHECK(d.NumUnusedSites == 0);
+  AV_CHECK(d.NumInverted == 0);
+  AV_CHECK(d.NumNonManifoldFaces == 0);
+  AV_CHECK(d.NumOpenInteriorFaces == 0);
+  AV_CHECK(NegativeCells(d) == 0);
+}
+
+// The RDT of well-spread sites on an identity embedding: clean, and equal to the brute-force
+// restricted Delaunay triangulation, without duplicates.
+av::RestrictedDelaunayMesh CheckIdentityCase(
+  const av::SimplexMesh& m, const av::Embedding& e, const av::SiteSet& s)
+{
+  const int k = m.SimplexDim;
+  const auto rvd = av::ComputeRestrictedVoronoi(m, e, s);
+  const auto d = av::ComputeRestrictedDelaunay(m, e, s, rvd);
+  CheckCleanMesh(d);
+  const auto brute = BruteRestrictedDelaunay(s, k);
+  AV_CHECK_MSG(CellSet(d) == brute, k << "D RDT has " << d.NumCells() << " simplices, brute force "
+                                      << brute.size());
+  AV_CHECK(d.NumCells() == brute.size()); // no duplicates
+  return d;
+}
+
 void Test2DIdentity()
 {
   const av::SimplexMesh m = TriGrid(17, 17, 0, 0, 1, 1);
@@ -115,17 +142,7 @@ void Test2DIdentity()
   {
     const av::Embedding e = MakeEmbedding(m, dim, nullptr);
     const av::SiteSet s = Lattice(m, e, 9, 21);
-    const auto rvd = av::ComputeRestrictedVoronoi(m, e, s);
-    const auto d = av::ComputeRestrictedDelaunay(m, e, s, rvd);
-    AV_CHECK(d.NumUnusedSites == 0);
-    AV_CHECK(d.NumInverted == 0);
-    AV_CHECK(d.NumNonManifoldFaces == 0);
-    AV_CHECK(d.NumOpenInteriorFaces == 0);
-    AV_CHECK(NegativeCells(d) == 0);
-    const auto brute = BruteRestrictedDelaunay(s, 2);
-    AV_CHECK_MSG(CellSet(d) == brute, "2D RDT has " << d.NumCells() << " triangles, brute force "
-                                                    << brute.size());
-    AV_CHECK(d.NumCells() == brute.size()); // no duplicates
+    const av::RestrictedDelaunayMesh d = CheckIdentityCase(m, e, s);
     for (std::size_t s0 = 0; s0 < s.NumSites(); ++s0)
       AV_CHECK(d.Points[2 * s0] == s.At(s0)[0] && d.Points[2 * s0 + 1] == s.At(s0)[1]);
   }
@@ -136,18 +153,7 @@ void Test3DIdentity()
   const double lo[3] = { 0, 0, 0 }, hi[3] = { 1, 1, 1 };
   const av::SimplexMesh m = KuhnGrid(9, 9, 9, lo, hi);
   const av::Embedding e = MakeEmbedding(m, 3, nullptr);
-  const av::SiteSet s = Lattice(m, e, 4, 22);
-  const auto rvd = av::ComputeRestrictedVoronoi(m, e, s);
-  const auto d = av::ComputeRestrictedDelaunay(m, e, s, rvd);
-  AV_CHECK(d.NumUnusedSites == 0);
-  AV_CHECK(d.NumInverted == 0);
-  AV_CHECK(d.NumNonManifoldFaces == 0);
-  AV_CHECK(d.NumOpenInteriorFaces == 0);
-  AV_CHECK(NegativeCells(d) == 0);
-  const auto brute = BruteRestrictedDelaunay(s, 3);
-  AV_CHECK_MSG(CellSet(d) == brute, "3D RDT has " << d.NumCells() << " tets, brute force "
-                                                  << brute.size());
-  AV_CHECK(d.NumCells() == brute.size());
+  CheckIdentityCase(m, e, Lattice(m, e, 4, 22));
 }
 
 void TestSmoothEmbedding()

@@ -5,6 +5,7 @@
 // still partitions the domain.
 #include "RestrictedDelaunayRefinement.h"
 #include "AnisoTestChecks.h"
+#include "FoldedTestCases.h"
 #include "VoronoiTestMeshes.h"
 
 #include <algorithm>
@@ -19,21 +20,6 @@ using namespace av_test;
 namespace
 {
 using Key = std::array<int, 4>;
-
-// Folds the domain in the extra coordinates: amplitude `amp`, frequency `w`.
-av::Embedding Wavy(const av::SimplexMesh& m, double amp, double w)
-{
-  const int k = m.SimplexDim;
-  return MakeEmbedding(m, 8, [=](const double* x, int col) {
-    const double z = k == 3 ? x[2] : 0.0;
-    switch (col % 3)
-    {
-      case 0: return amp * std::sin(w * x[0] + 0.3 * col);
-      case 1: return amp * std::cos(w * x[1] + 0.7 * z);
-      default: return amp * std::sin(w * (x[0] + x[1] + z));
-    }
-  });
-}
 
 // Euler characteristic of the complex (V - E + F [- T]), counting only used vertices, and the
 // largest number of cells sharing a facet.
@@ -165,9 +151,7 @@ void TestVoronoiVertex()
 
 void TestRepair2D()
 {
-  const av::SimplexMesh m = TriGrid(33, 33, 0, 0, 1, 1);
-  const av::Embedding e = Wavy(m, 0.2, 12.0);
-  const av::SiteSet s = RandomSites(m, e, 60, 1);
+  const auto& [m, e, s] = FoldedSquare(0.2, 12.0, 60, 1);
 
   // One round only: every inserted site is a Voronoi vertex of the input sites (k+1 of them
   // at the same, smallest, embedding distance) of a cell that was inverted.
@@ -235,10 +219,7 @@ void TestRepair2D()
 
 void TestRepair3D()
 {
-  const double lo[3] = { 0, 0, 0 }, hi[3] = { 1, 1, 1 };
-  const av::SimplexMesh m = KuhnGrid(9, 9, 9, lo, hi);
-  const av::Embedding e = Wavy(m, 0.2, 8.0);
-  const av::SiteSet s = RandomSites(m, e, 150, 3);
+  const auto& [m, e, s] = FoldedCube(0.2, 8.0, 150, 3);
   const av::DelaunayRepairResult r = av::RepairRestrictedDelaunay(m, e, s);
   CheckRepaired(m, e, s, r, "3D inverted");
   long euler = 0;
@@ -253,10 +234,7 @@ void TestRepair3D()
 // progress and return its best state (the input, untouched), not run away.
 void TestRepairStalls()
 {
-  const double lo[3] = { 0, 0, 0 }, hi[3] = { 1, 1, 1 };
-  const av::SimplexMesh m = KuhnGrid(9, 9, 9, lo, hi);
-  const av::Embedding e = Wavy(m, 0.3, 12.0);
-  const av::SiteSet s = RandomSites(m, e, 60, 3);
+  const auto& [m, e, s] = FoldedCube(0.3, 12.0, 60, 3);
   const av::DelaunayRepairResult r = av::RepairRestrictedDelaunay(m, e, s);
   std::cout << "stalled repair: bad per round";
   for (std::size_t v : r.InvertedPerRound)

@@ -90,46 +90,61 @@ bool OnMesh(const av::SimplexMesh& m, const av::Embedding& e, const av::SiteSet&
   }
   return true;
 }
-} // namespace
-
-int TestSliverPerturbation(int, char*[])
+// MinDihedralAngle: regular tet 70.53 deg in any dimension; a flat quad-like tet ~ 0.
+void TestMinDihedralAngle()
 {
-  // MinDihedralAngle: regular tet 70.53 deg in any dimension; a flat quad-like tet ~ 0.
-  {
-    const double r[4][5] = { { 1, 1, 1, 0, 0 }, { 1, -1, -1, 0, 0 }, { -1, 1, -1, 0, 0 }, { -1, -1, 1, 0, 0 } };
-    AV_CHECK_NEAR(av::MinDihedralAngle(r[0], r[1], r[2], r[3], 5), std::acos(1.0 / 3.0) * 180.0 / M_PI, 1e-9);
-    const double f[4][3] = { { 0, 0, 0 }, { 1, 1, 0 }, { 1, 0, 1e-3 }, { 0, 1, 1e-3 } };
-    AV_CHECK(av::MinDihedralAngle(f[0], f[1], f[2], f[3], 3) < 0.5);
-  }
+  const double r[4][5] = { { 1, 1, 1, 0, 0 }, { 1, -1, -1, 0, 0 }, { -1, 1, -1, 0, 0 }, { -1, -1, 1, 0, 0 } };
+  AV_CHECK_NEAR(av::MinDihedralAngle(r[0], r[1], r[2], r[3], 5), std::acos(1.0 / 3.0) * 180.0 / M_PI, 1e-9);
+  const double f[4][3] = { { 0, 0, 0 }, { 1, 1, 0 }, { 1, 0, 1e-3 }, { 0, 1, 1e-3 } };
+  AV_CHECK(av::MinDihedralAngle(f[0], f[1], f[2], f[3], 3) < 0.5);
+}
 
+// A sliver: two crossing diagonals 2 * 0.01 apart in z, and a fat tet elsewhere.
+const double SliverPoints[8][3] = { { 0.4, 0.4, 0.49 }, { 0.6, 0.6, 0.49 }, { 0.4, 0.6, 0.51 },
+  { 0.6, 0.4, 0.51 }, { 0.1, 0.1, 0.1 }, { 0.3, 0.1, 0.1 }, { 0.1, 0.3, 0.1 }, { 0.1, 0.1, 0.3 } };
+
+// The sliver and the fat tet as sites on a unit-cube mesh with a 5D identity embedding.
+struct SliverCase
+{
+  av::SimplexMesh Mesh;
+  av::Embedding Emb;
+  av::SiteSet Sites;
+  av::RestrictedDelaunayMesh Rdt;
+};
+
+SliverCase MakeSliverCase()
+{
   const double lo[3] = { 0, 0, 0 }, hi[3] = { 1, 1, 1 };
-  const av::SimplexMesh mesh = av::MakeKuhnTetGrid(11, 11, 11, lo, hi);
-  const av::Embedding emb = Identity(mesh, 5);
-  av::SiteSet sites;
-  sites.Dim = emb.Dim;
-  // A sliver: two crossing diagonals 2 * 0.01 apart in z, and a fat tet elsewhere.
-  const double pts[8][3] = { { 0.4, 0.4, 0.49 }, { 0.6, 0.6, 0.49 }, { 0.4, 0.6, 0.51 }, { 0.6, 0.4, 0.51 },
-    { 0.1, 0.1, 0.1 }, { 0.3, 0.1, 0.1 }, { 0.1, 0.3, 0.1 }, { 0.1, 0.1, 0.3 } };
-  for (const auto& p : pts)
-    AddSite(mesh, emb, sites, p);
-  AV_CHECK(sites.NumSites() == 8);
-  av::RestrictedDelaunayMesh rdt;
-  rdt.SimplexDim = 3;
-  rdt.Cells = { 0, 1, 2, 3, 4, 5, 6, 7 };
+  SliverCase c;
+  c.Mesh = av::MakeKuhnTetGrid(11, 11, 11, lo, hi);
+  c.Emb = Identity(c.Mesh, 5);
+  c.Sites.Dim = c.Emb.Dim;
+  for (const auto& p : SliverPoints)
+    AddSite(c.Mesh, c.Emb, c.Sites, p);
+  AV_CHECK(c.Sites.NumSites() == 8);
+  c.Rdt.SimplexDim = 3;
+  c.Rdt.Cells = { 0, 1, 2, 3, 4, 5, 6, 7 };
+  return c;
+}
+
+// The sliver's diagonals move apart, the tet gets fatter, the fat tet's sites stay.
+void TestPush(const SliverCase& sc)
+{
+  const av::SiteSet& sites = sc.Sites;
   const double before = av::MinDihedralAngle(sites.At(0), sites.At(1), sites.At(2), sites.At(3), 5);
   AV_CHECK(before < 15.0);
-
   av::SliverPerturbationOptions o;
   o.StepFraction = 0.1;
-  const av::SliverPerturbationResult r = av::PerturbSliverSites(mesh, emb, sites, rdt, o);
+  const av::SliverPerturbationResult r = av::PerturbSliverSites(sc.Mesh, sc.Emb, sites, sc.Rdt, o);
   AV_CHECK(r.NumSlivers == 1);
   AV_CHECK(r.NumMovedSites == 4);
   AV_CHECK(r.MinDihedral.size() == 2);
   AV_CHECK_NEAR(r.MinDihedral[0], before, 1e-12);
   AV_CHECK(r.MinDihedral[1] > 15.0);
-  AV_CHECK(OnMesh(mesh, emb, r.Sites));
+  AV_CHECK(OnMesh(sc.Mesh, sc.Emb, r.Sites));
   // The diagonals moved apart along z by StepFraction * mean edge length each (interior, so
   // the identity embedding moves them exactly), x and y unchanged.
+  const auto& pts = SliverPoints;
   double h = 0.0;
   for (int i = 0; i < 4; ++i)
     for (int j = i + 1; j < 4; ++j)
@@ -156,56 +171,73 @@ int TestSliverPerturbation(int, char*[])
     for (int d = 0; d < 5; ++d)
       AV_CHECK(r.Sites.At(i)[d] == sites.At(i)[d]);
   }
+}
 
-  // A long step crosses many cells and stops at the domain boundary (z = 0 / z = 1).
+// A long step crosses many cells and stops at the domain boundary (z = 0 / z = 1).
+void TestLongStep(const SliverCase& sc)
+{
+  av::SliverPerturbationOptions o;
+  o.StepFraction = 5.0;
+  const av::SliverPerturbationResult f = av::PerturbSliverSites(sc.Mesh, sc.Emb, sc.Sites, sc.Rdt, o);
+  AV_CHECK(OnMesh(sc.Mesh, sc.Emb, f.Sites));
+  for (int i = 0; i < 4; ++i)
+    AV_CHECK_NEAR(f.Sites.At(i)[2], SliverPoints[i][2] > 0.5 ? 1.0 : 0.0, 1e-9);
+  // Deterministic.
+  const av::SliverPerturbationResult g = av::PerturbSliverSites(sc.Mesh, sc.Emb, sc.Sites, sc.Rdt, o);
+  AV_CHECK(g.Sites.Coords == f.Sites.Coords && g.Sites.CellIds == f.Sites.CellIds);
+}
+
+// Fixed sites (e.g. corner / feature-line sites) keep their exact values; the others move.
+void TestFixedSites(const SliverCase& sc)
+{
+  const av::SiteSet& sites = sc.Sites;
+  av::SliverPerturbationOptions fo;
+  fo.StepFraction = 0.1;
+  const std::vector<std::uint8_t> fixed = { 1, 0, 0, 1, 0, 0, 0, 0 };
+  fo.FixedSites = &fixed;
+  const av::SliverPerturbationResult k = av::PerturbSliverSites(sc.Mesh, sc.Emb, sites, sc.Rdt, fo);
+  AV_CHECK(k.NumSlivers == 1 && k.NumMovedSites == 2);
+  for (int i = 0; i < 4; ++i)
   {
-    o.StepFraction = 5.0;
-    const av::SliverPerturbationResult f = av::PerturbSliverSites(mesh, emb, sites, rdt, o);
-    AV_CHECK(OnMesh(mesh, emb, f.Sites));
-    for (int i = 0; i < 4; ++i)
-      AV_CHECK_NEAR(f.Sites.At(i)[2], pts[i][2] > 0.5 ? 1.0 : 0.0, 1e-9);
-    // Deterministic.
-    const av::SliverPerturbationResult g = av::PerturbSliverSites(mesh, emb, sites, rdt, o);
-    AV_CHECK(g.Sites.Coords == f.Sites.Coords && g.Sites.CellIds == f.Sites.CellIds);
+    const bool same = k.Sites.At(i)[2] == sites.At(i)[2] && k.Sites.CellIds[i] == sites.CellIds[i];
+    AV_CHECK(same == (fixed[static_cast<std::size_t>(i)] != 0));
   }
+  const std::vector<std::uint8_t> shortFlags = { 1, 0 };
+  fo.FixedSites = &shortFlags;
+  AV_CHECK_THROWS(av::PerturbSliverSites(sc.Mesh, sc.Emb, sites, sc.Rdt, fo));
+}
 
-  // Fixed sites (e.g. corner / feature-line sites) keep their exact values; the others move.
-  {
-    av::SliverPerturbationOptions fo;
-    fo.StepFraction = 0.1;
-    const std::vector<std::uint8_t> fixed = { 1, 0, 0, 1, 0, 0, 0, 0 };
-    fo.FixedSites = &fixed;
-    const av::SliverPerturbationResult k = av::PerturbSliverSites(mesh, emb, sites, rdt, fo);
-    AV_CHECK(k.NumSlivers == 1 && k.NumMovedSites == 2);
-    for (int i = 0; i < 4; ++i)
-    {
-      const bool same = k.Sites.At(i)[2] == sites.At(i)[2] && k.Sites.CellIds[i] == sites.CellIds[i];
-      AV_CHECK(same == (fixed[static_cast<std::size_t>(i)] != 0));
-    }
-    const std::vector<std::uint8_t> shortFlags = { 1, 0 };
-    fo.FixedSites = &shortFlags;
-    AV_CHECK_THROWS(av::PerturbSliverSites(mesh, emb, sites, rdt, fo));
-  }
-
-  // Threshold 0: nothing is a sliver, nothing moves.
+// Threshold 0: nothing is a sliver, nothing moves; and bad input.
+void TestThresholdAndBadInput(const SliverCase& sc)
+{
+  const av::SimplexMesh& mesh = sc.Mesh;
+  const av::Embedding& emb = sc.Emb;
+  const av::SiteSet& sites = sc.Sites;
   {
     av::SliverPerturbationOptions z;
     z.MinDihedralDegrees = 0.0;
-    const av::SliverPerturbationResult n = av::PerturbSliverSites(mesh, emb, sites, rdt, z);
+    const av::SliverPerturbationResult n = av::PerturbSliverSites(mesh, emb, sites, sc.Rdt, z);
     AV_CHECK(n.NumSlivers == 0 && n.NumMovedSites == 0 && n.Sites.Coords == sites.Coords);
   }
+  av::RestrictedDelaunayMesh bad = sc.Rdt;
+  bad.Cells[0] = 99;
+  AV_CHECK_THROWS(av::PerturbSliverSites(mesh, emb, sites, bad));
+  av::SliverPerturbationOptions neg;
+  neg.StepFraction = -1.0;
+  AV_CHECK_THROWS(av::PerturbSliverSites(mesh, emb, sites, sc.Rdt, neg));
+  av::SiteSet wrong = sites;
+  wrong.Coords.pop_back();
+  AV_CHECK_THROWS(av::PerturbSliverSites(mesh, emb, wrong, sc.Rdt));
+}
+} // namespace
 
-  // Bad input.
-  {
-    av::RestrictedDelaunayMesh bad = rdt;
-    bad.Cells[0] = 99;
-    AV_CHECK_THROWS(av::PerturbSliverSites(mesh, emb, sites, bad));
-    av::SliverPerturbationOptions neg;
-    neg.StepFraction = -1.0;
-    AV_CHECK_THROWS(av::PerturbSliverSites(mesh, emb, sites, rdt, neg));
-    av::SiteSet wrong = sites;
-    wrong.Coords.pop_back();
-    AV_CHECK_THROWS(av::PerturbSliverSites(mesh, emb, wrong, rdt));
-  }
+int TestSliverPerturbation(int, char*[])
+{
+  TestMinDihedralAngle();
+  const SliverCase sc = MakeSliverCase();
+  TestPush(sc);
+  TestLongStep(sc);
+  TestFixedSites(sc);
+  TestThresholdAndBadInput(sc);
   return AV_TEST_RESULT();
 }

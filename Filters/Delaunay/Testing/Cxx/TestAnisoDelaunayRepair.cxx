@@ -152,6 +152,140 @@ int NegativeTriangles(vtkUnstructuredGrid* out)
   }
   return neg;
 }
+// The input sites come first, unchanged, with their own point data.
+void CheckInputSites(vtkUnstructuredGrid* out, vtkPolyData* sites, vtkDataArray* inserted)
+{
+  const char* names[4] = { "CellId", "Barycentric", "Embedding", "Metric" };
+  for (vtkIdType i = 0; i < Sites; ++i)
+  {
+    AV_CHECK(inserted->GetTuple1(i) == 0);
+    double p[3], q[3];
+    out->GetPoint(i, p);
+    sites->GetPoint(i, q);
+    AV_CHECK(p[0] == q[0] && p[1] == q[1] && p[2] == q[2]);
+    for (const char* name : names)
+    {
+      vtkDataArray* a = out->GetPointData()->GetArray(name);
+      vtkDataArray* b = sites->GetPointData()->GetArray(name);
+      for (int c = 0; a && c < b->GetNumberOfComponents(); ++c)
+        AV_CHECK(a->GetComponent(i, c) == b->GetComponent(i, c));
+    }
+  }
+}
+
+// Inserted site i lies in its cell at its barycentric coordinates, and its "Embedding" and
+// "Metric" are interpolated from the mesh there.
+void CheckInsertedSite(vtkUnstructuredGrid* out, vtkUnstructuredGrid* mesh, vtkIdType i)
+{
+  vtkDataArray* cellId = out->GetPointData()->GetArray("CellId");
+  vtkDataArray* bary = out->GetPointData()->GetArray("Barycentric");
+  vtkDataArray* outEmbedding = out->GetPointData()->GetArray("Embedding");
+  vtkDataArray* outMetric = out->GetPointData()->GetArray("Metric");
+  vtkDataArray* meshEmbedding = mesh->GetPointData()->GetArray("Embedding");
+  vtkDataArray* meshMetric = mesh->GetPointData()->GetArray("Metric");
+  const vtkIdType c = static_cast<vtkIdType>(cellId->GetTuple1(i));
+  AV_CHECK(c >= 0 && c < mesh->GetNumberOfCells());
+  if (c < 0 || c >= mesh->GetNumberOfCells())
+    return;
+  vtkNew<vtkIdList> ids;
+  mesh->GetCellPoints(c, ids);
+  double b[4], sum = 0.0;
+  for (int a = 0; a < 4; ++a)
+  {
+    b[a] = bary->GetComponent(i, a);
+    AV_CHECK(b[a] >= 0.0);
+    sum += b[a];
+  }
+  AV_CHECK_NEAR(sum, 1.0, 1e-12);
+  AV_CHECK(b[3] == 0.0);
+  double p[3], x[3] = { 0, 0, 0 };
+  out->GetPoint(i, p);
+  for (int a = 0; a < 3; ++a)
+  {
+    double v[3];
+    mesh->GetPoint(ids->GetId(a), v);
+    for (int d = 0; d < 3; ++d)
+      x[d] += b[a] * v[d];
+  }
+  for (int d = 0; d < 3; ++d)
+    AV_CHECK_NEAR(p[d], x[d], 1e-12);
+  for (int d = 0; d < Dim; ++d)
+  {
+    double e = 0.0;
+    for (int a = 0; a < 3; ++a)
+      e += b[a] * meshEmbedding->GetComponent(ids->GetId(a), d);
+    AV_CHECK_NEAR(outEmbedding->GetComponent(i, d), e, 1e-12);
+  }
+  for (int d = 0; d < 6; ++d)
+  {
+    double m = 0.0;
+    for (int a = 0; a < 3; ++a)
+      m += b[a] * meshMetric->GetComponent(ids->GetId(a), d);
+    AV_CHECK_NEAR(outMetric->GetComponent(i, d), m, 1e-12);
+  }
+}
+
+// Without repair: inverted triangles are reported (the case exercises the repair); returns
+// their number.
+double CheckWithoutRepair(vtkAnisoRestrictedDelaunay* rdt, EventCounter* events)
+{
+  rdt->RepairInvertedOff();
+  rdt->Update();
+  vtkUnstructuredGrid* out = rdt->GetOutput();
+  const double before = FieldValue(out, "NumInverted");
+  std::printf("no repair: %lld triangles, %g inverted, %d negative\n",
+    static_cast<long long>(out->GetNumberOfCells()), before, NegativeTriangles(out));
+  AV_CHECK(before > 0);
+  AV_CHECK(NegativeTriangles(out) == static_cast<int>(before));
+  AV_CHECK(out->GetNumberOfPoints() == Sites);
+  AV_CHECK(FieldValue(out, "NumInsertedSites") == 0 && FieldValue(out, "RepairRounds") == 0);
+  AV_CHECK(events->Warnings == 1); // what remains is reported
+  AV_CHECK(events->Errors == 0);
+  return before;
+}
+
+// With repair: no inverted triangle is left; the input sites are kept, the inserted ones
+// have consistent point data.
+void CheckWithRepair(vtkAnisoRestrictedDelaunay* rdt, EventCounter* events,
+  vtkUnstructuredGrid* mesh, vtkPolyData* sites, double before)
+{
+  events->Reset();
+  rdt->RepairInvertedOn();
+  rdt->Update();
+  vtkUnstructuredGrid* out = rdt->GetOutput();
+  const vtkIdType n = out->GetNumberOfPoints();
+  std::printf("repair: %lld triangles, %lld points, inserted %g in %g round(s), inverted %g\n",
+    static_cast<long long>(out->GetNumberOfCells()), static_cast<long long>(n),
+    FieldValue(out, "NumInsertedSites"), FieldValue(out, "RepairRounds"),
+    FieldValue(out, "NumInverted"));
+  AV_CHECK(events->Errors == 0);
+  AV_CHECK(FieldValue(out, "NumInverted") == 0);
+  AV_CHECK(NegativeTriangles(out) == 0);
+  AV_CHECK(FieldValue(out, "NumInvertedBeforeRepair") == before);
+  AV_CHECK(FieldValue(out, "NumInsertedSites") == static_cast<double>(n - Sites));
+  AV_CHECK(rdt->GetNumberOfInsertedSites() == n - Sites && n > Sites);
+  AV_CHECK(FieldValue(out, "RepairRounds") >= 1 && rdt->GetNumberOfRepairRounds() >= 1);
+  vtkDataArray* inserted = out->GetPointData()->GetArray("InsertedSite");
+  vtkDataArray* inverted = out->GetCellData()->GetArray("Inverted");
+  AV_CHECK(inserted && inverted);
+  if (!inserted || !inverted)
+    return;
+  for (vtkIdType c = 0; c < out->GetNumberOfCells(); ++c)
+    AV_CHECK(inverted->GetTuple1(c) == 0);
+  CheckInputSites(out, sites, inserted);
+  vtkDataArray* cellId = out->GetPointData()->GetArray("CellId");
+  vtkDataArray* bary = out->GetPointData()->GetArray("Barycentric");
+  vtkDataArray* outEmbedding = out->GetPointData()->GetArray("Embedding");
+  vtkDataArray* outMetric = out->GetPointData()->GetArray("Metric");
+  AV_CHECK(cellId && bary && outEmbedding && outMetric);
+  if (!cellId || !bary || !outEmbedding || !outMetric)
+    return;
+  for (vtkIdType i = Sites; i < n; ++i)
+  {
+    AV_CHECK(inserted->GetTuple1(i) == 1);
+    CheckInsertedSite(out, mesh, i);
+  }
+}
 } // namespace
 
 int TestAnisoDelaunayRepair(int, char*[])
@@ -169,113 +303,8 @@ int TestAnisoDelaunayRepair(int, char*[])
   AV_CHECK(rdt->GetImprovementRounds() == 1);
   rdt->SetImprovementRounds(0);
 
-  // Without repair: inverted triangles are reported (the case exercises the repair).
-  rdt->RepairInvertedOff();
-  rdt->Update();
-  vtkUnstructuredGrid* out = rdt->GetOutput();
-  const double before = FieldValue(out, "NumInverted");
-  std::printf("no repair: %lld triangles, %g inverted, %d negative\n",
-    static_cast<long long>(out->GetNumberOfCells()), before, NegativeTriangles(out));
-  AV_CHECK(before > 0);
-  AV_CHECK(NegativeTriangles(out) == static_cast<int>(before));
-  AV_CHECK(out->GetNumberOfPoints() == Sites);
-  AV_CHECK(FieldValue(out, "NumInsertedSites") == 0 && FieldValue(out, "RepairRounds") == 0);
-  AV_CHECK(events->Warnings == 1); // what remains is reported
-  AV_CHECK(events->Errors == 0);
-
-  // With repair.
-  events->Reset();
-  rdt->RepairInvertedOn();
-  rdt->Update();
-  out = rdt->GetOutput();
-  const vtkIdType n = out->GetNumberOfPoints();
-  std::printf("repair: %lld triangles, %lld points, inserted %g in %g round(s), inverted %g\n",
-    static_cast<long long>(out->GetNumberOfCells()), static_cast<long long>(n),
-    FieldValue(out, "NumInsertedSites"), FieldValue(out, "RepairRounds"),
-    FieldValue(out, "NumInverted"));
-  AV_CHECK(events->Errors == 0);
-  AV_CHECK(FieldValue(out, "NumInverted") == 0);
-  AV_CHECK(NegativeTriangles(out) == 0);
-  AV_CHECK(FieldValue(out, "NumInvertedBeforeRepair") == before);
-  AV_CHECK(FieldValue(out, "NumInsertedSites") == static_cast<double>(n - Sites));
-  AV_CHECK(rdt->GetNumberOfInsertedSites() == n - Sites && n > Sites);
-  AV_CHECK(FieldValue(out, "RepairRounds") >= 1 && rdt->GetNumberOfRepairRounds() >= 1);
-  vtkDataArray* inserted = out->GetPointData()->GetArray("InsertedSite");
-  vtkDataArray* inverted = out->GetCellData()->GetArray("Inverted");
-  AV_CHECK(inserted && inverted);
-  if (!inserted || !inverted)
-    return AV_TEST_RESULT();
-  for (vtkIdType c = 0; c < out->GetNumberOfCells(); ++c)
-    AV_CHECK(inverted->GetTuple1(c) == 0);
-  const char* names[4] = { "CellId", "Barycentric", "Embedding", "Metric" };
-  for (vtkIdType i = 0; i < Sites; ++i)
-  {
-    AV_CHECK(inserted->GetTuple1(i) == 0);
-    double p[3], q[3];
-    out->GetPoint(i, p);
-    sites->GetPoint(i, q);
-    AV_CHECK(p[0] == q[0] && p[1] == q[1] && p[2] == q[2]);
-    for (const char* name : names)
-    {
-      vtkDataArray* a = out->GetPointData()->GetArray(name);
-      vtkDataArray* b = sites->GetPointData()->GetArray(name);
-      for (int c = 0; a && c < b->GetNumberOfComponents(); ++c)
-        AV_CHECK(a->GetComponent(i, c) == b->GetComponent(i, c));
-    }
-  }
-  vtkDataArray* cellId = out->GetPointData()->GetArray("CellId");
-  vtkDataArray* bary = out->GetPointData()->GetArray("Barycentric");
-  vtkDataArray* outEmbedding = out->GetPointData()->GetArray("Embedding");
-  vtkDataArray* outMetric = out->GetPointData()->GetArray("Metric");
-  AV_CHECK(cellId && bary && outEmbedding && outMetric);
-  if (!cellId || !bary || !outEmbedding || !outMetric)
-    return AV_TEST_RESULT();
-  vtkDataArray* meshEmbedding = mesh->GetPointData()->GetArray("Embedding");
-  vtkDataArray* meshMetric = mesh->GetPointData()->GetArray("Metric");
-  vtkNew<vtkIdList> ids;
-  for (vtkIdType i = Sites; i < n; ++i)
-  {
-    AV_CHECK(inserted->GetTuple1(i) == 1);
-    const vtkIdType c = static_cast<vtkIdType>(cellId->GetTuple1(i));
-    AV_CHECK(c >= 0 && c < mesh->GetNumberOfCells());
-    if (c < 0 || c >= mesh->GetNumberOfCells())
-      continue;
-    mesh->GetCellPoints(c, ids);
-    double b[4], sum = 0.0;
-    for (int a = 0; a < 4; ++a)
-    {
-      b[a] = bary->GetComponent(i, a);
-      AV_CHECK(b[a] >= 0.0);
-      sum += b[a];
-    }
-    AV_CHECK_NEAR(sum, 1.0, 1e-12);
-    AV_CHECK(b[3] == 0.0);
-    double p[3], x[3] = { 0, 0, 0 };
-    out->GetPoint(i, p);
-    for (int a = 0; a < 3; ++a)
-    {
-      double v[3];
-      mesh->GetPoint(ids->GetId(a), v);
-      for (int d = 0; d < 3; ++d)
-        x[d] += b[a] * v[d];
-    }
-    for (int d = 0; d < 3; ++d)
-      AV_CHECK_NEAR(p[d], x[d], 1e-12);
-    for (int d = 0; d < Dim; ++d)
-    {
-      double e = 0.0;
-      for (int a = 0; a < 3; ++a)
-        e += b[a] * meshEmbedding->GetComponent(ids->GetId(a), d);
-      AV_CHECK_NEAR(outEmbedding->GetComponent(i, d), e, 1e-12);
-    }
-    for (int d = 0; d < 6; ++d)
-    {
-      double m = 0.0;
-      for (int a = 0; a < 3; ++a)
-        m += b[a] * meshMetric->GetComponent(ids->GetId(a), d);
-      AV_CHECK_NEAR(outMetric->GetComponent(i, d), m, 1e-12);
-    }
-  }
+  const double before = CheckWithoutRepair(rdt, events);
+  CheckWithRepair(rdt, events, mesh, sites, before);
 
   // No rounds allowed: same as no repair.
   rdt->SetMaxRepairRounds(0);

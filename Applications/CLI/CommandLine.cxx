@@ -1,0 +1,206 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The anisovoronoi command line: usage text, option parsing and range checks.
+#include "CommandLine.h"
+
+#include <cmath>
+#include <cstdlib>
+#include <iostream>
+
+namespace avcli
+{
+namespace
+{
+const char* const Usage = R"(usage: anisovoronoi [INPUT] --metric SPEC --output-dir DIR [options]
+
+Anisotropic Voronoi cells and meshes from a Riemannian metric through a high-dimensional
+embedding (AnisoVoronoi). INPUT: VTK legacy (.vtk) or XML (.vtu/.vtp/...), Medit .mesh
+(metric from --sol), CalculiX .frd, or a surface (.stl/.ply/.obj/.off). Non-simplex cells
+(hexahedra, quadratic cells, ...) are split into simplices. INPUT may be omitted with
+--metric preset:NAME: the preset's own mesh is generated.
+
+metric SPEC:
+  tensor:ARRAY     convert a tensor point/cell array (stress, strain rate, ...) into a metric
+  metric:ARRAY     ARRAY already is an SPD metric (6 or 9 components)
+  curvature        curvature metric of a triangle surface (paper Eq. 19)
+  preset:NAME      analytic metric: gaussian2d cube1 cube2 cube3 sphere-cyl sphere-cos
+
+options:
+  --sol FILE               Medit .sol metric for a .mesh input
+  --step N                 result step of a .frd input (0-based, default 0)
+  --resolution N           mesh size for preset:NAME without INPUT (0 = paper size)
+  --sites N                number of Voronoi cells / mesh vertices (default 2000)
+  --dim N                  embedding dimension (default 8)
+  --iterations N           embedding iterations (default 50)
+  --double-solve           embedding: CHOLMOD's double-precision solves (default: float copy)
+  --sample-iterations N    particle L-BFGS iterations at the paper's kernel (default 150;
+                           the paper: 50)
+  --warmup-iterations N    particle iterations at a narrower kernel first (default 100;
+                           0 with --sample-iterations 1500 or more: best quality)
+  --no-features            no corner / feature-line sites (paper §4.1 sharp features)
+  --feature-angle A        dihedral angle (degrees) above which an edge is a feature line
+                           (default 30; 180 = none)
+  --seed S                 random seed (default 1)
+  --mu X                   regularisation weight (default 100)
+  --shrink F               shrink factor of the Voronoi cells (default 0.8; 1 = none)
+  --tensor-as-metric       tensor: use eigenvalues as metric eigenvalues, not stretches
+  --clamp                  tensor: clamp eigenvalues instead of taking absolute values
+  --min-eigenvalue X       tensor: floor relative to the largest |eigenvalue| (default 1e-3)
+  --max-anisotropy X       tensor: cap on the stretch ratio (default 25, 0 = none)
+  --smooth N               tensor: log-Euclidean smoothing iterations (default 0)
+  --refine N               volumes: remesh the domain with TetGen to about N vertices and
+                           interpolate the input's point data onto it (a coarse FE mesh
+                           cannot carry a fast-varying metric; default 0 = off)
+  --no-repair              keep inverted mesh elements (default: insert sites at their dual
+                           Voronoi vertices until none is left, paper §4.2)
+  --repair-rounds N        insertion rounds at most (default 10)
+  --repair-nonmanifold     also repair faces shared by more than two mesh elements
+  --improve-rounds N       site improvement rounds before the repair (default 1; 0 = the
+                           paper's pipeline): ODT steps and sliver pushes, diagram redone
+  --odt-iterations N       ODT steps per improvement round (default 3; 0 = sliver pushes only)
+  --output-dir DIR         where the results go (created if missing)
+  --quiet                  no progress on stderr
+  --help                   this text
+
+writes into DIR: embedded.vtu, sites.vtp, voronoi.vtu, voronoi_faces.vtp, mesh.vtu,
+energy.csv, report.json (the benchmark's keys). With the repair, mesh.vtu and voronoi.vtu
+use the final sites (sampled ones first, then inserted ones; sites.vtp: the sampled ones).
+)";
+
+int ParseInt(const std::string& flag, const char* value)
+{
+  char* end = nullptr;
+  const long v = std::strtol(value, &end, 10);
+  if (!end || *end || v < -1000000000L || v > 1000000000L)
+    Fail(flag + " expects an integer, got '" + value + "'", 2);
+  return static_cast<int>(v);
+}
+
+double ParseDouble(const std::string& flag, const char* value)
+{
+  char* end = nullptr;
+  const double v = std::strtod(value, &end);
+  if (!end || *end || !std::isfinite(v))
+    Fail(flag + " expects a number, got '" + value + "'", 2);
+  return v;
+}
+
+/// Exits with status 2 when a required option is missing or a value is out of range.
+void CheckOptions(const Options& o)
+{
+  if (o.Metric.empty())
+    Fail("--metric SPEC is required (see --help)", 2);
+  if (o.OutputDir.empty())
+    Fail("--output-dir DIR is required", 2);
+  if (o.Input.empty() && o.Metric.rfind("preset:", 0) != 0)
+    Fail("an INPUT file is required unless --metric preset:NAME", 2);
+  if (o.Sites < 1)
+    Fail("--sites must be at least 1", 2);
+  if (o.Dim < 3 || o.Dim > 20)
+    Fail("--dim must be in [3, 20]", 2);
+  if (o.Iterations < 0 || o.SampleIterations < 0 || o.WarmupIterations < 0)
+    Fail("iteration counts must be >= 0", 2);
+  if (!(o.FeatureAngle > 0 && o.FeatureAngle <= 180))
+    Fail("--feature-angle must be in (0, 180]", 2);
+  if (!(o.Shrink > 0 && o.Shrink <= 1))
+    Fail("--shrink must be in (0, 1]", 2);
+  if (o.RepairRounds < 0 || o.RepairRounds > 1000)
+    Fail("--repair-rounds must be in [0, 1000]", 2);
+  if (o.ImproveRounds < 0 || o.ImproveRounds > 10)
+    Fail("--improve-rounds must be in [0, 10]", 2);
+  if (o.OdtIterations < 0 || o.OdtIterations > 20)
+    Fail("--odt-iterations must be in [0, 20]", 2);
+}
+
+} // namespace
+
+Options ParseCommandLine(int argc, char* argv[])
+{
+  Options o;
+  for (int i = 1; i < argc; ++i)
+  {
+    const std::string a = argv[i];
+    auto next = [&]() -> const char*
+    {
+      if (i + 1 >= argc)
+        Fail(a + " needs a value", 2);
+      return argv[++i];
+    };
+    if (a == "--help" || a == "-h")
+    {
+      std::cout << Usage;
+      std::exit(0);
+    }
+    else if (a == "--metric")
+      o.Metric = next();
+    else if (a == "--sol")
+      o.Sol = next();
+    else if (a == "--output-dir" || a == "-o")
+      o.OutputDir = next();
+    else if (a == "--step")
+      o.Step = ParseInt(a, next());
+    else if (a == "--resolution")
+      o.Resolution = ParseInt(a, next());
+    else if (a == "--sites")
+      o.Sites = ParseInt(a, next());
+    else if (a == "--dim")
+      o.Dim = ParseInt(a, next());
+    else if (a == "--iterations")
+      o.Iterations = ParseInt(a, next());
+    else if (a == "--sample-iterations")
+      o.SampleIterations = ParseInt(a, next());
+    else if (a == "--warmup-iterations")
+      o.WarmupIterations = ParseInt(a, next());
+    else if (a == "--no-features")
+      o.Features = false;
+    else if (a == "--feature-angle")
+      o.FeatureAngle = ParseDouble(a, next());
+    else if (a == "--double-solve")
+      o.DoubleSolve = true;
+    else if (a == "--seed")
+      o.Seed = ParseInt(a, next());
+    else if (a == "--refine")
+      o.Refine = ParseInt(a, next());
+    else if (a == "--smooth")
+      o.Smooth = ParseInt(a, next());
+    else if (a == "--mu")
+      o.Mu = ParseDouble(a, next());
+    else if (a == "--shrink")
+      o.Shrink = ParseDouble(a, next());
+    else if (a == "--min-eigenvalue")
+      o.MinEigenvalue = ParseDouble(a, next());
+    else if (a == "--max-anisotropy")
+      o.MaxAnisotropy = ParseDouble(a, next());
+    else if (a == "--tensor-as-metric")
+      o.TensorAsMetric = true;
+    else if (a == "--clamp")
+      o.Clamp = true;
+    else if (a == "--quiet")
+      o.Quiet = true;
+    else if (a == "--no-repair")
+      o.Repair = false;
+    else if (a == "--repair-rounds")
+      o.RepairRounds = ParseInt(a, next());
+    else if (a == "--improve-rounds")
+      o.ImproveRounds = ParseInt(a, next());
+    else if (a == "--odt-iterations")
+      o.OdtIterations = ParseInt(a, next());
+    else if (a == "--repair-nonmanifold")
+      o.RepairNonManifold = true;
+    else if (!a.empty() && a[0] == '-')
+      Fail("unknown option " + a + " (see --help)", 2);
+    else if (o.Input.empty())
+      o.Input = a;
+    else
+      Fail("more than one INPUT given ('" + o.Input + "', '" + a + "')", 2);
+  }
+  CheckOptions(o);
+  return o;
+}
+
+void Fail(const std::string& message, int code)
+{
+  std::cerr << "anisovoronoi: error: " << message << std::endl;
+  std::exit(code);
+}
+
+} // namespace avcli

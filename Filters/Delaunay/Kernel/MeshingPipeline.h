@@ -1,0 +1,83 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// MeshingPipeline: the one meshing sequence of sites on an embedded mesh (RVD -> RDT -> site
+// improvement rounds -> repair), shared by vtkAnisoRestrictedDelaunay, the CLI and the bench.
+#ifndef av_MeshingPipeline_h
+#define av_MeshingPipeline_h
+
+#include "RestrictedDelaunayRefinement.h"
+#include "SimplexMesh.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+namespace av
+{
+
+/// The points at which RunMeshingPipeline reports progress (MeshingPipelineOptions::Progress).
+enum class MeshingStep
+{
+  Voronoi,          ///< the first restricted Voronoi diagram is done
+  Delaunay,         ///< its dual (the first restricted Delaunay mesh) is done
+  ImprovementRound, ///< an improvement round that moved sites, and its new RVD + RDT, are done
+  Improvement       ///< all improvement rounds are done; the repair comes next
+};
+
+/// Options of RunMeshingPipeline. The defaults are those of vtkAnisoRestrictedDelaunay.
+struct MeshingPipelineOptions
+{
+  /// Site improvement rounds before the repair (ImproveSites: ODT steps, then sliver pushes,
+  /// then RVD + RDT again); 0 = the paper's pipeline. Stops early at a round that moves no site.
+  int ImproveRounds = 1;
+  int OdtIterations = 3;      ///< ODT steps per round (0: sliver pushes only)
+  bool PerturbSlivers = true; ///< sliver pushes in each round (tet meshes)
+  /// Per site, nonzero: never pushed by the sliver perturbation (the sampler's corner and
+  /// feature-line sites; the ODT steps keep them anyway, as they keep every site whose cell
+  /// meets the domain boundary). nullptr: every site may be pushed. Must outlive the call.
+  const std::vector<std::uint8_t>* FixedSites = nullptr;
+  /// Insert sites at the Voronoi vertices of inverted elements (paper §4.2); false: only
+  /// compute and report (RepairRestrictedDelaunay with MaxRounds 0).
+  bool Repair = true;
+  int MaxRepairRounds = 10;       ///< insertion rounds at most
+  bool RepairNonManifold = false; ///< also repair faces shared by more than two elements
+  /// Called at each MeshingStep; returning false aborts the run (Aborted in the result).
+  std::function<bool(MeshingStep)> Progress;
+};
+
+/// Output of RunMeshingPipeline.
+struct MeshingPipelineResult
+{
+  /// The repaired mesh: Repaired.Sites (the improved input sites in input order, then the
+  /// inserted ones), Repaired.Voronoi and Repaired.Delaunay of them, and the repair counts.
+  DelaunayRepairResult Repaired;
+  /// Per input site, 1 where the improvement rounds changed its cell id or barycentric
+  /// coordinates (inserted sites are not in it).
+  std::vector<std::uint8_t> Moved;
+  std::size_t NumMovedSites = 0;    ///< count of Moved
+  std::size_t NumOdtMovedSites = 0; ///< sites moved by the first round's ODT steps
+  std::size_t NumSlivers = 0;       ///< slivers (embedded dihedral < 15 deg) of the first round
+  int ImproveRoundsDone = 0;        ///< rounds that moved sites
+  bool Aborted = false;             ///< Progress returned false; the rest is incomplete
+  double VoronoiSeconds = 0.0;      ///< element adjacency and the first restricted Voronoi diagram
+  double DelaunaySeconds = 0.0;     ///< the first restricted Delaunay mesh
+  double ImproveSeconds = 0.0;      ///< improvement rounds, their RVD + RDT included
+  double RepairSeconds = 0.0;       ///< the repair (its rounds after the last RVD + RDT)
+};
+
+/**
+ * Meshes `sites` on the embedded mesh: the restricted Voronoi diagram (no geometry, the
+ * DelaunayRepairOptions default) and its dual (ComputeRestrictedDelaunay); then up to
+ * ImproveRounds rounds of ImproveSites, each followed by a new RVD + RDT; then
+ * RepairRestrictedDelaunay starting from the last RVD + RDT. The element adjacency is computed
+ * once for all of them. Deterministic. Throws InputError on bad input (inconsistent mesh,
+ * embedding or sites, FixedSites not one per site, negative counts).
+ */
+MeshingPipelineResult RunMeshingPipeline(const SimplexMesh& mesh,
+  const Embedding& embedding,
+  const SiteSet& sites,
+  const MeshingPipelineOptions& options = MeshingPipelineOptions());
+
+} // namespace av
+
+#endif
