@@ -48,6 +48,8 @@ inline __attribute__((always_inline)) V4 Sqrt(V4 v)
   return V4{ std::sqrt(v[0]), std::sqrt(v[1]), std::sqrt(v[2]), std::sqrt(v[3]) };
 }
 
+// The steps of the kernel, force-inlined into each clone-dispatched entry point: one loop body
+// per clone, so splitting the kernel changes neither the instructions nor the results.
 #define AV_INLINE inline __attribute__((always_inline))
 
 /// Gathers G, A and w of the four elements e[0..3] into lanes.
