@@ -1,9 +1,14 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// vtkAnisoEmbedding: converts the mesh and metric, runs MetricScaling, EmbeddingSolver and
+// EdgeLengthError, and builds the embedded mesh and the energy table.
 #include "vtkAnisoEmbedding.h"
 
 #include "EdgeLengthError.h"
 #include "EmbeddingSolver.h"
-#include "MetricAlgebra.h"
+#include "MetricScaling.h"
+#include "Stopwatch.h"
 #include "vtkAnisoDataConversion.h"
+#include "vtkAnisoFilterUtilities.h"
 
 #include <vtkCellData.h>
 #include <vtkDataSet.h>
@@ -19,19 +24,126 @@
 #include <vtkTable.h>
 #include <vtkUnstructuredGrid.h>
 
-#include <chrono>
-#include <sstream>
+#include <algorithm>
 
 vtkStandardNewMacro(vtkAnisoEmbedding);
 
 namespace
 {
-void AddFieldValue(vtkFieldData* fd, const char* name, double value)
+/// The solver's parameters from the filter's; the progress callback reports and honors aborts.
+av::EmbeddingOptions MakeOptions(vtkAnisoEmbedding* self)
 {
-  vtkNew<vtkDoubleArray> a;
-  a->SetName(name);
-  a->InsertNextValue(value);
-  fd->AddArray(a);
+  av::EmbeddingOptions options;
+  options.TargetDim = self->GetTargetDimension();
+  options.Iterations = self->GetIterations();
+  options.Mu = self->GetMu();
+  options.Seed = static_cast<std::uint64_t>(self->GetSeed());
+  options.RelativeEnergyTolerance = self->GetRelativeEnergyTolerance();
+  options.ElementMeasureWeighting = self->GetElementMeasureWeighting();
+  options.Initialisation = self->GetInitialisation() == vtkAnisoEmbedding::RANDOM
+    ? av::EmbeddingInitialisation::Random
+    : av::EmbeddingInitialisation::Smooth;
+  options.AndersonWindow = self->GetAndersonWindow();
+  options.SinglePrecisionSolve = self->GetSinglePrecisionSolve();
+  options.Progress = [self](const av::EmbeddingProgress& p) {
+    self->UpdateProgress(0.05 + 0.9 * p.Iteration / std::max(1, p.Iterations));
+    return !self->GetAbortExecute();
+  };
+  return options;
+}
+
+/// The simplicial mesh of `input` and the metric `array` (what FindPointTensorArray chose).
+bool ConvertInputs(vtkAnisoEmbedding* self, vtkDataSet* input, vtkDataArray* chosen,
+  int association, av::SimplexMesh& mesh, av::MetricField& metric)
+{
+  std::string error, note;
+  if (!vtkAnisoDataConversion::ToSimplexMesh(input, mesh, error, &note))
+  {
+    vtkErrorWithObjectMacro(self, << error);
+    return false;
+  }
+  if (!note.empty())
+  {
+    vtkWarningWithObjectMacro(self, << note);
+  }
+  if (self->GetTargetDimension() <= mesh.AmbientDim)
+  {
+    vtkErrorWithObjectMacro(self, "TargetDimension " << self->GetTargetDimension()
+                                  << " must be larger than the input dimension "
+                                  << mesh.AmbientDim);
+    return false;
+  }
+  vtkDataArray* metricArray =
+    vtkAnisoDataConversion::FindPointTensorArray(chosen, association, input);
+  if (!vtkAnisoDataConversion::ToMetricField(metricArray, mesh.NumPoints(), metric, error))
+  {
+    vtkErrorWithObjectMacro(self, << error);
+    return false;
+  }
+  return true;
+}
+
+/// The input mesh with the input's exact points (FromSimplexMesh writes z = 0 for flat 2D
+/// domains), its point, cell and field data, the embedding and the per-cell error.
+void BuildEmbeddedMesh(vtkDataSet* input, const av::SimplexMesh& mesh, const char* arrayName,
+  const av::Embedding& embedded, const av::EdgeLengthErrorResult& errors,
+  vtkUnstructuredGrid* output)
+{
+  output->ShallowCopy(vtkAnisoDataConversion::FromSimplexMesh(mesh));
+  vtkNew<vtkPoints> pts;
+  pts->SetDataTypeToDouble();
+  pts->SetNumberOfPoints(input->GetNumberOfPoints());
+  for (vtkIdType i = 0; i < input->GetNumberOfPoints(); ++i)
+    pts->SetPoint(i, input->GetPoint(i));
+  output->SetPoints(pts);
+  output->GetPointData()->ShallowCopy(input->GetPointData());
+  if (static_cast<std::size_t>(input->GetNumberOfCells()) == mesh.NumCells())
+  {
+    output->GetCellData()->ShallowCopy(input->GetCellData());
+  }
+  output->GetFieldData()->ShallowCopy(input->GetFieldData());
+  output->GetPointData()->AddArray(vtkAnisoDataConversion::MakeArray(
+    arrayName, embedded.Coords.data(), mesh.NumPoints(), embedded.Dim));
+  output->GetCellData()->AddArray(vtkAnisoDataConversion::MakeArray("EdgeLengthError",
+    errors.CellMaxPercent.data(), errors.CellMaxPercent.size(), 1));
+}
+
+/// The figures of the run as one-value field data.
+void AddFigures(vtkFieldData* fd, const av::EdgeLengthErrorResult& errors, double metricScale,
+  const av::EmbeddingResult& result, double seconds)
+{
+  using vtkAnisoFilterUtilities::AddFieldValue;
+  AddFieldValue(fd, "L_avg", errors.AveragePercent);
+  AddFieldValue(fd, "L_max", errors.MaxPercent);
+  AddFieldValue(fd, "MetricScale", metricScale);
+  AddFieldValue(fd, "EmbeddingDimension", result.Embedded.Dim);
+  AddFieldValue(fd, "EmbeddingIterations", result.IterationsDone);
+  AddFieldValue(fd, "FactorSeconds", result.FactorSeconds);
+  AddFieldValue(fd, "SolveSeconds", result.SolveSeconds);
+  AddFieldValue(fd, "DoublePrecisionRetries", result.DoublePrecisionRetries);
+  AddFieldValue(fd, "EmbeddingSeconds", seconds);
+}
+
+/// Output 1: the energies per iteration (0 = initial state).
+void BuildEnergyTable(const std::vector<av::EmbeddingEnergy>& history, vtkTable* table)
+{
+  vtkNew<vtkIntArray> iteration;
+  iteration->SetName("Iteration");
+  vtkNew<vtkDoubleArray> eem, ereg, etot;
+  eem->SetName("E_em");
+  ereg->SetName("E_reg");
+  etot->SetName("E_total");
+  for (std::size_t k = 0; k < history.size(); ++k)
+  {
+    iteration->InsertNextValue(static_cast<int>(k));
+    eem->InsertNextValue(history[k].Embedding);
+    ereg->InsertNextValue(history[k].Regularisation);
+    etot->InsertNextValue(history[k].Total);
+  }
+  table->AddColumn(iteration);
+  table->AddColumn(eem);
+  table->AddColumn(ereg);
+  table->AddColumn(etot);
 }
 }
 
@@ -82,157 +194,49 @@ int vtkAnisoEmbedding::RequestData(
   {
     return 1; // empty in, empty out
   }
-
-  av::SimplexMesh mesh;
-  std::string error, note;
-  if (!vtkAnisoDataConversion::ToSimplexMesh(input, mesh, error, &note))
-  {
-    vtkErrorMacro(<< error);
-    return 0;
-  }
-  if (!note.empty())
-  {
-    vtkWarningMacro(<< note);
-  }
-  if (this->TargetDimension <= mesh.AmbientDim)
-  {
-    vtkErrorMacro("TargetDimension " << this->TargetDimension
-                                     << " must be larger than the input dimension "
-                                     << mesh.AmbientDim);
-    return 0;
-  }
   int association = -1;
   vtkDataArray* chosen = this->GetInputArrayToProcess(0, inputVector, association);
-  vtkDataArray* metricArray =
-    vtkAnisoDataConversion::FindPointTensorArray(chosen, association, input);
+  av::SimplexMesh mesh;
   av::MetricField metric;
-  if (!vtkAnisoDataConversion::ToMetricField(metricArray, mesh.NumPoints(), metric, error))
+  if (!ConvertInputs(this, input, chosen, association, mesh, metric))
   {
-    vtkErrorMacro(<< error);
     return 0;
   }
-
   // Extra coordinates can only lengthen edges: eigenvalues below 1 are scaled up (paper §6).
-  double minEig = 0, maxEig = 0;
-  av::EigenvalueRange(metric, mesh.AmbientDim == 2, minEig, maxEig);
   this->MetricScale = 1.0;
-  if (mesh.SimplexDim == mesh.AmbientDim && !(minEig > 0))
+  if (!vtkAnisoFilterUtilities::RunKernel(this, "metric scaling", [&] {
+        this->MetricScale =
+          av::ScaleMetricForEmbedding(mesh, metric, this->AutoScaleMetric).Scale;
+      }))
   {
-    vtkErrorMacro("the metric is not positive definite (smallest eigenvalue "
-      << minEig << "); convert the tensor field with vtkAnisoTensorToMetric first");
     return 0;
   }
-  const double usedMin = minEig;
-  if (mesh.SimplexDim == mesh.AmbientDim && usedMin < 1.0)
-  {
-    if (!this->AutoScaleMetric)
-    {
-      vtkErrorMacro("the metric's smallest eigenvalue is " << usedMin
-        << " < 1: an embedding that keeps the input coordinates cannot shorten edges; "
-           "enable AutoScaleMetric or scale the metric");
-      return 0;
-    }
-    this->MetricScale = 1.0 / usedMin;
-    for (double& v : metric.Values)
-      v *= this->MetricScale;
-  }
 
-  av::EmbeddingOptions options;
-  options.TargetDim = this->TargetDimension;
-  options.Iterations = this->Iterations;
-  options.Mu = this->Mu;
-  options.Seed = static_cast<std::uint64_t>(this->Seed);
-  options.RelativeEnergyTolerance = this->RelativeEnergyTolerance;
-  options.ElementMeasureWeighting = this->ElementMeasureWeighting;
-  options.Initialisation = this->Initialisation == RANDOM ? av::EmbeddingInitialisation::Random
-                                                          : av::EmbeddingInitialisation::Smooth;
-  options.AndersonWindow = this->AndersonWindow;
-  options.SinglePrecisionSolve = this->SinglePrecisionSolve;
-  options.Progress = [this](const av::EmbeddingProgress& p) {
-    this->UpdateProgress(0.05 + 0.9 * p.Iteration / std::max(1, p.Iterations));
-    return !this->GetAbortExecute();
-  };
-
-  const auto start = std::chrono::steady_clock::now();
+  const av::EmbeddingOptions options = MakeOptions(this);
+  const av::Stopwatch clock;
   av::EmbeddingResult result;
   av::EdgeLengthErrorResult errors;
-  try
+  if (!vtkAnisoFilterUtilities::RunKernel(this, "embedding", [&] {
+        this->UpdateProgress(0.01);
+        av::EmbeddingSolver solver(mesh, metric, options);
+        result = solver.Run();
+        if (result.Aborted)
+        {
+          vtkWarningMacro("embedding aborted after " << result.IterationsDone << " iterations");
+        }
+        errors = av::ComputeEdgeLengthError(mesh, metric, result.Embedded, false, true);
+      }))
   {
-    this->UpdateProgress(0.01);
-    av::EmbeddingSolver solver(mesh, metric, options);
-    result = solver.Run();
-    if (result.Aborted)
-    {
-      vtkWarningMacro("embedding aborted after " << result.IterationsDone << " iterations");
-    }
-    errors = av::ComputeEdgeLengthError(mesh, metric, result.Embedded, false, true);
-  }
-  catch (const av::InputError& e)
-  {
-    vtkErrorMacro(<< e.what());
     return 0;
   }
-  catch (const std::exception& e)
-  {
-    vtkErrorMacro("embedding failed: " << e.what());
-    return 0;
-  }
-  const double seconds =
-    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double seconds = clock.Seconds();
   this->AverageEdgeLengthError = errors.AveragePercent;
   this->MaximumEdgeLengthError = errors.MaxPercent;
 
-  // Output: the simplicial mesh with the input's point data (same point ids).
-  output->ShallowCopy(vtkAnisoDataConversion::FromSimplexMesh(mesh));
-  {
-    // Keep the input's exact points (FromSimplexMesh writes z = 0 for flat 2D domains).
-    vtkNew<vtkPoints> pts;
-    pts->SetDataTypeToDouble();
-    pts->SetNumberOfPoints(input->GetNumberOfPoints());
-    for (vtkIdType i = 0; i < input->GetNumberOfPoints(); ++i)
-      pts->SetPoint(i, input->GetPoint(i));
-    output->SetPoints(pts);
-  }
-  output->GetPointData()->ShallowCopy(input->GetPointData());
-  if (static_cast<std::size_t>(input->GetNumberOfCells()) == mesh.NumCells())
-  {
-    output->GetCellData()->ShallowCopy(input->GetCellData());
-  }
-  output->GetFieldData()->ShallowCopy(input->GetFieldData());
-  output->GetPointData()->AddArray(vtkAnisoDataConversion::MakeArray(
-    this->EmbeddingArrayName ? this->EmbeddingArrayName : "Embedding",
-    result.Embedded.Coords.data(), mesh.NumPoints(), result.Embedded.Dim));
-  output->GetCellData()->AddArray(vtkAnisoDataConversion::MakeArray("EdgeLengthError",
-    errors.CellMaxPercent.data(), errors.CellMaxPercent.size(), 1));
-  vtkFieldData* fd = output->GetFieldData();
-  AddFieldValue(fd, "L_avg", errors.AveragePercent);
-  AddFieldValue(fd, "L_max", errors.MaxPercent);
-  AddFieldValue(fd, "MetricScale", this->MetricScale);
-  AddFieldValue(fd, "EmbeddingDimension", result.Embedded.Dim);
-  AddFieldValue(fd, "EmbeddingIterations", result.IterationsDone);
-  AddFieldValue(fd, "FactorSeconds", result.FactorSeconds);
-  AddFieldValue(fd, "SolveSeconds", result.SolveSeconds);
-  AddFieldValue(fd, "DoublePrecisionRetries", result.DoublePrecisionRetries);
-  AddFieldValue(fd, "EmbeddingSeconds", seconds);
-
-  // Output 1: the energy history.
-  vtkNew<vtkIntArray> iteration;
-  iteration->SetName("Iteration");
-  vtkNew<vtkDoubleArray> eem, ereg, etot;
-  eem->SetName("E_em");
-  ereg->SetName("E_reg");
-  etot->SetName("E_total");
-  for (std::size_t k = 0; k < result.EnergyHistory.size(); ++k)
-  {
-    iteration->InsertNextValue(static_cast<int>(k));
-    eem->InsertNextValue(result.EnergyHistory[k].Embedding);
-    ereg->InsertNextValue(result.EnergyHistory[k].Regularisation);
-    etot->InsertNextValue(result.EnergyHistory[k].Total);
-  }
-  energyTable->AddColumn(iteration);
-  energyTable->AddColumn(eem);
-  energyTable->AddColumn(ereg);
-  energyTable->AddColumn(etot);
+  BuildEmbeddedMesh(input, mesh, this->EmbeddingArrayName ? this->EmbeddingArrayName : "Embedding",
+    result.Embedded, errors, output);
+  AddFigures(output->GetFieldData(), errors, this->MetricScale, result, seconds);
+  BuildEnergyTable(result.EnergyHistory, energyTable);
   this->UpdateProgress(1.0);
   return 1;
 }

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 /**
  * @class vtkAnisoEmbedding
  * @brief The paper's core step: a self-intersection free embedding of a mesh in R^m̄ whose
@@ -22,7 +23,7 @@
  * Solver: local step per element (polar factor of a small SVD, parallel), global step with
  * one sparse Cholesky factorisation (CHOLMOD) and one multi-right-hand-side solve per
  * iteration; a smooth random start and energy-safeguarded Anderson acceleration (the energy
- * never increases). Documentation/embedding.md gives the details and measured figures.
+ * never increases). Filters/Embedding/README.md gives the details and measured figures.
  *
  * Distributed runs (mpiexec pvbatch, pvserver): needs the whole mesh, so it asks its inputs
  * for the whole dataset and runs redundantly on every process that needs its output (the cost

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // EmbeddingSolver: the high-dimensional embedding of a Riemannian metric (paper §3, Alg. 1).
 #ifndef av_EmbeddingSolver_h
 #define av_EmbeddingSolver_h
@@ -26,7 +27,7 @@ enum class EmbeddingInitialisation
 struct EmbeddingEnergy
 {
   double Embedding = 0.0;      ///< E_em, Eq. 11 (weighted if ElementMeasureWeighting)
-  double Regularisation = 0.0; ///< E_reg (quadratic reading, see Documentation/embedding.md)
+  double Regularisation = 0.0; ///< E_reg (quadratic reading, see Filters/Embedding/README.md)
   double Total = 0.0;          ///< E_em + Mu * E_reg
 };
 

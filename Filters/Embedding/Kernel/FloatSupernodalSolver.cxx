@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "FloatSupernodalSolver.h"
 
 #include "SimdClones.h"
@@ -238,6 +239,128 @@ void CopyIndices(const void* src, std::size_t n, std::vector<std::int64_t>& dst)
   const I* p = static_cast<const I*>(src);
   dst.assign(p, p + n);
 }
+
+/// The supernodal elimination tree (the parent holds the first off-diagonal row) with each
+/// subtree's first supernode and work (factor entries); Postordered: every subtree is the
+/// contiguous range [First, root], which the task split needs.
+struct SupernodeTree
+{
+  std::vector<std::int32_t> Parent, First;
+  std::vector<std::int64_t> Work, SubtreeWork;
+  bool Postordered = true;
+};
+
+SupernodeTree BuildSupernodeTree(std::size_t n, const std::vector<std::int32_t>& super,
+  const std::vector<std::int64_t>& pi, const std::vector<std::int32_t>& s, std::size_t& maxBelow)
+{
+  const std::int32_t nsi = static_cast<std::int32_t>(super.size() - 1);
+  const std::size_t ns = static_cast<std::size_t>(nsi);
+  SupernodeTree t;
+  t.Parent.assign(ns, -1);
+  t.Work.resize(ns);
+  t.SubtreeWork.resize(ns);
+  t.First.resize(ns);
+  std::vector<std::int32_t> colSuper(n), size(ns, 1);
+  for (std::int32_t k = 0; k < nsi; ++k)
+  {
+    std::fill(colSuper.begin() + super[k], colSuper.begin() + super[k + 1], k);
+  }
+  for (std::int32_t k = 0; k < nsi; ++k)
+  {
+    const std::int64_t nr = pi[k + 1] - pi[k];
+    const std::int32_t nc = super[k + 1] - super[k];
+    maxBelow = std::max(maxBelow, static_cast<std::size_t>(nr - nc));
+    t.Work[k] = nr * nc;
+    if (nr > nc)
+    {
+      t.Parent[k] = colSuper[s[pi[k] + nc]];
+      t.Postordered = t.Postordered && t.Parent[k] > k;
+    }
+  }
+  for (std::int32_t k = 0; k < nsi; ++k)
+  {
+    t.First[k] = k;
+    t.SubtreeWork[k] = t.Work[k];
+  }
+  for (std::int32_t k = 0; t.Postordered && k < nsi; ++k)
+  {
+    const std::int32_t p = t.Parent[k];
+    if (p >= 0)
+    {
+      t.First[p] = std::min(t.First[p], t.First[k]);
+      size[p] += size[k];
+      t.SubtreeWork[p] += t.SubtreeWork[k];
+    }
+  }
+  for (std::int32_t k = 0; t.Postordered && k < nsi; ++k)
+  {
+    t.Postordered = size[k] == k - t.First[k] + 1; // the subtree is a contiguous range
+  }
+  return t;
+}
+
+/// Splits the heaviest subtree until every remaining one holds at most `taskWork` entries
+/// (0: about 1/16 of the factor): returns the roots of the tasks, ascending, and appends the
+/// split supernodes to `top`, ascending.
+std::vector<std::int32_t> SplitIntoSubtrees(
+  const SupernodeTree& tree, std::size_t taskWork, std::vector<std::int32_t>& top)
+{
+  const std::int32_t nsi = static_cast<std::int32_t>(tree.Parent.size());
+  const std::size_t ns = tree.Parent.size();
+  std::int64_t total = 0;
+  for (std::int64_t w : tree.Work)
+  {
+    total += w;
+  }
+  const std::int64_t limit =
+    taskWork > 0 ? static_cast<std::int64_t>(taskWork) : std::max<std::int64_t>(total / 16, 1);
+  std::vector<std::int32_t> childOff(ns + 1, 0), child(ns);
+  for (std::int32_t k = 0; k < nsi; ++k)
+  {
+    if (tree.Parent[k] >= 0)
+    {
+      ++childOff[tree.Parent[k] + 1];
+    }
+  }
+  for (std::size_t k = 0; k < ns; ++k)
+  {
+    childOff[k + 1] += childOff[k];
+  }
+  std::vector<std::int32_t> fill(childOff.begin(), childOff.end() - 1);
+  for (std::int32_t k = 0; k < nsi; ++k)
+  {
+    if (tree.Parent[k] >= 0)
+    {
+      child[fill[tree.Parent[k]]++] = k;
+    }
+  }
+  std::priority_queue<std::pair<std::int64_t, std::int32_t>> heap;
+  for (std::int32_t k = 0; k < nsi; ++k)
+  {
+    if (tree.Parent[k] < 0)
+    {
+      heap.emplace(tree.SubtreeWork[k], k);
+    }
+  }
+  while (!heap.empty() && heap.top().first > limit && top.size() < 4096)
+  {
+    const std::int32_t k = heap.top().second;
+    heap.pop();
+    top.push_back(k);
+    for (std::int32_t c = childOff[k]; c < childOff[k + 1]; ++c)
+    {
+      heap.emplace(tree.SubtreeWork[child[c]], child[c]);
+    }
+  }
+  std::vector<std::int32_t> taskRoots;
+  for (; !heap.empty(); heap.pop())
+  {
+    taskRoots.push_back(heap.top().second);
+  }
+  std::sort(taskRoots.begin(), taskRoots.end());
+  std::sort(top.begin(), top.end());
+  return taskRoots;
+}
 } // namespace
 
 FloatSupernodalSolver::FloatSupernodalSolver(const cholmod_factor& f, std::size_t taskWork)
@@ -247,11 +370,27 @@ FloatSupernodalSolver::FloatSupernodalSolver(const cholmod_factor& f, std::size_
   {
     throw std::invalid_argument("FloatSupernodalSolver: need a real, double, supernodal LL^T factor");
   }
-  const std::size_t n = f.n, ns = f.nsuper;
-  if (n > static_cast<std::size_t>(INT32_MAX))
+  if (f.n > static_cast<std::size_t>(INT32_MAX))
   {
     throw std::invalid_argument("FloatSupernodalSolver: factor too large");
   }
+  this->CopyFactor(f);
+  const SupernodeTree tree = BuildSupernodeTree(this->N, this->Super, this->Pi, this->S, this->MaxBelow);
+  const std::vector<std::int32_t> taskRoots =
+    tree.Postordered ? SplitIntoSubtrees(tree, taskWork, this->Top) : std::vector<std::int32_t>();
+  if (!tree.Postordered)
+  {
+    for (std::int32_t k = 0; k < static_cast<std::int32_t>(tree.Parent.size()); ++k)
+    {
+      this->Top.push_back(k);
+    }
+  }
+  this->AddTasks(taskRoots, tree.First, tree.SubtreeWork);
+}
+
+void FloatSupernodalSolver::CopyFactor(const cholmod_factor& f)
+{
+  const std::size_t n = f.n, ns = f.nsuper;
   this->N = n;
   std::vector<std::int64_t> super, perm, s;
   if (f.itype == CHOLMOD_LONG)
@@ -277,8 +416,7 @@ FloatSupernodalSolver::FloatSupernodalSolver(const cholmod_factor& f, std::size_
   const double* lx = static_cast<const double*>(f.x);
   this->Lx.resize(f.xsize);
   this->InvDiag.resize(n);
-  const std::int32_t nsi = static_cast<std::int32_t>(ns);
-  tbb::parallel_for(std::int32_t(0), nsi, [&](std::int32_t k) {
+  tbb::parallel_for(std::int32_t(0), static_cast<std::int32_t>(ns), [&](std::int32_t k) {
     const std::int64_t nr = this->Pi[k + 1] - this->Pi[k];
     const std::int32_t nc = this->Super[k + 1] - this->Super[k];
     for (std::int64_t e = this->Px[k]; e < this->Px[k] + nr * nc; ++e)
@@ -291,116 +429,15 @@ FloatSupernodalSolver::FloatSupernodalSolver(const cholmod_factor& f, std::size_
         static_cast<float>(1.0 / lx[this->Px[k] + static_cast<std::int64_t>(j) * nr + j]);
     }
   });
+}
 
-  // Supernodal elimination tree: the parent holds the first off-diagonal row.
-  std::vector<std::int32_t> colSuper(n), parent(ns, -1);
-  std::vector<std::int64_t> work(ns), subtreeWork(ns);
-  std::vector<std::int32_t> first(ns), size(ns, 1);
-  bool postordered = true;
-  for (std::int32_t k = 0; k < nsi; ++k)
-  {
-    std::fill(colSuper.begin() + this->Super[k], colSuper.begin() + this->Super[k + 1], k);
-  }
-  for (std::int32_t k = 0; k < nsi; ++k)
-  {
-    const std::int64_t nr = this->Pi[k + 1] - this->Pi[k];
-    const std::int32_t nc = this->Super[k + 1] - this->Super[k];
-    this->MaxBelow = std::max(this->MaxBelow, static_cast<std::size_t>(nr - nc));
-    work[k] = nr * nc;
-    if (nr > nc)
-    {
-      parent[k] = colSuper[this->S[this->Pi[k] + nc]];
-      postordered = postordered && parent[k] > k;
-    }
-  }
-  for (std::int32_t k = 0; k < nsi; ++k)
-  {
-    first[k] = k;
-    subtreeWork[k] = work[k];
-  }
-  for (std::int32_t k = 0; postordered && k < nsi; ++k)
-  {
-    const std::int32_t p = parent[k];
-    if (p >= 0)
-    {
-      first[p] = std::min(first[p], first[k]);
-      size[p] += size[k];
-      subtreeWork[p] += subtreeWork[k];
-    }
-  }
-  for (std::int32_t k = 0; postordered && k < nsi; ++k)
-  {
-    postordered = size[k] == k - first[k] + 1; // the subtree is a contiguous range
-  }
-
-  std::vector<std::int32_t> taskRoots;
-  if (postordered)
-  {
-    std::int64_t total = 0;
-    for (std::int64_t w : work)
-    {
-      total += w;
-    }
-    const std::int64_t limit =
-      taskWork > 0 ? static_cast<std::int64_t>(taskWork) : std::max<std::int64_t>(total / 16, 1);
-    std::vector<std::int32_t> childOff(ns + 1, 0), child(ns);
-    for (std::int32_t k = 0; k < nsi; ++k)
-    {
-      if (parent[k] >= 0)
-      {
-        ++childOff[parent[k] + 1];
-      }
-    }
-    for (std::size_t k = 0; k < ns; ++k)
-    {
-      childOff[k + 1] += childOff[k];
-    }
-    std::vector<std::int32_t> fill(childOff.begin(), childOff.end() - 1);
-    for (std::int32_t k = 0; k < nsi; ++k)
-    {
-      if (parent[k] >= 0)
-      {
-        child[fill[parent[k]]++] = k;
-      }
-    }
-    // Split the heaviest subtree until every remaining one is light enough to be a task.
-    std::priority_queue<std::pair<std::int64_t, std::int32_t>> heap;
-    for (std::int32_t k = 0; k < nsi; ++k)
-    {
-      if (parent[k] < 0)
-      {
-        heap.emplace(subtreeWork[k], k);
-      }
-    }
-    while (!heap.empty() && heap.top().first > limit && this->Top.size() < 4096)
-    {
-      const std::int32_t k = heap.top().second;
-      heap.pop();
-      this->Top.push_back(k);
-      for (std::int32_t c = childOff[k]; c < childOff[k + 1]; ++c)
-      {
-        heap.emplace(subtreeWork[child[c]], child[c]);
-      }
-    }
-    for (; !heap.empty(); heap.pop())
-    {
-      taskRoots.push_back(heap.top().second);
-    }
-    std::sort(taskRoots.begin(), taskRoots.end());
-    std::sort(this->Top.begin(), this->Top.end());
-  }
-  else
-  {
-    for (std::int32_t k = 0; k < nsi; ++k)
-    {
-      this->Top.push_back(k);
-    }
-  }
-
+void FloatSupernodalSolver::AddTasks(const std::vector<std::int32_t>& taskRoots,
+  const std::vector<std::int32_t>& first, const std::vector<std::int64_t>& subtreeWork)
+{
   // Destinations: a task writes rows of its own subtree directly and sums its updates to the
   // shared ancestors into private slots, added to W afterwards in task order.
   this->Dest.assign(this->S.begin(), this->S.end());
-  std::vector<std::int32_t> slotOf(n, -1);
+  std::vector<std::int32_t> slotOf(this->N, -1);
   for (std::int32_t root : taskRoots)
   {
     Task t;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // FloatSupernodalSolver: triangular solves with a single-precision, tree-parallel copy of a
 // CHOLMOD supernodal Cholesky factor.
 #ifndef av_FloatSupernodalSolver_h
@@ -67,6 +68,11 @@ private:
   typedef float Vec8 __attribute__((vector_size(32), aligned(4)));
 
   void SolveBlock(Vec8* w) const; // all eight columns of w (permuted order)
+  /// Indices, float values and inverse diagonal of the factor.
+  void CopyFactor(const cholmod_factor_struct& factor);
+  /// One task per subtree root (subtree [first[root], root]) with its slots and destinations.
+  void AddTasks(const std::vector<std::int32_t>& taskRoots, const std::vector<std::int32_t>& first,
+    const std::vector<std::int64_t>& subtreeWork);
 
   std::size_t N = 0;
   std::vector<std::int32_t> Super; // nsuper + 1: first column of each supernode

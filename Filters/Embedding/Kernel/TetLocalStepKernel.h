@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // TetLocalStepKernel: the embedding's local step for tetrahedra, four elements per SIMD vector.
 #ifndef av_TetLocalStepKernel_h
 #define av_TetLocalStepKernel_h
@@ -29,7 +30,7 @@ bool HasTetLocalStepKernel(int targetDim);
  * (its first 3 rows are the identity), BᵀB = A (I + T_fᵀT_f) A, N = A (BᵀB)^{-1/2} A and
  * R_f = T_f N; writes C_j = w_j G_j R_fᵀ and returns Σ w_j (‖I − N‖² + ‖T_f − R_f‖²).
  * (BᵀB)^{-1/2} by Cayley–Hamilton from the invariants of its square root, whose trace is the
- * Newton root of a quartic (see Documentation/embedding.md). Four elements per vector (AVX2
+ * Newton root of a quartic (see Filters/Embedding/README.md). Four elements per vector (AVX2
  * clone chosen at load time). Elements whose BᵀB is too ill-conditioned for this route are
  * appended to `failed` (nothing written for them) for the caller's general path.
  */

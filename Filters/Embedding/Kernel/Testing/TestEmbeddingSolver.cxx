@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // High-d embedding solver: energy monotonicity, fixed input coordinates, recovery of the exact
 // Gaussian height field, measured error bounds, abort, determinism and input validation.
 #include "AnalyticMetrics.h"
@@ -28,6 +29,24 @@ bool Monotone(const EmbeddingResult& r)
   return true;
 }
 
+const double kLo[3] = { 0, 0, 0 }, kHi[3] = { 1, 1, 1 };
+
+/// The Gaussian2D preset's recommended domain as an n x n triangle grid.
+SimplexMesh GaussianGrid(int n)
+{
+  const AnalyticDomain d = RecommendedDomain(AnalyticPreset::Gaussian2D);
+  return MakeTriangleGrid(n, n, d.Lo, d.Hi);
+}
+
+/// 40 iterations into `dim` dimensions, the Gaussian tests' setting.
+EmbeddingOptions GaussianOptions(int dim)
+{
+  EmbeddingOptions o;
+  o.TargetDim = dim;
+  o.Iterations = 40;
+  return o;
+}
+
 bool InputKept(const SimplexMesh& mesh, const EmbeddingResult& r)
 {
   const int m = mesh.AmbientDim;
@@ -43,210 +62,237 @@ bool InputKept(const SimplexMesh& mesh, const EmbeddingResult& r)
   }
   return true;
 }
+
+/// Identity metric, (almost) flat start: E_em vanishes for every target dimension.
+void CheckIdentityMetric(const SimplexMesh& cube)
+{
+  // Identity metric, (almost) flat start: T = [I; ~0], so the optimal V = [I; ~0] and E_em
+  // vanishes; any error of the polar factor (scale, non-orthogonality) shows up here.
+  MetricField id;
+  id.Values.assign(6 * cube.NumPoints(), 0.0);
+  for (std::size_t i = 0; i < cube.NumPoints(); ++i)
+  {
+    id.Values[6 * i] = id.Values[6 * i + 1] = id.Values[6 * i + 2] = 1.0;
+  }
+  for (int dim : { 4, 8, 11 })
+  {
+    EmbeddingOptions o;
+    o.TargetDim = dim;
+    o.Iterations = 0;
+    o.InitialAmplitude = 1e-9;
+    const EmbeddingResult r = ComputeEmbedding(cube, id, o);
+    AV_CHECK(r.EnergyHistory.size() == 1u && r.EnergyHistory[0].Embedding < 1e-12);
+  }
+}
+
+/// Smooth start + Anderson on cube1: monotone, input kept, error bounds, deterministic.
+void CheckCube1(const SimplexMesh& cube, const MetricField& cubeMetric,
+  const EdgeLengthErrorEvaluator& cubeError)
+{
+  EmbeddingOptions o;
+  o.Iterations = 30;
+  const EmbeddingResult r = ComputeEmbedding(cube, cubeMetric, o);
+  AV_CHECK(r.IterationsDone == 30 && r.EnergyHistory.size() == 31u);
+  AV_CHECK(r.Embedded.Dim == 8 && r.Embedded.NumPoints() == cube.NumPoints());
+  AV_CHECK(Monotone(r));
+  AV_CHECK(InputKept(cube, r));
+  AV_CHECK(r.EnergyHistory.back().Total < 0.2 * r.EnergyHistory.front().Total);
+  const EdgeLengthErrorResult e = cubeError.Evaluate(r.Embedded);
+  std::cout << "cube1 13x7x7 smooth+Anderson: L_avg " << e.AveragePercent << " %, L_max "
+            << e.MaxPercent << " %\n";
+  AV_CHECK(e.AveragePercent < 2.5); // measured 1.74 (coarse grid: 13 vertices along the stretch)
+  AV_CHECK(e.MaxPercent < 30.0);    // measured 21.2
+  AV_CHECK(r.AndersonAccepted > 0);
+  // Same seed, same result (deterministic sums).
+  const EmbeddingResult again = ComputeEmbedding(cube, cubeMetric, o);
+  AV_CHECK(again.Embedded.Coords == r.Embedded.Coords);
+}
+
+/// Plain local/global from the i.i.d. start with element-measure weighting.
+void CheckPlainRandomWeighted(const SimplexMesh& cube, const MetricField& cubeMetric)
+{
+  // Plain local/global from the paper's i.i.d. start, element-measure weighting: still monotone.
+  EmbeddingOptions o;
+  o.Iterations = 15;
+  o.AndersonWindow = 0;
+  o.Initialisation = EmbeddingInitialisation::Random;
+  o.ElementMeasureWeighting = true;
+  o.TargetDim = 5;
+  const EmbeddingResult r = ComputeEmbedding(cube, cubeMetric, o);
+  AV_CHECK(Monotone(r));
+  AV_CHECK(InputKept(cube, r));
+  AV_CHECK(r.AndersonAccepted == 0 && r.AndersonRejected == 0);
+  AV_CHECK(r.EnergyHistory.back().Total < r.EnergyHistory.front().Total);
+}
+
+/// Single-precision against double-precision solves.
+void CheckFloatSolves(const SimplexMesh& cube, const MetricField& cubeMetric)
+{
+  // Single-precision solves (default) against CHOLMOD's double solves: plain local/global steps
+  // (no Anderson, which would amplify round-off) follow the same energy curve.
+  EmbeddingOptions o;
+  o.Iterations = 20;
+  o.AndersonWindow = 0;
+  o.SinglePrecisionSolve = false;
+  const EmbeddingResult rd = ComputeEmbedding(cube, cubeMetric, o);
+  o.SinglePrecisionSolve = true;
+  const EmbeddingResult rf = ComputeEmbedding(cube, cubeMetric, o);
+  AV_CHECK(Monotone(rd) && Monotone(rf));
+  double worst = 0.0;
+  for (std::size_t i = 0; i < rd.EnergyHistory.size(); ++i)
+  {
+    worst = std::max(worst,
+      std::abs(rf.EnergyHistory[i].Total - rd.EnergyHistory[i].Total) / rd.EnergyHistory[i].Total);
+  }
+  std::cout << "float vs double solves, 20 plain iterations: max relative energy difference "
+            << worst << ", double retries " << rf.DoublePrecisionRetries << "\n";
+  AV_CHECK(worst < 1e-4);
+  AV_CHECK(worst > 0.0); // the float path really ran
+  AV_CHECK(rd.DoublePrecisionRetries == 0);
+}
+
+/// Abort from the progress callback, Mu = 0, a dynamic-size target dimension.
+void CheckAbort(const SimplexMesh& cube, const MetricField& cubeMetric)
+{
+  // Progress callback can abort; Mu = 0 and a dynamic-size target dimension work.
+  EmbeddingOptions o;
+  o.Iterations = 10;
+  o.TargetDim = 13;
+  o.Mu = 0.0;
+  int calls = 0;
+  o.Progress = [&](const EmbeddingProgress& p) {
+    ++calls;
+    AV_CHECK(p.Solver->CurrentEmbedding().Dim == 13);
+    return p.Iteration < 3;
+  };
+  const EmbeddingResult r = ComputeEmbedding(cube, cubeMetric, o);
+  AV_CHECK(r.Aborted && r.IterationsDone == 3 && calls == 3);
+  AV_CHECK(Monotone(r));
+}
+
+/// Gaussian2D into 3D: the free coordinate is the height field.
+void CheckGaussianHeight()
+{
+  // The only free coordinate must be +-h(x, y) + constant.
+  const SimplexMesh grid = GaussianGrid(41);
+  const MetricField g = EvaluateAnalyticMetric(AnalyticPreset::Gaussian2D, grid);
+  const EmbeddingOptions o = GaussianOptions(3);
+  const EmbeddingResult r = ComputeEmbedding(grid, g, o);
+  AV_CHECK(Monotone(r));
+  AV_CHECK(InputKept(grid, r));
+  const std::size_t n = grid.NumPoints();
+  double hmean = 0, zmean = 0;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    hmean += GaussianHeight(grid.Point(i)[0], grid.Point(i)[1]) / n;
+    zmean += r.Embedded.At(i)[2] / n;
+  }
+  double best = std::numeric_limits<double>::infinity();
+  for (double sign : { -1.0, 1.0 })
+  {
+    double worst = 0.0;
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      const double h = GaussianHeight(grid.Point(i)[0], grid.Point(i)[1]) - hmean;
+      worst = std::max(worst, std::abs(sign * (r.Embedded.At(i)[2] - zmean) - h));
+    }
+    best = std::min(best, worst);
+  }
+  std::cout << "gaussian 41x41: max height deviation " << best << " (peak height "
+            << GaussianHeight(0, 0) << ")\n";
+  AV_CHECK(best < 0.05 * GaussianHeight(0, 0)); // measured 0.8 %
+  const EdgeLengthErrorResult e = ComputeEdgeLengthError(grid, g, r.Embedded);
+  std::cout << "gaussian 41x41 3D: L_avg " << e.AveragePercent << " %, L_max " << e.MaxPercent
+            << " %\n";
+  AV_CHECK(e.AveragePercent < 0.6); // measured 0.35
+  AV_CHECK(e.MaxPercent < 25.0);    // measured 17.3
+}
+
+/// A flat surface with the rank-2 Gaussian metric solves the 2D problem.
+void CheckSurface()
+{
+  // Surface input (AmbientDim 3, SimplexDim 2): the flat square z = 0 with the rank-2 metric
+  // of the Gaussian: same problem as the 2D one in 5D, so the same small error.
+  const SimplexMesh grid = GaussianGrid(31);
+  const MetricField g = EvaluateAnalyticMetric(AnalyticPreset::Gaussian2D, grid);
+  SimplexMesh surf;
+  surf.AmbientDim = 3;
+  surf.SimplexDim = 2;
+  surf.Cells = grid.Cells;
+  for (std::size_t i = 0; i < grid.NumPoints(); ++i)
+  {
+    surf.Points.insert(surf.Points.end(), { grid.Point(i)[0], grid.Point(i)[1], 0.0 });
+  }
+  EmbeddingOptions o = GaussianOptions(5);
+  const EmbeddingResult r = ComputeEmbedding(surf, g, o);
+  o.TargetDim = 4;
+  const EmbeddingResult flat = ComputeEmbedding(grid, g, o);
+  const double e2 = ComputeEdgeLengthError(grid, g, flat.Embedded).AveragePercent;
+  std::cout << "gaussian 2D 31x31 4D: L_avg " << e2 << " %\n";
+  AV_CHECK(Monotone(r));
+  AV_CHECK(InputKept(surf, r));
+  const EdgeLengthErrorResult e = ComputeEdgeLengthError(surf, g, r.Embedded);
+  std::cout << "gaussian surface 31x31 5D: L_avg " << e.AveragePercent << " %, L_max "
+            << e.MaxPercent << " %\n";
+  AV_CHECK(e.AveragePercent < 1.2); // measured 0.66
+  AV_CHECK(e2 < 1.2);               // measured 0.69: the surface path solves the same problem
+  AV_CHECK(std::abs(e.AveragePercent - e2) < 0.3);
+}
+
+/// Bad inputs throw InputError.
+void CheckBadInputs()
+{
+  const SimplexMesh small = MakeKuhnTetGrid(3, 3, 3, kLo, kHi);
+  const MetricField good = EvaluateAnalyticMetric(AnalyticPreset::Cube1, small);
+  EmbeddingOptions o;
+  o.Iterations = 1;
+  AV_CHECK_THROWS(ComputeEmbedding(SimplexMesh(), MetricField(), o));
+  MetricField shortMetric = good;
+  shortMetric.Values.pop_back();
+  AV_CHECK_THROWS(ComputeEmbedding(small, shortMetric, o));
+  MetricField nanMetric = good;
+  nanMetric.Values[7] = std::nan("");
+  AV_CHECK_THROWS(ComputeEmbedding(small, nanMetric, o));
+  MetricField indefinite = good;
+  indefinite.Values[6 * 4 + 1] = -1.0; // YY < 0
+  AV_CHECK_THROWS(ComputeEmbedding(small, indefinite, o));
+  SimplexMesh nanPoint = small;
+  nanPoint.Points[5] = std::numeric_limits<double>::infinity();
+  AV_CHECK_THROWS(ComputeEmbedding(nanPoint, good, o));
+  SimplexMesh inverted = small;
+  std::swap(inverted.Cells[0], inverted.Cells[1]);
+  AV_CHECK_THROWS(ComputeEmbedding(inverted, good, o));
+  SimplexMesh degenerate = small;
+  degenerate.Cells[1] = degenerate.Cells[0];
+  AV_CHECK_THROWS(ComputeEmbedding(degenerate, good, o));
+  SimplexMesh outOfRange = small;
+  outOfRange.Cells[2] = 1000;
+  AV_CHECK_THROWS(ComputeEmbedding(outOfRange, good, o));
+  EmbeddingOptions lowDim = o;
+  lowDim.TargetDim = 3;
+  AV_CHECK_THROWS(ComputeEmbedding(small, good, lowDim));
+  EmbeddingOptions highDim = o;
+  highDim.TargetDim = 21;
+  AV_CHECK_THROWS(ComputeEmbedding(small, good, highDim));
+  EmbeddingOptions negMu = o;
+  negMu.Mu = -1.0;
+  AV_CHECK_THROWS(ComputeEmbedding(small, good, negMu));
+}
 } // namespace
 
 int TestEmbeddingSolver(int, char*[])
 {
   // Cube1 (stretch 1..10 along x) on a small Kuhn grid, 8D.
-  const double lo[3] = { 0, 0, 0 }, hi[3] = { 1, 1, 1 };
-  const SimplexMesh cube = MakeKuhnTetGrid(13, 7, 7, lo, hi);
+  const SimplexMesh cube = MakeKuhnTetGrid(13, 7, 7, kLo, kHi);
   const MetricField cubeMetric = EvaluateAnalyticMetric(AnalyticPreset::Cube1, cube);
   const EdgeLengthErrorEvaluator cubeError(cube, cubeMetric);
-  {
-    // Identity metric, (almost) flat start: T = [I; ~0], so the optimal V = [I; ~0] and E_em
-    // vanishes; any error of the polar factor (scale, non-orthogonality) shows up here.
-    MetricField id;
-    id.Values.assign(6 * cube.NumPoints(), 0.0);
-    for (std::size_t i = 0; i < cube.NumPoints(); ++i)
-    {
-      id.Values[6 * i] = id.Values[6 * i + 1] = id.Values[6 * i + 2] = 1.0;
-    }
-    for (int dim : { 4, 8, 11 })
-    {
-      EmbeddingOptions o;
-      o.TargetDim = dim;
-      o.Iterations = 0;
-      o.InitialAmplitude = 1e-9;
-      const EmbeddingResult r = ComputeEmbedding(cube, id, o);
-      AV_CHECK(r.EnergyHistory.size() == 1u && r.EnergyHistory[0].Embedding < 1e-12);
-    }
-  }
-  {
-    EmbeddingOptions o;
-    o.Iterations = 30;
-    const EmbeddingResult r = ComputeEmbedding(cube, cubeMetric, o);
-    AV_CHECK(r.IterationsDone == 30 && r.EnergyHistory.size() == 31u);
-    AV_CHECK(r.Embedded.Dim == 8 && r.Embedded.NumPoints() == cube.NumPoints());
-    AV_CHECK(Monotone(r));
-    AV_CHECK(InputKept(cube, r));
-    AV_CHECK(r.EnergyHistory.back().Total < 0.2 * r.EnergyHistory.front().Total);
-    const EdgeLengthErrorResult e = cubeError.Evaluate(r.Embedded);
-    std::cout << "cube1 13x7x7 smooth+Anderson: L_avg " << e.AveragePercent << " %, L_max "
-              << e.MaxPercent << " %\n";
-    AV_CHECK(e.AveragePercent < 2.5); // measured 1.74 (coarse grid: 13 vertices along the stretch)
-    AV_CHECK(e.MaxPercent < 30.0);    // measured 21.2
-    AV_CHECK(r.AndersonAccepted > 0);
-    // Same seed, same result (deterministic sums).
-    const EmbeddingResult again = ComputeEmbedding(cube, cubeMetric, o);
-    AV_CHECK(again.Embedded.Coords == r.Embedded.Coords);
-  }
-  {
-    // Plain local/global from the paper's i.i.d. start, element-measure weighting: still monotone.
-    EmbeddingOptions o;
-    o.Iterations = 15;
-    o.AndersonWindow = 0;
-    o.Initialisation = EmbeddingInitialisation::Random;
-    o.ElementMeasureWeighting = true;
-    o.TargetDim = 5;
-    const EmbeddingResult r = ComputeEmbedding(cube, cubeMetric, o);
-    AV_CHECK(Monotone(r));
-    AV_CHECK(InputKept(cube, r));
-    AV_CHECK(r.AndersonAccepted == 0 && r.AndersonRejected == 0);
-    AV_CHECK(r.EnergyHistory.back().Total < r.EnergyHistory.front().Total);
-  }
-  {
-    // Single-precision solves (default) against CHOLMOD's double solves: plain local/global steps
-    // (no Anderson, which would amplify round-off) follow the same energy curve.
-    EmbeddingOptions o;
-    o.Iterations = 20;
-    o.AndersonWindow = 0;
-    o.SinglePrecisionSolve = false;
-    const EmbeddingResult rd = ComputeEmbedding(cube, cubeMetric, o);
-    o.SinglePrecisionSolve = true;
-    const EmbeddingResult rf = ComputeEmbedding(cube, cubeMetric, o);
-    AV_CHECK(Monotone(rd) && Monotone(rf));
-    double worst = 0.0;
-    for (std::size_t i = 0; i < rd.EnergyHistory.size(); ++i)
-    {
-      worst = std::max(worst,
-        std::abs(rf.EnergyHistory[i].Total - rd.EnergyHistory[i].Total) / rd.EnergyHistory[i].Total);
-    }
-    std::cout << "float vs double solves, 20 plain iterations: max relative energy difference "
-              << worst << ", double retries " << rf.DoublePrecisionRetries << "\n";
-    AV_CHECK(worst < 1e-4);
-    AV_CHECK(worst > 0.0); // the float path really ran
-    AV_CHECK(rd.DoublePrecisionRetries == 0);
-  }
-  {
-    // Progress callback can abort; Mu = 0 and a dynamic-size target dimension work.
-    EmbeddingOptions o;
-    o.Iterations = 10;
-    o.TargetDim = 13;
-    o.Mu = 0.0;
-    int calls = 0;
-    o.Progress = [&](const EmbeddingProgress& p) {
-      ++calls;
-      AV_CHECK(p.Solver->CurrentEmbedding().Dim == 13);
-      return p.Iteration < 3;
-    };
-    const EmbeddingResult r = ComputeEmbedding(cube, cubeMetric, o);
-    AV_CHECK(r.Aborted && r.IterationsDone == 3 && calls == 3);
-    AV_CHECK(Monotone(r));
-  }
-  {
-    // Gaussian2D into 3D: the only free coordinate must be +-h(x, y) + constant.
-    const AnalyticDomain d = RecommendedDomain(AnalyticPreset::Gaussian2D);
-    const SimplexMesh grid = MakeTriangleGrid(41, 41, d.Lo, d.Hi);
-    const MetricField g = EvaluateAnalyticMetric(AnalyticPreset::Gaussian2D, grid);
-    EmbeddingOptions o;
-    o.TargetDim = 3;
-    o.Iterations = 40;
-    const EmbeddingResult r = ComputeEmbedding(grid, g, o);
-    AV_CHECK(Monotone(r));
-    AV_CHECK(InputKept(grid, r));
-    const std::size_t n = grid.NumPoints();
-    double hmean = 0, zmean = 0;
-    for (std::size_t i = 0; i < n; ++i)
-    {
-      hmean += GaussianHeight(grid.Point(i)[0], grid.Point(i)[1]) / n;
-      zmean += r.Embedded.At(i)[2] / n;
-    }
-    double best = std::numeric_limits<double>::infinity();
-    for (double sign : { -1.0, 1.0 })
-    {
-      double worst = 0.0;
-      for (std::size_t i = 0; i < n; ++i)
-      {
-        const double h = GaussianHeight(grid.Point(i)[0], grid.Point(i)[1]) - hmean;
-        worst = std::max(worst, std::abs(sign * (r.Embedded.At(i)[2] - zmean) - h));
-      }
-      best = std::min(best, worst);
-    }
-    std::cout << "gaussian 41x41: max height deviation " << best << " (peak height "
-              << GaussianHeight(0, 0) << ")\n";
-    AV_CHECK(best < 0.05 * GaussianHeight(0, 0)); // measured 0.8 %
-    const EdgeLengthErrorResult e = ComputeEdgeLengthError(grid, g, r.Embedded);
-    std::cout << "gaussian 41x41 3D: L_avg " << e.AveragePercent << " %, L_max " << e.MaxPercent << " %\n";
-    AV_CHECK(e.AveragePercent < 0.6); // measured 0.35
-    AV_CHECK(e.MaxPercent < 25.0);    // measured 17.3
-  }
-  {
-    // Surface input (AmbientDim 3, SimplexDim 2): the flat square z = 0 with the rank-2 metric
-    // of the Gaussian: same problem as the 2D one in 5D, so the same small error.
-    const AnalyticDomain d = RecommendedDomain(AnalyticPreset::Gaussian2D);
-    const SimplexMesh grid = MakeTriangleGrid(31, 31, d.Lo, d.Hi);
-    const MetricField g = EvaluateAnalyticMetric(AnalyticPreset::Gaussian2D, grid);
-    SimplexMesh surf;
-    surf.AmbientDim = 3;
-    surf.SimplexDim = 2;
-    surf.Cells = grid.Cells;
-    for (std::size_t i = 0; i < grid.NumPoints(); ++i)
-    {
-      surf.Points.insert(surf.Points.end(), { grid.Point(i)[0], grid.Point(i)[1], 0.0 });
-    }
-    EmbeddingOptions o;
-    o.TargetDim = 5;
-    o.Iterations = 40;
-    const EmbeddingResult r = ComputeEmbedding(surf, g, o);
-    o.TargetDim = 4;
-    const EmbeddingResult flat = ComputeEmbedding(grid, g, o);
-    const double e2 = ComputeEdgeLengthError(grid, g, flat.Embedded).AveragePercent;
-    std::cout << "gaussian 2D 31x31 4D: L_avg " << e2 << " %\n";
-    AV_CHECK(Monotone(r));
-    AV_CHECK(InputKept(surf, r));
-    const EdgeLengthErrorResult e = ComputeEdgeLengthError(surf, g, r.Embedded);
-    std::cout << "gaussian surface 31x31 5D: L_avg " << e.AveragePercent << " %, L_max " << e.MaxPercent << " %\n";
-    AV_CHECK(e.AveragePercent < 1.2); // measured 0.66
-    AV_CHECK(e2 < 1.2);               // measured 0.69: the surface path solves the same problem
-    AV_CHECK(std::abs(e.AveragePercent - e2) < 0.3);
-  }
-  {
-    // Bad inputs.
-    const SimplexMesh small = MakeKuhnTetGrid(3, 3, 3, lo, hi);
-    const MetricField good = EvaluateAnalyticMetric(AnalyticPreset::Cube1, small);
-    EmbeddingOptions o;
-    o.Iterations = 1;
-    AV_CHECK_THROWS(ComputeEmbedding(SimplexMesh(), MetricField(), o));
-    MetricField shortMetric = good;
-    shortMetric.Values.pop_back();
-    AV_CHECK_THROWS(ComputeEmbedding(small, shortMetric, o));
-    MetricField nanMetric = good;
-    nanMetric.Values[7] = std::nan("");
-    AV_CHECK_THROWS(ComputeEmbedding(small, nanMetric, o));
-    MetricField indefinite = good;
-    indefinite.Values[6 * 4 + 1] = -1.0; // YY < 0
-    AV_CHECK_THROWS(ComputeEmbedding(small, indefinite, o));
-    SimplexMesh nanPoint = small;
-    nanPoint.Points[5] = std::numeric_limits<double>::infinity();
-    AV_CHECK_THROWS(ComputeEmbedding(nanPoint, good, o));
-    SimplexMesh inverted = small;
-    std::swap(inverted.Cells[0], inverted.Cells[1]);
-    AV_CHECK_THROWS(ComputeEmbedding(inverted, good, o));
-    SimplexMesh degenerate = small;
-    degenerate.Cells[1] = degenerate.Cells[0];
-    AV_CHECK_THROWS(ComputeEmbedding(degenerate, good, o));
-    SimplexMesh outOfRange = small;
-    outOfRange.Cells[2] = 1000;
-    AV_CHECK_THROWS(ComputeEmbedding(outOfRange, good, o));
-    EmbeddingOptions lowDim = o;
-    lowDim.TargetDim = 3;
-    AV_CHECK_THROWS(ComputeEmbedding(small, good, lowDim));
-    EmbeddingOptions highDim = o;
-    highDim.TargetDim = 21;
-    AV_CHECK_THROWS(ComputeEmbedding(small, good, highDim));
-    EmbeddingOptions negMu = o;
-    negMu.Mu = -1.0;
-    AV_CHECK_THROWS(ComputeEmbedding(small, good, negMu));
-  }
+  CheckIdentityMetric(cube);
+  CheckCube1(cube, cubeMetric, cubeError);
+  CheckPlainRandomWeighted(cube, cubeMetric);
+  CheckFloatSolves(cube, cubeMetric);
+  CheckAbort(cube, cubeMetric);
+  CheckGaussianHeight();
+  CheckSurface();
+  CheckBadInputs();
   return AV_TEST_RESULT();
 }

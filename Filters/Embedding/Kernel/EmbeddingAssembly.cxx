@@ -1,0 +1,256 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// EmbeddingSolver assembly: the global matrix K = Σ w_j G_j G_jᵀ + μ LᵀL (lower triangle), its
+// Cholesky factorization and the per-iteration right-hand sides.
+#include "EmbeddingSolverInternals.h"
+
+#include "Stopwatch.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+
+namespace av
+{
+
+/// Dense scatter array of one block of columns: the entries of the current column by row,
+/// emitted in row order.
+struct EmbeddingSolver::Internals::ColumnScatter
+{
+  std::vector<double> Acc;
+  std::vector<char> Mark;
+  std::vector<std::int32_t> Touched;
+
+  explicit ColumnScatter(std::size_t np)
+    : Acc(np, 0.0)
+    , Mark(np, 0)
+  {
+    this->Touched.reserve(256);
+  }
+
+  void Add(std::int32_t r, double v)
+  {
+    if (!this->Mark[r])
+    {
+      this->Mark[r] = 1;
+      this->Touched.push_back(r);
+    }
+    this->Acc[r] += v;
+  }
+
+  /// Appends the column's (reduced row, value) pairs in row order, clears it and returns the
+  /// number of entries.
+  std::int32_t Flush(const std::vector<std::int32_t>& reduced, std::vector<std::int32_t>& rows,
+    std::vector<double>& vals)
+  {
+    std::sort(this->Touched.begin(), this->Touched.end());
+    for (std::int32_t r : this->Touched)
+    {
+      rows.push_back(reduced[r]);
+      vals.push_back(this->Acc[r]);
+      this->Acc[r] = 0.0;
+      this->Mark[r] = 0;
+    }
+    const std::int32_t count = static_cast<std::int32_t>(this->Touched.size());
+    this->Touched.clear();
+    return count;
+  }
+};
+
+void EmbeddingSolver::Internals::AddElementEntries(
+  std::size_t c, bool values, ColumnScatter& scatter) const
+{
+  const int m = this->M, nv = this->K + 1;
+  const std::int32_t ci = static_cast<std::int32_t>(c);
+  for (std::int32_t q = this->VOff[c]; q < this->VOff[c + 1]; ++q)
+  {
+    const std::size_t j = this->VInc[q] / nv;
+    const int l = this->VInc[q] % nv;
+    for (int l2 = 0; l2 < nv; ++l2)
+    {
+      const std::int32_t r = this->Cells[j * nv + l2];
+      if (r >= ci && this->Reduced[r] >= 0)
+      {
+        double s = 0.0;
+        if (values)
+        {
+          const double* g = this->Gt.data() + j * nv * m;
+          for (int d = 0; d < m; ++d)
+          {
+            s += g[l * m + d] * g[l2 * m + d];
+          }
+          s *= this->W[j];
+        }
+        scatter.Add(r, s);
+      }
+    }
+  }
+}
+
+void EmbeddingSolver::Internals::AddRegularizerEntries(std::size_t c, ColumnScatter& scatter) const
+{
+  // Regularizer rows i with c in {i} U N(i), i.e. i in {c} U N(c).
+  const double mu = this->Options.Mu;
+  const std::int32_t ci = static_cast<std::int32_t>(c);
+  auto addRow = [&](std::int32_t i) {
+    if (!this->Interior[i])
+    {
+      return;
+    }
+    const double inv = 1.0 / (this->NOff[i + 1] - this->NOff[i]);
+    const double lc = (i == ci) ? -1.0 : inv;
+    if (i >= ci && this->Reduced[i] >= 0)
+    {
+      scatter.Add(i, -mu * lc);
+    }
+    for (std::int32_t q = this->NOff[i]; q < this->NOff[i + 1]; ++q)
+    {
+      const std::int32_t r = this->NIdx[q];
+      if (r >= ci && this->Reduced[r] >= 0)
+      {
+        scatter.Add(r, mu * lc * inv);
+      }
+    }
+  };
+  addRow(ci);
+  for (std::int32_t q = this->NOff[c]; q < this->NOff[c + 1]; ++q)
+  {
+    addRow(this->NIdx[q]);
+  }
+}
+
+void EmbeddingSolver::Internals::AssembleLower(
+  bool values, Eigen::SparseMatrix<double>& kmat, std::vector<double>* valsOut)
+{
+  // Lower triangle of K column by column (column c holds rows r >= c), assembled in parallel
+  // blocks with a dense scatter array per block. Both passes visit the same entries in the same
+  // order, so the values line up with the pattern.
+  const std::size_t np = this->NP;
+  const std::size_t blockSize = 4096;
+  const std::size_t nblocks = (np + blockSize - 1) / blockSize;
+  std::vector<std::vector<std::int32_t>> bRows(nblocks);
+  std::vector<std::vector<double>> bVals(nblocks);
+  std::vector<std::int32_t> colCount(np, 0);
+  tbb::parallel_for(std::size_t(0), nblocks, [&](std::size_t blk) {
+    ColumnScatter scatter(np);
+    const std::size_t c0 = blk * blockSize, c1 = std::min(np, c0 + blockSize);
+    for (std::size_t c = c0; c < c1; ++c)
+    {
+      if (this->Reduced[c] < 0)
+      {
+        continue;
+      }
+      this->AddElementEntries(c, values, scatter);
+      if (this->Options.Mu > 0.0)
+      {
+        this->AddRegularizerEntries(c, scatter);
+      }
+      colCount[c] = scatter.Flush(this->Reduced, bRows[blk], bVals[blk]);
+    }
+  });
+  const std::size_t nr = this->NR;
+  std::vector<std::int64_t> offset(nblocks + 1, 0);
+  for (std::size_t b = 0; b < nblocks; ++b)
+  {
+    offset[b + 1] = offset[b] + static_cast<std::int64_t>(bRows[b].size());
+  }
+  if (!values)
+  {
+    kmat.resize(static_cast<Eigen::Index>(nr), static_cast<Eigen::Index>(nr));
+    kmat.resizeNonZeros(static_cast<Eigen::Index>(offset[nblocks]));
+    int* outer = kmat.outerIndexPtr();
+    std::int64_t pos = 0;
+    for (std::size_t c = 0; c < np; ++c)
+    {
+      if (this->Reduced[c] >= 0)
+      {
+        outer[this->Reduced[c]] = static_cast<int>(pos);
+        pos += colCount[c];
+      }
+    }
+    outer[nr] = static_cast<int>(pos);
+    std::fill(kmat.valuePtr(), kmat.valuePtr() + offset[nblocks], 0.0);
+  }
+  else
+  {
+    valsOut->resize(static_cast<std::size_t>(offset[nblocks]));
+  }
+  tbb::parallel_for(std::size_t(0), nblocks, [&](std::size_t b) {
+    if (values)
+    {
+      std::copy(bVals[b].begin(), bVals[b].end(), valsOut->data() + offset[b]);
+    }
+    else
+    {
+      std::copy(bRows[b].begin(), bRows[b].end(), kmat.innerIndexPtr() + offset[b]);
+    }
+  });
+}
+
+void EmbeddingSolver::Internals::Factor(
+  Eigen::SparseMatrix<double>& kmat, const std::vector<double>& vals, double analyseSeconds)
+{
+  const Stopwatch clock;
+  std::copy(vals.begin(), vals.end(), kmat.valuePtr());
+  if (this->Chol.Factor())
+  {
+    this->Chol.factorize(kmat);
+  }
+  else
+  {
+    this->Chol.compute(kmat); // the analysis failed: one more try inside compute
+  }
+  if (this->Chol.info() != Eigen::Success)
+  {
+    // Retry with CHOLMOD's default ordering choice before giving up.
+    this->Chol.cholmod().nmethods = 0;
+    this->Chol.compute(kmat);
+  }
+  if (this->Chol.info() != Eigen::Success)
+  {
+    throw InputError("embedding: the linear system is not positive definite (the mesh is "
+                     "probably not a valid manifold simplicial complex)");
+  }
+  this->FactorNonZeros = this->Chol.FactorSize();
+  const cholmod_factor* factor = this->Chol.Factor();
+  if (this->Options.SinglePrecisionSolve && factor && factor->is_super && this->F > 0)
+  {
+    this->FloatSolver.reset(new FloatSupernodalSolver(*factor));
+  }
+  this->FactorSeconds = analyseSeconds + clock.Seconds();
+}
+
+void EmbeddingSolver::Internals::GatherRightHandSides()
+{
+  // Gather the per-element contributions of every vertex (no races).
+  const int nf = this->F;
+  Eigen::MatrixXd& rhs = this->LastRhs;
+  rhs.resize(static_cast<Eigen::Index>(this->NR), nf);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, this->NP, 1024),
+    [&](const tbb::blocked_range<std::size_t>& range) {
+      double s[kEmbeddingMaxTargetDim];
+      for (std::size_t i = range.begin(); i != range.end(); ++i)
+      {
+        const std::int32_t ri = this->Reduced[i];
+        if (ri < 0)
+        {
+          continue;
+        }
+        std::fill(s, s + nf, 0.0);
+        for (std::int32_t q = this->VOff[i]; q < this->VOff[i + 1]; ++q)
+        {
+          const double* c = this->C.data() + static_cast<std::size_t>(this->VInc[q]) * nf;
+          for (int d = 0; d < nf; ++d)
+          {
+            s[d] += c[d];
+          }
+        }
+        for (int d = 0; d < nf; ++d)
+        {
+          rhs(ri, d) = s[d];
+        }
+      }
+    });
+}
+
+} // namespace av

@@ -1,0 +1,186 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// EmbeddingSolver iterations (Alg. 1): global step, Anderson-accelerated or plain local/global
+// steps with the energy safeguard, progress, stopping, and Run().
+#include "EmbeddingSolverInternals.h"
+
+#include "AndersonAcceleration.h"
+#include "Stopwatch.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <utility>
+
+namespace av
+{
+
+Eigen::MatrixXd EmbeddingSolver::Internals::GlobalStep()
+{
+  this->GatherRightHandSides();
+  const Eigen::MatrixXd& rhs = this->LastRhs;
+  const Stopwatch clock;
+  Eigen::MatrixXd sol;
+  if (this->FloatSolver)
+  {
+    sol.resize(rhs.rows(), rhs.cols());
+    this->FloatSolver->Solve(rhs.data(), sol.data(), static_cast<int>(rhs.cols()));
+  }
+  else
+  {
+    sol = this->Chol.solve(rhs);
+  }
+  this->SolveSeconds += clock.Seconds();
+  return sol;
+}
+
+Eigen::MatrixXd EmbeddingSolver::Internals::RedoGlobalStepInDouble()
+{
+  const Stopwatch clock;
+  Eigen::MatrixXd sol = this->Chol.solve(this->LastRhs);
+  this->SolveSeconds += clock.Seconds();
+  return sol;
+}
+
+Eigen::MatrixXd EmbeddingSolver::Internals::GetFree() const
+{
+  Eigen::MatrixXd xr(static_cast<Eigen::Index>(this->NR), this->F);
+  for (std::size_t i = 0; i < this->NP; ++i)
+  {
+    if (this->Reduced[i] >= 0)
+    {
+      for (int d = 0; d < this->F; ++d)
+      {
+        xr(this->Reduced[i], d) = this->X[i * this->MB + this->M + d];
+      }
+    }
+  }
+  return xr;
+}
+
+void EmbeddingSolver::Internals::SetFree(const Eigen::MatrixXd& xr)
+{
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, this->NP, 4096),
+    [&](const tbb::blocked_range<std::size_t>& range) {
+      for (std::size_t i = range.begin(); i != range.end(); ++i)
+      {
+        if (this->Reduced[i] >= 0)
+        {
+          for (int d = 0; d < this->F; ++d)
+          {
+            this->X[i * this->MB + this->M + d] = xr(this->Reduced[i], d);
+          }
+        }
+      }
+    });
+}
+
+bool EmbeddingSolver::Internals::TryAndersonStep(AndersonAcceleration& anderson,
+  const Eigen::MatrixXd& g, Eigen::MatrixXd& x, Eigen::MatrixXd& xa, EmbeddingEnergy& cur,
+  EmbeddingResult& res)
+{
+  if (!anderson.Extrapolate(x, g, xa))
+  {
+    return false;
+  }
+  this->SetFree(xa);
+  const EmbeddingEnergy ea = this->LocalStep();
+  if (ea.Total < cur.Total)
+  {
+    cur = ea;
+    std::swap(x, xa);
+    ++res.AndersonAccepted;
+    return true;
+  }
+  ++res.AndersonRejected;
+  return false;
+}
+
+void EmbeddingSolver::Internals::PlainStep(
+  Eigen::MatrixXd& g, Eigen::MatrixXd& x, EmbeddingEnergy& cur, EmbeddingResult& res)
+{
+  this->SetFree(g);
+  EmbeddingEnergy eg = this->LocalStep();
+  if (this->FloatSolver && eg.Total > cur.Total)
+  {
+    // The exact global step cannot raise the energy; the float one did: redo it in double.
+    g = this->RedoGlobalStepInDouble();
+    this->SetFree(g);
+    eg = this->LocalStep();
+    ++res.DoublePrecisionRetries;
+  }
+  cur = eg;
+  x = std::move(g);
+}
+
+bool EmbeddingSolver::Internals::ReportProgress(
+  const EmbeddingSolver* solver, int iteration, const EmbeddingEnergy& cur) const
+{
+  if (!this->Options.Progress)
+  {
+    return true;
+  }
+  EmbeddingProgress pr;
+  pr.Iteration = iteration;
+  pr.Iterations = this->Options.Iterations;
+  pr.Energy = cur;
+  pr.Solver = solver;
+  return this->Options.Progress(pr);
+}
+
+bool EmbeddingSolver::Internals::Converged(const std::vector<EmbeddingEnergy>& history) const
+{
+  const double tol = this->Options.RelativeEnergyTolerance;
+  const double prev = history[history.size() - 2].Total;
+  return tol > 0.0 && prev > 0.0 && (prev - history.back().Total) / prev < tol;
+}
+
+EmbeddingResult EmbeddingSolver::Run()
+{
+  Internals& p = *this->P;
+  if (p.Ran)
+  {
+    throw InputError("embedding: EmbeddingSolver::Run() may be called only once");
+  }
+  p.Ran = true;
+  EmbeddingResult res;
+  res.SetupSeconds = p.SetupSeconds;
+  res.FactorSeconds = p.FactorSeconds;
+  res.FactorNonZeros = p.FactorNonZeros;
+  const Stopwatch clock;
+
+  EmbeddingEnergy cur = p.LocalStep();
+  res.EnergyHistory.push_back(cur);
+  Eigen::MatrixXd x = p.GetFree();
+
+  // Anderson acceleration (type II) on the fixed-point map x -> G(x) = global(local(x)), with the
+  // energy safeguard of Peng et al. 2018: keep the accelerated iterate only if it lowers E_total,
+  // else take the plain step (whose energy is never higher).
+  AndersonAcceleration anderson(p.Options.AndersonWindow);
+  Eigen::MatrixXd xa;
+  for (int it = 1; it <= p.Options.Iterations; ++it)
+  {
+    Eigen::MatrixXd g = p.GlobalStep();
+    if (!p.TryAndersonStep(anderson, g, x, xa, cur, res))
+    {
+      p.PlainStep(g, x, cur, res);
+    }
+    res.EnergyHistory.push_back(cur);
+    res.IterationsDone = it;
+    if (!p.ReportProgress(this, it, cur))
+    {
+      res.Aborted = true;
+      break;
+    }
+    if (p.Converged(res.EnergyHistory))
+    {
+      break;
+    }
+  }
+  res.IterationSeconds = clock.Seconds();
+  res.LocalStepSeconds = p.LocalSeconds;
+  res.SolveSeconds = p.SolveSeconds;
+  res.Embedded = this->CurrentEmbedding();
+  return res;
+}
+
+} // namespace av

@@ -1,0 +1,114 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// EmbeddingSolver::Internals: the solver's state and steps (internal: defined in EmbeddingSetup,
+// EmbeddingAssembly, EmbeddingLocalStep and EmbeddingIterations.cxx).
+#ifndef av_EmbeddingSolverInternals_h
+#define av_EmbeddingSolverInternals_h
+
+#include "EmbeddingSolver.h"
+#include "FloatSupernodalSolver.h"
+
+#include <Eigen/CholmodSupport> // the double-precision factor (Cholesky below)
+#include <Eigen/Dense>
+#include <Eigen/SparseCore>
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+namespace av
+{
+
+class AndersonAcceleration;
+
+/// Largest target dimension m̄ (the bound of the fixed-capacity Eigen types of the local step).
+constexpr int kEmbeddingMaxTargetDim = 20;
+
+/// Fixed chunking of element / vertex loops: partial sums are added in chunk order, so energies
+/// do not depend on the number of threads.
+constexpr std::size_t kEmbeddingChunk = 2048;
+
+struct EmbeddingSolver::Internals
+{
+  EmbeddingOptions Options;
+  int M = 3;  // ambient dimension
+  int K = 3;  // simplex dimension
+  int MB = 8; // target dimension
+  int F = 5;  // free dimensions
+  std::size_t NP = 0, NE = 0, NR = 0;
+  std::vector<std::int32_t> Cells;
+  std::vector<double> Gt;      // NE x (K+1) x M: linear FEM gradient operator, T row d = x^d . Gt
+  std::vector<double> A;       // NE x M x M: symmetric sqrt of the element metric
+  std::vector<double> W;       // NE: element weights
+  std::vector<std::int32_t> VOff, VInc; // vertex -> (element * (K+1) + local) CSR
+  std::vector<std::int32_t> NOff, NIdx; // one-ring neighbors CSR
+  std::vector<char> Interior;           // regularizer rows
+  std::vector<std::int32_t> Pinned;     // vertex -> pinned (smallest) vertex of its component
+  std::vector<std::int32_t> Reduced;    // vertex -> unknown index, -1 when pinned
+  std::vector<double> X;                // NP x MB row-major: the embedding
+  std::vector<double> C;                // NE x (K+1) x F: per-element right-hand sides
+  struct Cholesky : Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower>
+  {
+    /// Stored entries of the supernodal factor (fill-in diagnostic).
+    std::size_t FactorSize() const
+    {
+      return this->m_cholmodFactor ? static_cast<std::size_t>(this->m_cholmodFactor->xsize) : 0;
+    }
+    const cholmod_factor* Factor() const { return this->m_cholmodFactor; }
+  };
+  Cholesky Chol;
+  std::unique_ptr<FloatSupernodalSolver> FloatSolver; // SinglePrecisionSolve
+  Eigen::MatrixXd LastRhs;                            // right-hand sides of the last global step
+  EmbeddingEnergy Energy;
+  double SetupSeconds = 0.0, FactorSeconds = 0.0;
+  mutable double LocalSeconds = 0.0, SolveSeconds = 0.0;
+  std::size_t FactorNonZeros = 0;
+  bool Ran = false;
+
+  // Setup (EmbeddingSetup.cxx).
+  void Validate(const SimplexMesh& mesh, const MetricField& metric);
+  void BuildElements(const SimplexMesh& mesh, const MetricField& metric);
+  void BuildTopology(const SimplexMesh& mesh);
+  void InitializeState(const SimplexMesh& mesh);
+
+  // Assembly (EmbeddingAssembly.cxx).
+  struct ColumnScatter;
+  /// Lower triangle of K, column by column; values = false: the pattern only (needs only the
+  /// topology, so the ordering can be computed while the element operators are built).
+  void AssembleLower(bool values, Eigen::SparseMatrix<double>& kmat, std::vector<double>* vals);
+  void AddElementEntries(std::size_t c, bool values, ColumnScatter& scatter) const;
+  void AddRegularizerEntries(std::size_t c, ColumnScatter& scatter) const;
+  /// Numeric factorization (after the symbolic analysis, which took analyseSeconds of waiting).
+  void Factor(
+    Eigen::SparseMatrix<double>& kmat, const std::vector<double>& vals, double analyseSeconds);
+  /// LastRhs = the per-vertex sums of the element contributions C of the last local step.
+  void GatherRightHandSides();
+
+  // Local step and energies (EmbeddingLocalStep.cxx).
+  EmbeddingEnergy LocalStep();
+  template <int MBT, int MT, int KT>
+  double LocalStepT();
+  double RegularizerEnergy() const;
+
+  // Global step and iterations (EmbeddingIterations.cxx).
+  Eigen::MatrixXd GlobalStep();
+  Eigen::MatrixXd RedoGlobalStepInDouble();
+  Eigen::MatrixXd GetFree() const;
+  void SetFree(const Eigen::MatrixXd& xr);
+  /// The Anderson candidate from the global step g = G(x), kept (x, cur updated) only when it
+  /// lowers the energy; false when there is none or it was rejected.
+  bool TryAndersonStep(AndersonAcceleration& anderson, const Eigen::MatrixXd& g,
+    Eigen::MatrixXd& x, Eigen::MatrixXd& xa, EmbeddingEnergy& cur, EmbeddingResult& res);
+  /// x = g, redone with the double factor when the float solve raised the energy.
+  void PlainStep(
+    Eigen::MatrixXd& g, Eigen::MatrixXd& x, EmbeddingEnergy& cur, EmbeddingResult& res);
+  /// Calls the progress callback; false when it asks to stop.
+  bool ReportProgress(
+    const EmbeddingSolver* solver, int iteration, const EmbeddingEnergy& cur) const;
+  /// The relative energy decrease of the last iteration fell below RelativeEnergyTolerance.
+  bool Converged(const std::vector<EmbeddingEnergy>& history) const;
+};
+
+} // namespace av
+
+#endif
