@@ -1,6 +1,7 @@
 #include "vtkAnisoDataConversion.h"
 
 #include <vtkAlgorithm.h>
+#include <vtkCellData.h>
 #include <vtkCell.h>
 #include <vtkCellLocator.h>
 #include <vtkCellTypes.h>
@@ -556,5 +557,30 @@ bool IsSecondaryPiece(vtkInformation* request, vtkInformationVector* outputVecto
   int piece = 0, pieces = 1;
   RequestedPiece(request, outputVector, piece, pieces);
   return piece > 0;
+}
+
+bool NothingToCompute(
+  vtkInformation* request, vtkInformationVector* outputVector, vtkDataSet* input)
+{
+  return IsSecondaryPiece(request, outputVector) || !input || input->GetNumberOfPoints() == 0 ||
+    input->GetNumberOfCells() == 0;
+}
+
+void CopySimplicesWithInputData(
+  vtkDataSet* input, const av::SimplexMesh& mesh, vtkUnstructuredGrid* output)
+{
+  output->ShallowCopy(vtkAnisoDataConversion::FromSimplexMesh(mesh));
+  vtkNew<vtkPoints> pts;
+  pts->SetDataTypeToDouble();
+  pts->SetNumberOfPoints(input->GetNumberOfPoints());
+  for (vtkIdType i = 0; i < input->GetNumberOfPoints(); ++i)
+    pts->SetPoint(i, input->GetPoint(i));
+  output->SetPoints(pts);
+  output->GetPointData()->ShallowCopy(input->GetPointData());
+  if (static_cast<std::size_t>(input->GetNumberOfCells()) == mesh.NumCells())
+  {
+    output->GetCellData()->ShallowCopy(input->GetCellData());
+  }
+  output->GetFieldData()->ShallowCopy(input->GetFieldData());
 }
 }

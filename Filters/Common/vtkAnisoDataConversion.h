@@ -101,6 +101,13 @@ ANISOVORONOIFILTERSCOMMON_EXPORT vtkSmartPointer<vtkDataArray> MakeArray(const c
   std::size_t tuples,
   int components);
 
+/**
+ * `output` = the simplices of `mesh` (ToSimplexMesh of `input`) on the input's exact points,
+ * with the input's point and field data, and its cell data when no cell was dropped.
+ */
+ANISOVORONOIFILTERSCOMMON_EXPORT void CopySimplicesWithInputData(
+  vtkDataSet* input, const av::SimplexMesh& mesh, vtkUnstructuredGrid* output);
+
 /// A vtkIntArray holding `values` (one component).
 ANISOVORONOIFILTERSCOMMON_EXPORT vtkSmartPointer<vtkDataArray> MakeIntArray(const char* name,
   const std::vector<std::int32_t>& values);
@@ -119,6 +126,11 @@ ANISOVORONOIFILTERSCOMMON_EXPORT void RequestedPiece(vtkInformation* request,
   vtkInformationVector* outputVector,
   int& piece,
   int& numberOfPieces);
+
+/// True when a whole-mesh filter has nothing to compute: another piece than 0 is asked for
+/// (IsSecondaryPiece) or `input` is missing or has no point or no cell. Its output stays empty.
+ANISOVORONOIFILTERSCOMMON_EXPORT bool NothingToCompute(
+  vtkInformation* request, vtkInformationVector* outputVector, vtkDataSet* input);
 
 /// True when a piece other than 0 of a split request is asked for: whole-mesh filters then
 /// leave that output empty, so that gathering all pieces gives exactly one copy.

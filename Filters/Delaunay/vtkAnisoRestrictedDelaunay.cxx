@@ -305,14 +305,10 @@ int vtkAnisoRestrictedDelaunay::RequestData(vtkInformation* request,
   vtkDataSet* input = vtkDataSet::GetData(inputVector[0]);
   vtkDataSet* sitesInput = vtkDataSet::GetData(inputVector[1]);
   vtkUnstructuredGrid* output = vtkUnstructuredGrid::GetData(outputVector, 0);
-  if (vtkAnisoDataConversion::IsSecondaryPiece(request, outputVector))
-  {
-    return 1; // whole result on piece 0 only
-  }
-  if (!input || input->GetNumberOfPoints() == 0 || input->GetNumberOfCells() == 0 || !sitesInput ||
+  if (vtkAnisoDataConversion::NothingToCompute(request, outputVector, input) || !sitesInput ||
     sitesInput->GetNumberOfPoints() == 0)
   {
-    return 1; // empty in, empty out
+    return 1; // not this piece, or empty in: empty out
   }
   const av::Stopwatch watch;
 

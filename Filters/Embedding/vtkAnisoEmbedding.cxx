@@ -89,19 +89,7 @@ void BuildEmbeddedMesh(vtkDataSet* input, const av::SimplexMesh& mesh, const cha
   const av::Embedding& embedded, const av::EdgeLengthErrorResult& errors,
   vtkUnstructuredGrid* output)
 {
-  output->ShallowCopy(vtkAnisoDataConversion::FromSimplexMesh(mesh));
-  vtkNew<vtkPoints> pts;
-  pts->SetDataTypeToDouble();
-  pts->SetNumberOfPoints(input->GetNumberOfPoints());
-  for (vtkIdType i = 0; i < input->GetNumberOfPoints(); ++i)
-    pts->SetPoint(i, input->GetPoint(i));
-  output->SetPoints(pts);
-  output->GetPointData()->ShallowCopy(input->GetPointData());
-  if (static_cast<std::size_t>(input->GetNumberOfCells()) == mesh.NumCells())
-  {
-    output->GetCellData()->ShallowCopy(input->GetCellData());
-  }
-  output->GetFieldData()->ShallowCopy(input->GetFieldData());
+  vtkAnisoDataConversion::CopySimplicesWithInputData(input, mesh, output);
   output->GetPointData()->AddArray(vtkAnisoDataConversion::MakeArray(
     arrayName, embedded.Coords.data(), mesh.NumPoints(), embedded.Dim));
   output->GetCellData()->AddArray(vtkAnisoDataConversion::MakeArray("EdgeLengthError",
@@ -186,13 +174,9 @@ int vtkAnisoEmbedding::RequestData(
   vtkDataSet* input = vtkDataSet::GetData(inputVector[0]);
   vtkUnstructuredGrid* output = vtkUnstructuredGrid::GetData(outputVector, 0);
   vtkTable* energyTable = vtkTable::GetData(outputVector, 1);
-  if (vtkAnisoDataConversion::IsSecondaryPiece(request, outputVector))
+  if (vtkAnisoDataConversion::NothingToCompute(request, outputVector, input))
   {
-    return 1; // whole result on piece 0 only
-  }
-  if (!input || input->GetNumberOfPoints() == 0 || input->GetNumberOfCells() == 0)
-  {
-    return 1; // empty in, empty out
+    return 1; // not this piece, or empty in: empty out
   }
   int association = -1;
   vtkDataArray* chosen = this->GetInputArrayToProcess(0, inputVector, association);

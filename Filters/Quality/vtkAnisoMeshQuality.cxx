@@ -29,19 +29,7 @@ void WriteQualityMesh(vtkDataSet* input,
   const av::MeshQualityResult& q,
   vtkUnstructuredGrid* output)
 {
-  output->ShallowCopy(vtkAnisoDataConversion::FromSimplexMesh(mesh));
-  vtkNew<vtkPoints> pts;
-  pts->SetDataTypeToDouble();
-  pts->SetNumberOfPoints(input->GetNumberOfPoints());
-  for (vtkIdType i = 0; i < input->GetNumberOfPoints(); ++i)
-    pts->SetPoint(i, input->GetPoint(i));
-  output->SetPoints(pts);
-  output->GetPointData()->ShallowCopy(input->GetPointData());
-  if (static_cast<std::size_t>(input->GetNumberOfCells()) == mesh.NumCells())
-  {
-    output->GetCellData()->ShallowCopy(input->GetCellData());
-  }
-  output->GetFieldData()->ShallowCopy(input->GetFieldData());
+  vtkAnisoDataConversion::CopySimplicesWithInputData(input, mesh, output);
   const std::size_t nc = mesh.NumCells();
   output->GetCellData()->AddArray(vtkAnisoDataConversion::MakeArray("G", q.G.data(), nc, 1));
   output->GetCellData()->AddArray(
@@ -106,13 +94,9 @@ int vtkAnisoMeshQuality::RequestData(vtkInformation* request,
   vtkDataSet* input = vtkDataSet::GetData(inputVector[0]);
   vtkUnstructuredGrid* output = vtkUnstructuredGrid::GetData(outputVector, 0);
   vtkTable* histogram = vtkTable::GetData(outputVector, 1);
-  if (vtkAnisoDataConversion::IsSecondaryPiece(request, outputVector))
+  if (vtkAnisoDataConversion::NothingToCompute(request, outputVector, input))
   {
-    return 1; // whole result on piece 0 only
-  }
-  if (!input || input->GetNumberOfPoints() == 0 || input->GetNumberOfCells() == 0)
-  {
-    return 1; // empty in, empty out
+    return 1; // not this piece, or empty in: empty out
   }
   av::SimplexMesh mesh;
   std::string error, note;

@@ -153,13 +153,9 @@ int vtkAnisoParticleSampler::RequestData(vtkInformation* request,
   vtkDataSet* input = vtkDataSet::GetData(inputVector[0]);
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
   vtkTable* energyTable = vtkTable::GetData(outputVector, 1);
-  if (vtkAnisoDataConversion::IsSecondaryPiece(request, outputVector))
+  if (vtkAnisoDataConversion::NothingToCompute(request, outputVector, input))
   {
-    return 1; // whole result on piece 0 only
-  }
-  if (!input || input->GetNumberOfPoints() == 0 || input->GetNumberOfCells() == 0)
-  {
-    return 1; // empty in, empty out
+    return 1; // not this piece, or empty in: empty out
   }
   if (this->NumberOfSites <= 0)
   {

@@ -1,4 +1,5 @@
 #include "TetMesher.h"
+#include "MeshTopology.h"
 
 #include "SurfaceGenerators.h"
 
@@ -83,17 +84,10 @@ void ValidateClosedSurface(const SimplexMesh& s)
   std::vector<std::uint64_t> edges;
   std::vector<std::array<std::int32_t, 3>> tris(nc);
   edges.reserve(3 * nc);
+  CheckCellIds(s, who, "triangle");
   for (std::size_t c = 0; c < nc; ++c)
   {
     const std::int32_t* t = s.Cell(c);
-    for (int k = 0; k < 3; ++k)
-    {
-      if (t[k] < 0 || static_cast<std::size_t>(t[k]) >= np)
-      {
-        throw InputError(who + "triangle " + std::to_string(c) + " references point " +
-          std::to_string(t[k]) + ", outside [0, " + std::to_string(np) + ")");
-      }
-    }
     const Eigen::Map<const Eigen::Vector3d> a(s.Point(t[0])), b(s.Point(t[1])), d(s.Point(t[2]));
     const double area2 = (b - a).cross(d - a).squaredNorm();
     if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2] || !(area2 > 1e-24 * diag2 * diag2))

@@ -10,6 +10,7 @@
 #include <atomic>
 #include <cmath>
 #include <limits>
+#include <string>
 
 namespace av
 {
@@ -27,6 +28,24 @@ double Det3(const double* p0, const double* p1, const double* p2, const double* 
     a[2] * (b[0] * c[1] - b[1] * c[0]);
 }
 } // namespace
+
+void CheckCellIds(const SimplexMesh& mesh, const std::string& who, const char* kind)
+{
+  const std::size_t np = mesh.NumPoints();
+  const int nv = mesh.VerticesPerCell();
+  for (std::size_t c = 0; c < mesh.NumCells(); ++c)
+  {
+    const std::int32_t* t = mesh.Cell(c);
+    for (int k = 0; k < nv; ++k)
+    {
+      if (t[k] < 0 || static_cast<std::size_t>(t[k]) >= np)
+      {
+        throw InputError(who + kind + " " + std::to_string(c) + " references point " +
+          std::to_string(t[k]) + ", outside [0, " + std::to_string(np) + ")");
+      }
+    }
+  }
+}
 
 std::vector<std::int32_t> UniqueEdges(const SimplexMesh& mesh)
 {

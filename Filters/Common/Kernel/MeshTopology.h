@@ -8,6 +8,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace av
@@ -17,6 +18,10 @@ namespace av
 /// Facet a of a cell is the one opposite its local vertex a. Throws InputError when a facet is
 /// shared by more than two cells (non-manifold mesh).
 std::vector<std::int32_t> ComputeElementAdjacency(const SimplexMesh& mesh);
+
+/// Throws InputError("<who><kind> c references point p, outside [0, n)") for the first cell id
+/// out of range; `kind` names the cells in the message ("triangle", "cell").
+void CheckCellIds(const SimplexMesh& mesh, const std::string& who, const char* kind);
 
 /// Unique edges of the mesh as a flat list (a0, b0, a1, b1, ...) with a < b, sorted.
 std::vector<std::int32_t> UniqueEdges(const SimplexMesh& mesh);

@@ -68,17 +68,10 @@ std::vector<Vec3> VertexNormals(const SimplexMesh& s, double diag)
   const std::string who = "SurfaceCurvatureMetric: ";
   const std::size_t np = s.NumPoints(), nc = s.NumCells();
   std::vector<Vec3> normal(np, Vec3::Zero());
+  CheckCellIds(s, who, "triangle");
   for (std::size_t c = 0; c < nc; ++c)
   {
     const std::int32_t* t = s.Cell(c);
-    for (int k = 0; k < 3; ++k)
-    {
-      if (t[k] < 0 || static_cast<std::size_t>(t[k]) >= np)
-      {
-        throw InputError(who + "triangle " + std::to_string(c) + " references point " +
-          std::to_string(t[k]) + ", outside [0, " + std::to_string(np) + ")");
-      }
-    }
     const Eigen::Map<const Vec3> a(s.Point(t[0])), b(s.Point(t[1])), d(s.Point(t[2]));
     const Vec3 n2 = (b - a).cross(d - a); // twice the area times the unit normal
     if (!(n2.norm() > 1e-14 * diag * diag))
