@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The whole AnisoVoronoi pipeline from Python on the paper's Cube1 case (Tab. 5):
 analytic metric (stretch 1..10 along x) -> 8D embedding -> particles -> restricted Voronoi
 diagram (shrunken cells) and dual anisotropic tet mesh -> quality, written as VTK XML.

@@ -1,8 +1,9 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Anisotropic Voronoi cells of a stress tensor field in ParaView (paper Fig. 19/20 style).
 
 Reads the CalculiX compressor result (Debian package calculix-cgx-examples), applies the
 one-click "Aniso Anisotropic Voronoi" filter to its STRESS tensors and saves the shrunken
-cells coloured by the metric's stretch ratio. Written as a ParaView Python trace: in the GUI,
+cells colored by the metric's stretch ratio. Written as a ParaView Python trace: in the GUI,
 Tools > Start Trace while doing the same clicks records these calls. Without the .frd file the
 analytic SphereCylindrical metric is used instead.
 

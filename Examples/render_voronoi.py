@@ -1,5 +1,6 @@
-"""Render shrunken anisotropic Voronoi cells coloured by the metric's stretch ratio
-(the paper's Fig. 19/20 tensor-field visualisation) to a PNG, headless.
+# SPDX-License-Identifier: BSD-3-Clause
+"""Render shrunken anisotropic Voronoi cells colored by the metric's stretch ratio
+(the paper's Fig. 19/20 tensor-field visualization) to a PNG, headless.
 
 usage (under X, e.g. xvfb-run -a):
     python3 render_voronoi.py OUTPUT_DIR [PNG]
@@ -70,7 +71,7 @@ def main():
     if stretch is None:
         stretch = site_stretch(sites)
     if stretch is not None and len(stretch) <= site_id.max():
-        print("render_voronoi: the site files do not cover every Voronoi cell; colouring by "
+        print("render_voronoi: the site files do not cover every Voronoi cell; coloring by "
               "site id", file=sys.stderr)
         stretch = None
     values = stretch[site_id] if stretch is not None else site_id.astype(float)
@@ -107,14 +108,14 @@ def main():
     b = faces.GetBounds()
     size = [b[1] - b[0], b[3] - b[2], b[5] - b[4]]
     thin = size.index(min(size))
-    centre = [(b[0] + b[1]) / 2, (b[2] + b[3]) / 2, (b[4] + b[5]) / 2]
+    center = [(b[0] + b[1]) / 2, (b[2] + b[3]) / 2, (b[4] + b[5]) / 2]
     direction = [0.35, 0.35, 0.35]
     direction[thin] = 1.0
     up = [0.0, 0.0, 0.0]
     up[(thin + 2) % 3] = 1.0
     camera = renderer.GetActiveCamera()
-    camera.SetFocalPoint(centre)
-    camera.SetPosition([centre[i] + direction[i] for i in range(3)])
+    camera.SetFocalPoint(center)
+    camera.SetPosition([center[i] + direction[i] for i in range(3)])
     camera.SetViewUp(up)
     renderer.ResetCamera()
     camera.Zoom(1.1)

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 /**
  * @class vtkAnisoFRDReader
  * @brief Reads a CalculiX / cgx ASCII result file (.frd): mesh and nodal results.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 /**
  * @class vtkAnisoMeditReader
  * @brief Reads a Medit ASCII mesh (.mesh) and optionally a vertex solution (.sol).

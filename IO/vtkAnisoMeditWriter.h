@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 /**
  * @class vtkAnisoMeditWriter
  * @brief Writes a tetrahedral or triangle mesh as a Medit ASCII .mesh, and optionally a

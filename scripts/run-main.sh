@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Command 1 of the README: install what is missing, build, and run the main job: the stress
 # tensor field of a real CalculiX analysis (a turbocharger compressor sector, 3150 nodes,
 # 20-node hexahedra, first vibration mode; Debian package calculix-cgx-examples, GPL-2, read
 # at run time, not bundled) through the whole pipeline, then render the shrunken anisotropic
-# Voronoi cells coloured by stretch to a PNG (headless, xvfb-run).
+# Voronoi cells colored by stretch to a PNG (headless, xvfb-run).
 # Usage: scripts/run-main.sh [OUTPUT_DIR] [extra anisovoronoi options]
 set -euo pipefail
 cd "$(dirname "$0")/.."

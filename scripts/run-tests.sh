@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Command 2 of the README: install what is missing, build, run the whole CTest suite.
 set -euo pipefail
 cd "$(dirname "$0")/.."

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Installs what is missing on Debian 12 (apt-get, as root), then configures and builds
 # AnisoVoronoi into ./build. Used by run-main.sh and run-tests.sh; safe to run again.
 set -euo pipefail

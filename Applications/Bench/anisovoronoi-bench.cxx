@@ -208,7 +208,7 @@ av::EmbeddingOptions EmbeddingOptionsFor(const Args& a, const Case& c, int dim)
   o.AndersonWindow = a.Anderson;
   o.SinglePrecisionSolve = !a.DoubleSolve;
   o.ElementMeasureWeighting = a.Weighted;
-  o.Initialisation = a.Init == "random" ? av::EmbeddingInitialisation::Random : av::EmbeddingInitialisation::Smooth;
+  o.Initialization = a.Init == "random" ? av::EmbeddingInitialization::Random : av::EmbeddingInitialization::Smooth;
   return o;
 }
 
@@ -427,7 +427,7 @@ void Usage(std::ostream& os)
         "  --vertices V      target vertex count of the sphere meshes (TetGen)\n"
         "  --threads T       limit TBB threads (default: all cores)\n"
         "  --seed S          random seed of the initial field (default 1)\n"
-        "  --mu M            regulariser weight (default 100)\n"
+        "  --mu M            regularizer weight (default 100)\n"
         "  --anderson W      Anderson window, 0 = plain local/global (default 5)\n"
         "  --double-solve    global steps with CHOLMOD's double solve (default: float factor copy)\n"
         "  --init smooth|random  initial free coordinates (default smooth)\n"

@@ -40,7 +40,7 @@ options:
   --feature-angle A        dihedral angle (degrees) above which an edge is a feature line
                            (default 30; 180 = none)
   --seed S                 random seed (default 1)
-  --mu X                   regularisation weight (default 100)
+  --mu X                   regularization weight (default 100)
   --shrink F               shrink factor of the Voronoi cells (default 0.8; 1 = none)
   --tensor-as-metric       tensor: use eigenvalues as metric eigenvalues, not stretches
   --clamp                  tensor: clamp eigenvalues instead of taking absolute values

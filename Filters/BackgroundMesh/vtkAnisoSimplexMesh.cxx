@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "vtkAnisoSimplexMesh.h"
 
 #include "SimplexSplitter.h"
@@ -252,7 +253,7 @@ vtkIdType WriteSplitMesh(vtkDataSet* input,
   return piecesOfSplitCells;
 }
 
-/// "split 560 hexahedra into 3360 tetrahedra (... centre points added ...)".
+/// "split 560 hexahedra into 3360 tetrahedra (... center points added ...)".
 std::string SplitSummaryText(const std::vector<std::uint8_t>& types,
   const av::SimplexSplitResult& split,
   vtkIdType piecesOfSplitCells,
@@ -275,7 +276,7 @@ std::string SplitSummaryText(const std::vector<std::uint8_t>& types,
   }
   os << " into " << piecesOfSplitCells << " "
      << (split.Mesh.SimplexDim == 3 ? "tetrahedra" : "triangles");
-  os << " (" << split.NumAddedPoints << " centre points added";
+  os << " (" << split.NumAddedPoints << " center points added";
   if (dropped > 0)
     os << ", " << dropped << " unused or mid-edge points dropped";
   if (split.NumDroppedSimplices > 0)

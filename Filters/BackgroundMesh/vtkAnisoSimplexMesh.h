@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 /**
  * @class vtkAnisoSimplexMesh
  * @brief Splits every non-simplex cell into conforming triangles/tetrahedra, as the embedding
@@ -10,18 +11,18 @@
  * the type.
  *
  * Splitting (Core/SimplexSplitter.h): quadrilateral faces are cut by the diagonal through their
- * smallest point id, so neighbouring cells agree and the result is conforming; wedges give 3
+ * smallest point id, so neighboring cells agree and the result is conforming; wedges give 3
  * tetrahedra, pyramids 2, quads 2 triangles; hexahedra and voxels get one new point at their
- * centre and 12 tetrahedra. Quadratic cells are reduced to their corner nodes (mid-edge nodes
+ * center and 12 tetrahedra. Quadratic cells are reduced to their corner nodes (mid-edge nodes
  * are dropped, curved edges become straight). Tetrahedra come out positively oriented.
  *
  * Output (vtkUnstructuredGrid):
- * - the simplices; point data: every input point array, interpolated to the added centre points
+ * - the simplices; point data: every input point array, interpolated to the added center points
  *   with the parent weights (the mean of the 8 corners); input points keep their ids when no
  *   point is dropped;
  * - cell data: every input cell array copied from the parent cell, plus "ParentCellId";
  * - field data "SplitSummary" (one string), e.g. "split 560 VTK_QUADRATIC_HEXAHEDRON into
- *   6720 tetrahedra (560 centre points added, ...)". When something was split the summary is
+ *   6720 tetrahedra (560 center points added, ...)". When something was split the summary is
  *   also printed with vtkWarningMacro so that users notice.
  * Input that is already all triangles or all tetrahedra passes through unchanged (same points,
  * cells and ids; ParentCellId = cell id).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 /**
  * @class vtkAnisoTetMesher
  * @brief Quality tetrahedral background mesh (TetGen) of a closed surface, a box or a ball.
@@ -5,7 +6,7 @@
  * Shape INPUT_SURFACE (default): the input vtkPolyData must be a closed, manifold triangle
  * surface (triangulate it first if it has polygons); its enclosed volume is meshed. Shape BOX
  * meshes the input's bounding box (or [0,1]^3 without input), BALL the ball of the given Radius
- * centred at Center.
+ * centered at Center.
  *
  * Size: TargetVertices (> 0) asks for about that many vertices (typically within 15 %); else
  * MaxVolume (> 0) bounds every tet's volume; with neither, TetGen's quality mesh of the
@@ -62,7 +63,7 @@ public:
   ///@}
 
   ///@{
-  /// Ball centre and radius (Shape BALL; default origin and 1).
+  /// Ball center and radius (Shape BALL; default origin and 1).
   vtkSetVector3Macro(Center, double);
   vtkGetVector3Macro(Center, double);
   vtkSetClampMacro(Radius, double, 1e-300, VTK_DOUBLE_MAX);

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 /**
  * @class vtkAnisoTriangulateDomain
  * @brief Triangulates a flat 2D domain (the background mesh of a 2D metric) at a target size.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "vtkAnisoDataConversion.h"
 
 #include <vtkAlgorithm.h>
@@ -306,7 +307,7 @@ bool LocateSites(vtkDataSet* sites,
     sites->GetPoint(i, x);
     // VTK's cells accept points slightly outside (parametric tolerance): among the cells
     // near x keep the one where x is most inside (largest smallest weight), so that a point
-    // on a shared face does not get the neighbour's clamped weights.
+    // on a shared face does not get the neighbor's clamped weights.
     double box[6] = { x[0] - tol, x[0] + tol, x[1] - tol, x[1] + tol, x[2] - tol, x[2] + tol };
     locator->FindCellsWithinBounds(box, candidates);
     vtkIdType cid = -1;
@@ -345,7 +346,7 @@ bool LocateSites(vtkDataSet* sites,
     }
     std::copy(best, best + nv, weights);
     out.CellIds[i] = simplexOf[cid];
-    // Clamp round-off and renormalise: the kernels require weights >= 0 summing to 1.
+    // Clamp round-off and renormalize: the kernels require weights >= 0 summing to 1.
     double sum = 0.0;
     for (int a = 0; a < nv; ++a)
       sum += (weights[a] = std::max(0.0, weights[a]));

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 /**
  * @file vtkAnisoDataConversion.h
  * @brief Internal (not wrapped): conversions between VTK datasets and the VTK-free kernel

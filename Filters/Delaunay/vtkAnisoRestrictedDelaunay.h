@@ -25,7 +25,7 @@
  * after the first diagram), "DelaunaySeconds" (everything, repair included).
  *
  * Repair (paper §4.2, RepairInverted, default on): while an element is inverted, one site is
- * inserted at the Voronoi vertex dual to each inverted element (its circumcentre in the
+ * inserted at the Voronoi vertex dual to each inverted element (its circumcenter in the
  * embedding, restricted to the domain) and the diagram recomputed, at most MaxRepairRounds
  * times (default 10). RepairNonManifold (default off) also repairs faces shared by more than
  * two elements. What remains is reported with a warning.
@@ -70,7 +70,7 @@ public:
   /// Site improvement rounds before the repair (default 1; 0 = the paper's pipeline; not in
   /// the paper). Each round moves the sites (walking on the embedded mesh) and recomputes the
   /// diagram once: OdtIterations ODT steps (every site whose cell does not meet the boundary
-  /// moves to the volume-weighted mean of its dual simplices' circumcentres in the
+  /// moves to the volume-weighted mean of its dual simplices' circumcenters in the
   /// embedding), then the sites of every dual tetrahedron whose smallest dihedral angle in the
   /// embedding is below 15° are pushed apart along the sliver's flat direction.
   /// cube2 (5000 sites): G_avg 0.9025 -> 0.911, slivers 0.61 % -> 0.09 %.

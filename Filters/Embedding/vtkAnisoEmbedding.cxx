@@ -40,9 +40,9 @@ av::EmbeddingOptions MakeOptions(vtkAnisoEmbedding* self)
   options.Seed = static_cast<std::uint64_t>(self->GetSeed());
   options.RelativeEnergyTolerance = self->GetRelativeEnergyTolerance();
   options.ElementMeasureWeighting = self->GetElementMeasureWeighting();
-  options.Initialisation = self->GetInitialisation() == vtkAnisoEmbedding::RANDOM
-    ? av::EmbeddingInitialisation::Random
-    : av::EmbeddingInitialisation::Smooth;
+  options.Initialization = self->GetInitialization() == vtkAnisoEmbedding::RANDOM
+    ? av::EmbeddingInitialization::Random
+    : av::EmbeddingInitialization::Smooth;
   options.AndersonWindow = self->GetAndersonWindow();
   options.SinglePrecisionSolve = self->GetSinglePrecisionSolve();
   options.Progress = [self](const av::EmbeddingProgress& p) {
@@ -125,7 +125,7 @@ void BuildEnergyTable(const std::vector<av::EmbeddingEnergy>& history, vtkTable*
   {
     iteration->InsertNextValue(static_cast<int>(k));
     eem->InsertNextValue(history[k].Embedding);
-    ereg->InsertNextValue(history[k].Regularisation);
+    ereg->InsertNextValue(history[k].Regularization);
     etot->InsertNextValue(history[k].Total);
   }
   table->AddColumn(iteration);
@@ -234,7 +234,7 @@ void vtkAnisoEmbedding::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Seed: " << this->Seed << "\n";
   os << indent << "RelativeEnergyTolerance: " << this->RelativeEnergyTolerance << "\n";
   os << indent << "ElementMeasureWeighting: " << this->ElementMeasureWeighting << "\n";
-  os << indent << "Initialisation: " << (this->Initialisation == RANDOM ? "Random" : "Smooth")
+  os << indent << "Initialization: " << (this->Initialization == RANDOM ? "Random" : "Smooth")
      << "\n";
   os << indent << "AndersonWindow: " << this->AndersonWindow << "\n";
   os << indent << "SinglePrecisionSolve: " << this->SinglePrecisionSolve << "\n";

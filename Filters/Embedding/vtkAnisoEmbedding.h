@@ -43,7 +43,7 @@ public:
   vtkTypeMacro(vtkAnisoEmbedding, vtkUnstructuredGridAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
-  enum Initialisations
+  enum Initializations
   {
     SMOOTH = 0,
     RANDOM = 1
@@ -63,7 +63,7 @@ public:
   ///@}
 
   ///@{
-  /// Regularisation weight μ (default 100 as the paper).
+  /// Regularization weight μ (default 100 as the paper).
   vtkSetClampMacro(Mu, double, 0.0, VTK_DOUBLE_MAX);
   vtkGetMacro(Mu, double);
   ///@}
@@ -90,8 +90,8 @@ public:
   ///@{
   /// Initial extra coordinates: SMOOTH low-frequency random field (default) or the paper's
   /// i.i.d. small RANDOM perturbation.
-  vtkSetClampMacro(Initialisation, int, SMOOTH, RANDOM);
-  vtkGetMacro(Initialisation, int);
+  vtkSetClampMacro(Initialization, int, SMOOTH, RANDOM);
+  vtkGetMacro(Initialization, int);
   ///@}
 
   ///@{
@@ -143,7 +143,7 @@ protected:
   int Seed = 1;
   double RelativeEnergyTolerance = 0.0;
   bool ElementMeasureWeighting = false;
-  int Initialisation = SMOOTH;
+  int Initialization = SMOOTH;
   int AndersonWindow = 5;
   bool SinglePrecisionSolve = true;
   bool AutoScaleMetric = true;

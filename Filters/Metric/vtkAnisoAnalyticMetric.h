@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 /**
  * @class vtkAnisoAnalyticMetric
  * @brief Adds one of the paper's closed-form metric fields to any dataset's points.
@@ -13,7 +14,7 @@
  * - Cube3 ([1,11]^3): S = 2 (0.1 + 2 (1 - e^{-0.01 |x^2+y^2-49|}))^{-1} along the radial
  *   direction (x/r, y/r, 0).
  * - SphereCylindrical (unit ball): S = 1 + 4 sqrt(x^2+y^2) along (x/r, y/r, 0).
- * - SphereCosine (unit ball): S = 10 along normalise(2 cos 4x, 1, 0).
+ * - SphereCosine (unit ball): S = 10 along normalize(2 cos 4x, 1, 0).
  *
  * Documentation/metrics.md explains the readings chosen where the paper's formulas are
  * garbled. Points with a non-finite coordinate make RequestData fail.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 /**
  * @class vtkAnisoAnalyticMetricSource
  * @brief The paper's test cases ready to embed: the preset's domain meshed, with its metric.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 /**
  * @class vtkAnisoCurvatureMetric
  * @brief The curvature-adapted metric of a triangle surface (paper Eq. 19), from the surface

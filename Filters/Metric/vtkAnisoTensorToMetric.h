@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 /**
  * @class vtkAnisoTensorToMetric
  * @brief Turns a physical tensor field (stress, strain rate, diffusion, ...) into the SPD metric

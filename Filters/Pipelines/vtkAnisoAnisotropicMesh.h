@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 /**
  * @class vtkAnisoAnisotropicMesh
  * @brief One-click anisotropic mesh of a tensor field ("Aniso Anisotropic Mesh" in ParaView):
@@ -12,7 +13,7 @@
  * quality (G_min, G_avg, theta_min, theta_avg, pct_bad, inverted, edges_in_unit_range,
  * NumberOfCells), of the dual (NumInverted, NumNonManifoldFaces, NumOpenInteriorFaces,
  * NumUnusedSites) and "L_avg", "L_max", "MetricScale".
- * Output 1 (vtkTable): histogram of the per-cell min angles ("MinAngle" bin centre, "Count").
+ * Output 1 (vtkTable): histogram of the per-cell min angles ("MinAngle" bin center, "Count").
  * Inverted elements are repaired by site insertion as in vtkAnisoRestrictedDelaunay
  * (RepairInverted, default on; MaxRepairRounds, default 10; RepairNonManifold, default off),
  * so the mesh may have more vertices than NumberOfCells; field data NumInsertedSites,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 /**
  * @class vtkAnisoTensorPipeline
  * @brief Abstract base of the one-click filters (vtkAnisoVoronoiCells, vtkAnisoAnisotropicMesh):

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 /**
  * @class vtkAnisoVoronoiCells
  * @brief One-click anisotropic Voronoi cells of a tensor field ("Aniso Anisotropic Voronoi"

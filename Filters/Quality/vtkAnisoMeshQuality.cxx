@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "vtkAnisoMeshQuality.h"
 
 #include "MeshQuality.h"
@@ -42,7 +43,7 @@ void WriteQualityMesh(vtkDataSet* input,
   output->GetCellData()->SetActiveScalars("G");
 }
 
-/// The angle histogram: bin centres (degrees) and counts.
+/// The angle histogram: bin centers (degrees) and counts.
 void WriteHistogram(const av::MeshQualitySummary& s, vtkTable* histogram)
 {
   vtkNew<vtkDoubleArray> center;

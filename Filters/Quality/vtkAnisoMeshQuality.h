@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 /**
  * @class vtkAnisoMeshQuality
  * @brief The anisotropic mesh quality measures of the paper §5.2 (columns of Tab. 3 / Tab. 5).
@@ -17,7 +18,7 @@
  * field data "G_min", "G_avg", "theta_min", "theta_avg", "pct_bad", "inverted",
  * "edges_in_unit_range" (% of edges whose metric length, divided by the median, is in
  * [1/sqrt2, sqrt2]), "NumberOfCells".
- * Output 1 (vtkTable): histogram of the per-cell min angles, columns "MinAngle" (bin centre,
+ * Output 1 (vtkTable): histogram of the per-cell min angles, columns "MinAngle" (bin center,
  * degrees) and "Count", 5-degree bins over [0, 90) — shown as a bar chart in ParaView.
  *
  * Distributed runs (mpiexec pvbatch, pvserver): needs the whole mesh, so it asks its inputs

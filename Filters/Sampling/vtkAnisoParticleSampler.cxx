@@ -37,7 +37,7 @@ av::ParticleSamplerOptions MakeOptions(vtkAnisoParticleSampler* filter)
   options.FeatureAngle = filter->GetFeatureAngle();
   options.Seed = static_cast<std::uint64_t>(static_cast<std::uint32_t>(filter->GetSeed()));
   options.KernelWidthFactor = filter->GetKernelWidthFactor();
-  options.NeighbourCutoff = filter->GetNeighbourCutoff();
+  options.NeighborCutoff = filter->GetNeighborCutoff();
   options.Progress = [filter](double f)
   {
     filter->UpdateProgress(0.05 + 0.9 * f);
@@ -96,7 +96,7 @@ void AddSummary(vtkFieldData* fd, const av::ParticleSamplerResult& result)
   using vtkAnisoFilterUtilities::AddFieldValue;
   AddFieldValue(fd, "Sigma", result.Sigma);
   AddFieldValue(fd, "EmbeddedMeasure", result.EmbeddedMeasure);
-  AddFieldValue(fd, "MeanNeighbours", result.MeanNeighbours);
+  AddFieldValue(fd, "MeanNeighbors", result.MeanNeighbors);
   AddFieldValue(fd, "SamplerIterations", result.IterationsDone);
   AddFieldValue(fd, "SamplerWarmupIterations", result.WarmupIterationsDone);
   AddFieldValue(fd, "SamplerSeconds", result.Seconds);
@@ -230,5 +230,5 @@ void vtkAnisoParticleSampler::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "FeatureAngle: " << this->FeatureAngle << "\n";
   os << indent << "Seed: " << this->Seed << "\n";
   os << indent << "KernelWidthFactor: " << this->KernelWidthFactor << "\n";
-  os << indent << "NeighbourCutoff: " << this->NeighbourCutoff << "\n";
+  os << indent << "NeighborCutoff: " << this->NeighborCutoff << "\n";
 }

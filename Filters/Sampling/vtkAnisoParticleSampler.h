@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 /**
  * @class vtkAnisoParticleSampler
  * @brief Isotropic particle sampling of the embedded mesh (paper §4.1): sites whose spacing in
@@ -9,10 +10,10 @@
  * "Embedding".
  *
  * NumberOfSites particles are drawn on the embedded mesh (probability proportional to the
- * embedded element measure) and spread by minimising the Gaussian repulsion energy
+ * embedded element measure) and spread by minimizing the Gaussian repulsion energy
  * E = sum exp(-|x_p - x_q|^2 / (4 sigma^2)),
  * sigma = KernelWidthFactor (|embedded mesh| / n)^{1/k},
- * over pairs closer than NeighbourCutoff sigma (projected L-BFGS, particles stay on / in the
+ * over pairs closer than NeighborCutoff sigma (projected L-BFGS, particles stay on / in the
  * embedded mesh). Deterministic for a given Seed.
  *
  * Output 0 (vtkPolyData): one vertex cell per site at its input-space position (the first m
@@ -25,14 +26,14 @@
  *   (vtkAnisoRestrictedDelaunay keeps the last two on their features);
  * - "Metric": the input's metric (6 components) interpolated at the site, when the input has
  *   one (active point tensors or an array named "Metric").
- * Field data: "Sigma", "EmbeddedMeasure", "MeanNeighbours", "SamplerIterations",
+ * Field data: "Sigma", "EmbeddedMeasure", "MeanNeighbors", "SamplerIterations",
  * "SamplerWarmupIterations", "SamplerSeconds", "NumCornerSites", "NumFeatureLineSites".
  * Output 1 (vtkTable): "Iteration", "Energy" per iteration at the final kernel (0 = their
  * start: the initial sampling, or the sites after the warm-up).
  *
  * Parameters: NumberOfSites (default 2000; between 1 and 8 x the input's point count),
  * Iterations (150), WarmupIterations (100), PreserveSharpFeatures (on), FeatureAngle (30),
- * Seed (1), KernelWidthFactor (0.3), NeighbourCutoff (5).
+ * Seed (1), KernelWidthFactor (0.3), NeighborCutoff (5).
  *
  * Distributed runs (mpiexec pvbatch, pvserver): needs the whole mesh, so it asks its inputs
  * for the whole dataset and runs redundantly on every process that needs its output (the cost
@@ -104,9 +105,9 @@ public:
   ///@}
 
   ///@{
-  /// Pairs farther apart than NeighbourCutoff * sigma do not interact (default 5).
-  vtkSetClampMacro(NeighbourCutoff, double, 1.0, 20.0);
-  vtkGetMacro(NeighbourCutoff, double);
+  /// Pairs farther apart than NeighborCutoff * sigma do not interact (default 5).
+  vtkSetClampMacro(NeighborCutoff, double, 1.0, 20.0);
+  vtkGetMacro(NeighborCutoff, double);
   ///@}
 
   /// Kernel width of the last run (also in the output's field data).
@@ -127,7 +128,7 @@ protected:
   double FeatureAngle = 30.0;
   int Seed = 1;
   double KernelWidthFactor = 0.3;
-  double NeighbourCutoff = 5.0;
+  double NeighborCutoff = 5.0;
   double Sigma = 0.0;
 
 private:

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 /**
  * @class vtkAnisoRestrictedVoronoi
  * @brief The restricted Voronoi diagram of sites in R^m̄ on the embedded mesh (paper §4.2),
@@ -29,7 +30,7 @@
  * Output 1 (vtkPolyData): the faces (volumes: polygons) or edges (2D: lines) of every output
  * cell, shrunk the same way, with cell data "SiteId", "FaceKind" (0 = bisector between two
  * cells, 1 = domain boundary, 2 = element face, only with MergeBySite off) and
- * "NeighborSiteId" (the other site of a bisector, else -1): colour by FaceKind to tell the
+ * "NeighborSiteId" (the other site of a bisector, else -1): color by FaceKind to tell the
  * boundary from the interior faces.
  *
  * Field data of both outputs: "TotalMeasure" (sum of the unshrunk cells), "DomainMeasure"

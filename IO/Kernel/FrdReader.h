@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // FrdReader: VTK-free reader for CalculiX / cgx ASCII result files (.frd).
 #ifndef av_FrdReader_h
 #define av_FrdReader_h

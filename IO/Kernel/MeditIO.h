@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // MeditIO: VTK-free reader/writer for the Medit ASCII mesh (.mesh) and solution (.sol)
 // formats used by MMG, Gmsh, FreeFEM, Feflow, ...
 #ifndef av_MeditIO_h

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "OffReader.h"
 
 #include <cmath>
@@ -64,7 +65,7 @@ SimplexMesh ParseOff(const std::string& text, const std::string& sourceName)
   std::istringstream lines(text);
   std::string line;
   std::size_t number = 0;
-  // Face lines may carry colours after the indices: keep line boundaries for faces.
+  // Face lines may carry colors after the indices: keep line boundaries for faces.
   std::vector<std::vector<std::string>> byLine;
   while (std::getline(lines, line))
   {
@@ -113,7 +114,7 @@ SimplexMesh ParseOff(const std::string& text, const std::string& sourceName)
             std::to_string(nv) + ")");
       ids[static_cast<std::size_t>(k)] = static_cast<std::int32_t>(id);
     }
-    // Optional colour values up to the end of the face's line.
+    // Optional color values up to the end of the face's line.
     while (tokens.Next < tokens.Items.size() && tokens.Items[tokens.Next].second == faceLine)
       ++tokens.Next;
     for (std::size_t k = 1; k + 1 < ids.size(); ++k)

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // OffReader: Object File Format (.off) triangle/polygon surfaces, for the CLI. VTK-free.
 #ifndef av_OffReader_h
 #define av_OffReader_h
@@ -10,7 +11,7 @@ namespace av
 {
 /**
  * Parses an ASCII OFF surface ("OFF", counts "nv nf ne", nv lines "x y z", nf lines
- * "n i0 ... i(n-1) [colour]"; '#' comments; the header may share the counts' line). Polygons
+ * "n i0 ... i(n-1) [color]"; '#' comments; the header may share the counts' line). Polygons
  * are fanned into triangles. Returns a SimplexMesh with AmbientDim 3, SimplexDim 2. Throws
  * InputError naming the line for a truncated file, a bad token, a NaN, an index out of range,
  * a face with fewer than 3 vertices or counts larger than the file can hold.

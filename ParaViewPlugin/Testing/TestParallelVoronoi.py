@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """pvbatch under MPI: the AnisoVoronoi chain split over processes.
 
 Run: mpiexec -n 2 pvbatch --force-offscreen-rendering TestParallelVoronoi.py (env AV_PLUGIN;

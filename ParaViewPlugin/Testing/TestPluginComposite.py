@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """pvbatch: the one-click proxies Aniso Anisotropic Voronoi / Aniso Anisotropic Mesh and the
 Examples/paraview_tensor_voronoi.py script.
 
@@ -64,7 +65,7 @@ hist = servermanager.Fetch(mesh, idx=1)
 assert sum(hist.GetValueByName(r, "Count").ToInt() for r in range(hist.GetNumberOfRows())) == \
     m.GetNumberOfCells()
 
-# The example script, small, into a temporary PNG that must show several colours.
+# The example script, small, into a temporary PNG that must show several colors.
 example = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "Examples",
                        "paraview_tensor_voronoi.py")
 with tempfile.TemporaryDirectory() as tmp:
@@ -83,12 +84,12 @@ with tempfile.TemporaryDirectory() as tmp:
     reader.Update()
     image = reader.GetOutput()
     pixels = vtk_to_numpy(image.GetPointData().GetScalars())[:, :3]
-    colours, counts = np.unique(pixels, axis=0, return_counts=True)
+    colors, counts = np.unique(pixels, axis=0, return_counts=True)
     background = counts.max() / len(pixels)
-    print("example PNG: %d distinct colours, background %.1f %%" % (len(colours), 100 * background))
-    assert len(colours) > 20, len(colours)
+    print("example PNG: %d distinct colors, background %.1f %%" % (len(colors), 100 * background))
+    assert len(colors) > 20, len(colors)
     assert background < 0.97, background
-    # Colour-mapped cells: more than a handful of strongly saturated (non-grey) pixels.
+    # Color-mapped cells: more than a handful of strongly saturated (non-grey) pixels.
     p = pixels.astype(int)
     saturated = (p.max(axis=1) - p.min(axis=1)) > 100
     assert saturated.sum() > 1000, saturated.sum()

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """pvbatch: the proxies of ParaViewPlugin/Metric.xml load and run (AV_PLUGIN = plugin path).
 Builds Aniso Analytic Metric Source -> Aniso Embedding (both output ports), and runs Aniso
 Tensor To Metric, Aniso Simplex Mesh, Aniso Curvature Metric, Aniso Analytic Metric and

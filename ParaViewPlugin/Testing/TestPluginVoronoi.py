@@ -1,10 +1,11 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """pvbatch: the plugin's sampling / Voronoi / Delaunay / quality proxies.
 
 Cube1 (6^3 grid) -> Aniso Embedding (5D) -> Aniso Particle Sampler (80 sites) ->
 Aniso Restricted Voronoi (ShrinkFactor 0.8) and Aniso Restricted Delaunay -> Aniso Mesh
 Quality. Checks the numbers that come back to the client (one cell per site, shrunk volume =
 0.8^3 of the box, dual mesh vertices = sites, quality in range, histogram total) and renders
-the shrunken cells coloured by SiteId into a PNG that must not be blank.
+the shrunken cells colored by SiteId into a PNG that must not be blank.
 Run: xvfb-run -a pvbatch --force-offscreen-rendering TestPluginVoronoi.py (env AV_PLUGIN).
 """
 import os
@@ -75,7 +76,7 @@ hist = servermanager.Fetch(quality, idx=1)
 assert sum(hist.GetValueByName(r, "Count").ToInt() for r in range(hist.GetNumberOfRows())) == \
     mesh.GetNumberOfCells()
 
-# Render the shrunken cells coloured by SiteId; the picture must not be blank.
+# Render the shrunken cells colored by SiteId; the picture must not be blank.
 view = CreateView("RenderView")
 view.ViewSize = [400, 300]
 view.OrientationAxesVisibility = 0
@@ -97,9 +98,9 @@ reader = vtkPNGReader()
 reader.SetFileName(png)
 reader.Update()
 scalars = reader.GetOutput().GetPointData().GetScalars()
-colours = {scalars.GetTuple(i) for i in range(0, scalars.GetNumberOfTuples(), 7)}
-print("distinct colours sampled: %d" % len(colours))
-assert len(colours) > 20, "the screenshot looks blank"
+colors = {scalars.GetTuple(i) for i in range(0, scalars.GetNumberOfTuples(), 7)}
+print("distinct colors sampled: %d" % len(colors))
+assert len(colors) > 20, "the screenshot looks blank"
 # Release the view while the GL context is alive (else a GLXBadContext at exit fails the run).
 Delete(view)
 del view

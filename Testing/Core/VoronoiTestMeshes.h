@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Small meshes, embeddings and site sets for the RVD / RDT tests (self-contained, seeded).
 #ifndef av_VoronoiTestMeshes_h
 #define av_VoronoiTestMeshes_h

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The anisovoronoi command-line tool: a small run end to end (files read back, report keys,
 Voronoi partition, nothing written outside the output folder) and its error paths (one-line
 message, non-zero exit, fast)."""

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The sampling / Voronoi / Delaunay / quality filters from Python (/usr/bin/python3).
 
 Gaussian2D (paper §6.2) on a 25 x 25 grid: embedding in 3D, 200 sites, then

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Runs the README's main job (scripts/run-main.sh, setup skipped) into a temporary folder and
 checks what it promises: every output file, a report with a valid dual mesh (no inverted or
 non-manifold element left, the Voronoi cells partition the volume) and a rendered picture."""

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "SimplexSplitter.h"
 
 #include <Eigen/Core>
@@ -223,15 +224,15 @@ public:
     }
     this->Added.push_back(c / 8.0);
     this->AddedParents.push_back(parents);
-    const std::int64_t centre = -static_cast<std::int64_t>(this->Added.size());
+    const std::int64_t center = -static_cast<std::int64_t>(this->Added.size());
     static const int faces[6][4] = { { 0, 3, 2, 1 }, { 4, 5, 6, 7 }, { 0, 1, 5, 4 },
       { 1, 2, 6, 5 }, { 2, 3, 7, 6 }, { 3, 0, 4, 7 } };
     std::array<std::int64_t, 3> t0, t1;
     for (const auto& f : faces)
     {
       SplitQuad(v[f[0]], v[f[1]], v[f[2]], v[f[3]], t0, t1);
-      this->Tet(t0[0], t0[1], t0[2], centre, cell, scale);
-      this->Tet(t1[0], t1[1], t1[2], centre, cell, scale);
+      this->Tet(t0[0], t0[1], t0[2], center, cell, scale);
+      this->Tet(t1[0], t1[1], t1[2], center, cell, scale);
     }
   }
 };

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // SimplexSplitter: splits VTK's linear and quadratic cells into conforming, positively oriented
 // simplices (the embedding and RVD kernels only know triangles and tetrahedra). VTK-free: cell
 // types are VTK's numeric ids.
@@ -28,7 +29,7 @@ struct SimplexSplitResult
   std::vector<std::int64_t> PointParentOffsets; ///< NumPoints + 1 entries
   std::vector<std::int64_t> PointParents;     ///< input point ids
   std::vector<double> PointWeights;           ///< interpolation weights
-  std::size_t NumAddedPoints = 0;   ///< Steiner points (hexahedron centres), last in Mesh.Points
+  std::size_t NumAddedPoints = 0;   ///< Steiner points (hexahedron centers), last in Mesh.Points
   std::size_t NumDroppedSimplices = 0; ///< zero-measure pieces of collapsed (degenerate) cells
   bool InputPointsKept = true;
 };
@@ -48,7 +49,7 @@ struct SimplexSplitResult
  * - wedge: 3 tets, no new point (rotated so the smallest id is vertex 0; this never meets
  *   the cyclic face configuration that would need one, Dompierre et al. 1999);
  * - pyramid: 2 tets; quad, pixel: 2 triangles;
- * - hexahedron, voxel: one new point at the centre (mean of the 8 corners) and 12 tets, one per
+ * - hexahedron, voxel: one new point at the center (mean of the 8 corners) and 12 tets, one per
  *   face triangle: the min-id rule alone cannot split every hexahedron without new points.
  * Orientation: tetrahedra positive (det[b-a, c-a, d-a] > 0). Triangles keep the cell's
  * orientation; with outputAmbientDim 2 (z dropped) they are made counter-clockwise.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // StructuredMeshes: regular simplicial grids of boxes and rectangles (generated domains for the
 // analytic presets, the benchmark and the tests).
 #ifndef av_StructuredMeshes_h

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // SurfaceGenerators: closed/open triangle surfaces built by code (spheres, boxes, cylinders),
 // used as TetGen input and as test geometry. VTK-free.
 #ifndef av_SurfaceGenerators_h

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // TetMesher: quality tetrahedral meshes of closed triangle surfaces (TetGen), plus ready-made
 // box and ball meshes with a target vertex count. VTK-free.
 #ifndef av_TetMesher_h
@@ -63,7 +64,7 @@ double MaxVolumeForVertexCount(const SimplexMesh& triangleSurface, std::size_t t
 SimplexMesh TetrahedralizeBox(const double lo[3], const double hi[3], std::size_t targetVertices);
 
 /**
- * @brief Quality tet mesh of the ball of the given radius centred at the origin, with about
+ * @brief Quality tet mesh of the ball of the given radius centered at the origin, with about
  * `targetVertices` vertices (typically within 15 %). The boundary vertices lie on the sphere
  * (geodesic sphere surface, refined by TetGen on its flat facets only where needed).
  * targetVertices >= 20.

@@ -14,7 +14,7 @@
 namespace av
 {
 
-/// Neighbour element across each facet: NumCells x (SimplexDim+1), -1 on the domain boundary.
+/// Neighbor element across each facet: NumCells x (SimplexDim+1), -1 on the domain boundary.
 /// Facet a of a cell is the one opposite its local vertex a. Throws InputError when a facet is
 /// shared by more than two cells (non-manifold mesh).
 std::vector<std::int32_t> ComputeElementAdjacency(const SimplexMesh& mesh);

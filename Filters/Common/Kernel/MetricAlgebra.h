@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // MetricAlgebra: small dense helpers on symmetric metric tensors (packing, eigen-decomposition,
 // SPD checks, symmetric square root, stretch ratio). Header-light, VTK-free, reusable by every
 // kernel that reads a MetricField.
@@ -17,7 +18,7 @@ Eigen::Matrix3d UnpackSymmetric(const double* v6);
 /// Upper-left 2x2 block (XX, XY, YY) of a packed tensor: the metric of a flat 2D domain.
 Eigen::Matrix2d UnpackSymmetric2(const double* v6);
 
-/// Packs a symmetric 3x3 matrix into VTK order (XX, YY, ZZ, XY, YZ, XZ); symmetrises first.
+/// Packs a symmetric 3x3 matrix into VTK order (XX, YY, ZZ, XY, YZ, XZ); symmetrizes first.
 void PackSymmetric(const Eigen::Matrix3d& m, double* v6);
 
 /// Packs a 2x2 metric (ZZ, YZ, XZ set to 0).

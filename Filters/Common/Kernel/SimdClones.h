@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // AV_SIMD_CLONES: marks a hot kernel for an AVX2/FMA clone chosen at load time (GCC function
 // multi-versioning); the build itself targets baseline x86-64, so other CPUs and compilers get
 // the plain version.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // SimplexMesh: the plain, VTK-free mesh type every kernel of AnisoVoronoi works on.
 #ifndef av_SimplexMesh_h
 #define av_SimplexMesh_h

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// VertexGraph: the vertex neighbours of a mesh as a CSR graph, and the Laplacian smoothing step
+// VertexGraph: the vertex neighbors of a mesh as a CSR graph, and the Laplacian smoothing step
 // that the metric stages run on it (tensor metrics, surface curvature metrics).
 #ifndef av_VertexGraph_h
 #define av_VertexGraph_h
@@ -14,7 +14,7 @@
 namespace av
 {
 
-/// Neighbours of vertex i: Neighbors[Offsets[i] .. Offsets[i+1]).
+/// Neighbors of vertex i: Neighbors[Offsets[i] .. Offsets[i+1]).
 struct VertexGraph
 {
   std::vector<std::int32_t> Offsets;
@@ -44,7 +44,7 @@ inline VertexGraph BuildVertexGraph(std::size_t n, const std::vector<std::int32_
   return g;
 }
 
-/// One Jacobi step x_i <- (x_i + mean of the neighbours' x) / 2 for any value type with + and
+/// One Jacobi step x_i <- (x_i + mean of the neighbors' x) / 2 for any value type with + and
 /// scalar *, in parallel; isolated vertices keep their value.
 template <class T>
 void HalfLaplacianStep(const VertexGraph& g, const std::vector<T>& in, std::vector<T>& out)

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // ODT smoothing of restricted Delaunay sites in the embedding.
 #include "OdtSmoothing.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // OdtSmoothing: optimal-Delaunay-triangulation (ODT) smoothing of the sites of a restricted
 // Delaunay mesh in the embedding (not in the paper; see Documentation/sampling.md). The caller
 // recomputes the RVD / RDT of the moved sites.
@@ -38,10 +39,10 @@ struct OdtSmoothingResult
 /**
  * Iterations ODT steps (Chen & Xu; Alliez et al. 2005) in R^Dim: every site whose restricted Voronoi
  * cell does not meet the domain boundary moves towards the measure-weighted mean of the
- * circumcentres of its incident dual simplices (circumcentre within each simplex's affine
+ * circumcenters of its incident dual simplices (circumcenter within each simplex's affine
  * hull in R^Dim, weight its embedded measure), walking on the embedded mesh so that it stays
- * on it. That position minimises the interpolation error of |x|^2 over the site's star, which
- * regularises the simplices (more than a Lloyd step does). Sites on or next to the boundary,
+ * on it. That position minimizes the interpolation error of |x|^2 over the site's star, which
+ * regularizes the simplices (more than a Lloyd step does). Sites on or next to the boundary,
  * and sites of no simplex, keep their exact values. Steps after the first keep the
  * connectivity of `rdt` (cheap: no new diagram; the caller's recomputation fixes it).
  * Deterministic. Throws InputError when sizes do not match or options are out of range.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Dual of the restricted Voronoi diagram: collect the Voronoi vertices, deduplicate them,
 // orient each simplex in its element's tangent frame and check its back-projection.
 #include "RestrictedDelaunay.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // RestrictedDelaunay: the dual mesh of a restricted Voronoi diagram (paper §4.2), with the
 // inverted / non-manifold elements of its back-projection counted (RestrictedDelaunayRefinement
 // repairs them).

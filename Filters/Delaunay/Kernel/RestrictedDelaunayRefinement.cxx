@@ -1,4 +1,5 @@
-// Repair of the restricted Delaunay mesh by Voronoi-vertex (restricted circumcentre) insertion.
+// SPDX-License-Identifier: BSD-3-Clause
+// Repair of the restricted Delaunay mesh by Voronoi-vertex (restricted circumcenter) insertion.
 #include "RestrictedDelaunayRefinement.h"
 
 #include <Eigen/Dense>

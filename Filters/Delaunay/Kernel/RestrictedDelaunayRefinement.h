@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // RestrictedDelaunayRefinement: repairs inverted (and optionally non-manifold) elements of the
 // restricted Delaunay mesh by inserting sites at their dual Voronoi vertices (paper §4.2).
 #ifndef av_RestrictedDelaunayRefinement_h
@@ -66,7 +67,7 @@ struct DelaunayRepairResult
 /**
  * The Voronoi vertex dual to a restricted Delaunay simplex: the point of `element` (in its
  * embedded affine hull) equidistant in R^Dim from the SimplexDim+1 sites `siteIds`, i.e. the
- * circumcentre of the simplex restricted to the embedded domain (what Delaunay refinement
+ * circumcenter of the simplex restricted to the embedded domain (what Delaunay refinement
  * inserts). Writes its barycentric coordinates in `element` (4 values, unused = 0) and the
  * squared distance to the sites; false when the system is singular or the point lies outside
  * the element by more than `tolerance` in barycentric coordinates (then clamped otherwise).
@@ -79,7 +80,7 @@ bool ComputeDualVoronoiVertex(const SimplexMesh& mesh, const Embedding& embeddin
  * Repairs the restricted Delaunay mesh of `sites` (paper §4.2, "inserts additional points"):
  * loop { RVD; RDT; stop when no element is inverted (and, with RepairNonManifold, no face is
  * non-manifold) or after MaxRounds; insert one site at the Voronoi vertex dual to each bad
- * element }. This is Delaunay refinement by circumcentre insertion measured in the embedding,
+ * element }. This is Delaunay refinement by circumcenter insertion measured in the embedding,
  * where the metric is Euclidean, as in Rouxel-Labbé et al. 2016: the new site lies inside the
  * bad simplex's empty circumball, so that simplex disappears, and every new site is at least
  * half the longest edge of its simplex away from all sites. Deterministic (candidates in cell

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // One round of ODT smoothing and sliver perturbation of restricted Delaunay sites.
 #include "SiteImprovement.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Sliver perturbation of restricted Delaunay sites in the embedding.
 #include "SliverPerturbation.h"
 
@@ -87,7 +88,7 @@ SliverPerturbationResult PerturbSliverSites(const SimplexMesh& mesh, const Embed
     for (int i = 0; i < 4; ++i)
       for (int j = i + 1; j < 4; ++j)
         h += (P.row(i) - P.row(j)).norm() / 6.0;
-    // Normal of the best-fit plane: third principal direction of the centred points.
+    // Normal of the best-fit plane: third principal direction of the centered points.
     Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(P.transpose() * P);
     const VecX n = eig.eigenvectors().col(dim - 3);
     for (int i = 0; i < 4; ++i)

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // SliverPerturbation: moves the sites of sliver tetrahedra of a restricted Delaunay mesh apart
 // along the sliver's flat direction, keeping every site on the embedded mesh (not in the
 // paper; see Documentation/sampling.md). The caller recomputes the RVD / RDT of the moved sites.
@@ -41,7 +42,7 @@ struct SliverPerturbationResult
 
 /**
  * For every sliver of `rdt` (a tet mesh whose point ids are site ids), the four sites are
- * centred, the normal n of their best-fit plane is the third principal direction in R^Dim,
+ * centered, the normal n of their best-fit plane is the third principal direction in R^Dim,
  * and each site moves by +-StepFraction * (mean edge length) * n, on the side it already is:
  * the sliver's two crossing diagonals move apart and the tet gets volume. A move is a walk on
  * the embedded mesh (the displacement projected onto each element's tangent space, crossing

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // EdgeLengthError: the paper's §5.1 embedding quality measure (relative edge length error).
 #ifndef av_EdgeLengthError_h
 #define av_EdgeLengthError_h

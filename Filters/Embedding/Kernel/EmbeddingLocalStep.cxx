@@ -326,8 +326,8 @@ EmbeddingEnergy EmbeddingSolver::Internals::LocalStep()
   }
   EmbeddingEnergy e;
   e.Embedding = em;
-  e.Regularisation = this->RegularizerEnergy();
-  e.Total = e.Embedding + this->Options.Mu * e.Regularisation;
+  e.Regularization = this->RegularizerEnergy();
+  e.Total = e.Embedding + this->Options.Mu * e.Regularization;
   this->Energy = e;
   this->LocalSeconds += clock.Seconds();
   return e;

@@ -14,7 +14,7 @@ namespace av
 {
 
 /// How the free coordinates (dimensions m+1..TargetDim) start.
-enum class EmbeddingInitialisation
+enum class EmbeddingInitialization
 {
   /// A smooth, low-frequency random field (a few random plane waves with wavelength of the
   /// order of the domain size) per free dimension: leaves the flat saddle in a coherent direction.
@@ -27,7 +27,7 @@ enum class EmbeddingInitialisation
 struct EmbeddingEnergy
 {
   double Embedding = 0.0;      ///< E_em, Eq. 11 (weighted if ElementMeasureWeighting)
-  double Regularisation = 0.0; ///< E_reg (quadratic reading, see Filters/Embedding/README.md)
+  double Regularization = 0.0; ///< E_reg (quadratic reading, see Filters/Embedding/README.md)
   double Total = 0.0;          ///< E_em + Mu * E_reg
 };
 
@@ -42,19 +42,19 @@ struct EmbeddingProgress
   const EmbeddingSolver* Solver = nullptr; ///< call Solver->CurrentEmbedding() for a snapshot
 };
 
-/// Parameters of the embedding (defaults are the paper's, except Initialisation and Anderson).
+/// Parameters of the embedding (defaults are the paper's, except Initialization and Anderson).
 struct EmbeddingOptions
 {
   int TargetDim = 8;       ///< m-bar, in [AmbientDim + 1, 20]
   int Iterations = 50;     ///< maximum number of local/global iterations (>= 0)
-  double Mu = 100.0;       ///< weight of the regulariser (>= 0)
+  double Mu = 100.0;       ///< weight of the regularizer (>= 0)
   std::uint64_t Seed = 1;  ///< seed of the initial random field (runs are reproducible)
   /// Stop when (E_prev - E) / E_prev falls below this (0 = run all iterations).
   double RelativeEnergyTolerance = 0.0;
   /// false: the paper's unweighted sum over elements (Eq. 11); true: weight each element by its
   /// measure relative to the mean element measure (better posed on graded meshes).
   bool ElementMeasureWeighting = false;
-  EmbeddingInitialisation Initialisation = EmbeddingInitialisation::Smooth;
+  EmbeddingInitialization Initialization = EmbeddingInitialization::Smooth;
   /// Amplitude of the initial field relative to the largest bounding-box extent (<= 0: default,
   /// 0.2 for Smooth and 1e-3 for Random).
   double InitialAmplitude = 0.0;
@@ -92,7 +92,7 @@ struct EmbeddingResult
 /**
  * Computes the self-intersection free high-d embedding of a simplicial mesh equipped with a
  * per-vertex metric (paper Alg. 1): the first m coordinates stay the input coordinates; the
- * TargetDim - m free ones minimise E_total = sum_j w_j |T_j - V_j A_j|_F^2 + Mu E_reg by
+ * TargetDim - m free ones minimize E_total = sum_j w_j |T_j - V_j A_j|_F^2 + Mu E_reg by
  * local (polar decomposition per element) / global (one sparse Cholesky factorisation, one
  * multi-right-hand-side solve per iteration) steps.
  *

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // ReferenceEmbedding: exact isometric embeddings of the analytic presets whose metric depends on
 // one coordinate only, to tell how much of a mesh's quality loss comes from the embedding solver
 // and how much from sampling / the dual mesh / the quality measure (not in the paper).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // AnalyticMetrics: the closed-form metric fields of the paper's experiments (Fig. 4, §6.3-6.5,
 // Tab. 5), rebuilt so that the embedding can be checked against the paper's numbers.
 #ifndef av_AnalyticMetrics_h
@@ -31,8 +32,8 @@ namespace av
  *   direction u = (x / r, y / r, 0), r = sqrt(x^2 + y^2) (cylindrical rotation field).
  * - SphereCylindrical: unit ball, u = (x / r, y / r, 0), S = 1 + 4 r (the paper gives only
  *   S in [1, 5]; on the axis r = 0 the metric is the identity, so u is irrelevant there).
- * - SphereCosine: unit ball, S = 10 along u = normalise(2 cos 4x, 1, 0); 1 along
- *   normalise(1, -2 cos 4x, 0) and along z (verbatim).
+ * - SphereCosine: unit ball, S = 10 along u = normalize(2 cos 4x, 1, 0); 1 along
+ *   normalize(1, -2 cos 4x, 0) and along z (verbatim).
  */
 enum class AnalyticPreset
 {

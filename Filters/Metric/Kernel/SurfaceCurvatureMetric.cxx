@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "SurfaceCurvatureMetric.h"
 
 #include "MeshTopology.h"
@@ -217,7 +218,7 @@ void PrincipalCurvatures(const SimplexMesh& s,
         const double s1 = std::sqrt(std::max(std::abs(e.Values[small]), r.CurvatureFloor));
         const double s2 = std::sqrt(std::max(std::abs(e.Values[large]), r.CurvatureFloor));
         stretch[i] = Eigen::Vector2d(s1, s2);
-        // Umbilic points have arbitrary directions: let anisotropic neighbours decide.
+        // Umbilic points have arbitrary directions: let anisotropic neighbors decide.
         const double confidence = (s2 - s1) / (s2 + s1) + 1e-6;
         lineField[i] = confidence * vmax * vmax.transpose();
       }

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // SurfaceCurvatureMetric: the curvature-adapted surface metric of the paper (Eq. 19) from a
 // triangle surface alone. VTK-free.
 #ifndef av_SurfaceCurvatureMetric_h

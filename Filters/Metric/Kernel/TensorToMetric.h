@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // TensorToMetric: turns a physical tensor field (stress, strain rate, diffusion, ...) into a
 // symmetric positive definite metric field usable by the embedding (paper §6.4, Eq. 20).
 // VTK-free.
@@ -40,7 +41,7 @@ struct TensorToMetricOptions
   /// Cap on s_max / s_min per point (the smaller stretches are raised); 0 = no cap [25].
   double MaximumAnisotropy = 25.0;
   /// Log-Euclidean Laplacian smoothing: iterations of log(M_i) <- (log(M_i) + mean over the
-  /// neighbours of log(M_j)) / 2. Needs the edges argument. 0 = off [0].
+  /// neighbors of log(M_j)) / 2. Needs the edges argument. 0 = off [0].
   int SmoothingIterations = 0;
   /// 3, or 2 for a flat 2D domain: only XX, YY, XY are read and written [3].
   int Dimension = 3;
@@ -60,7 +61,7 @@ struct TensorToMetricResult
   double MinStretch = 0.0;         ///< range of StretchRatio
   double MaxStretch = 0.0;
   /// Largest relative asymmetry |T - T^T|_F / (2 |T|_F) of the input (9-component input only;
-  /// the tensor was symmetrised (T + T^T) / 2). Report it when it is not round-off.
+  /// the tensor was symmetrized (T + T^T) / 2). Report it when it is not round-off.
   double MaxAsymmetry = 0.0;
   std::size_t NumNegative = 0; ///< tuples with at least one negative eigenvalue
   std::size_t NumClamped = 0;  ///< tuples where an eigenvalue was raised to the floor
@@ -74,7 +75,7 @@ struct TensorToMetricResult
  * non-symmetric) or 6 (symmetric, VTK order XX, YY, ZZ, XY, YZ, XZ). The tuples may be per
  * point or per cell; edges (flat pairs of tuple ids, e.g. UniqueEdges(mesh) for point data)
  * are only used by the smoothing.
- * Steps: symmetrise, eigen-decompose, f(lambda), floor, interpret, cap the anisotropy, smooth
+ * Steps: symmetrize, eigen-decompose, f(lambda), floor, interpret, cap the anisotropy, smooth
  * (log-Euclidean), global scale.
  * Throws InputError on: empty input, numComponents not 6/9, NaN/Inf values, an all-zero
  * field, invalid options, edges out of range, smoothing without edges.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // MeshQuality: the anisotropic mesh quality measures of paper §5.2 (plus the UGAWG
 // unit-edge-length ratio), VTK-free.
 #ifndef av_MeshQuality_h
@@ -25,9 +26,9 @@ struct MeshQualitySummary
   double PercentBad = 0.0;        ///< 100 * NumBad / NumCells
   std::size_t NumInverted = 0;    ///< cells with signed measure <= 0 in input space
   std::size_t NumEdges = 0;       ///< unique edges
-  /// Median of the metric edge lengths before normalisation (the global scale removed).
+  /// Median of the metric edge lengths before normalization (the global scale removed).
   double MedianEdgeLength = 0.0;
-  /// % of unique edges with normalised metric length in [1/sqrt2, sqrt2] (UGAWG range).
+  /// % of unique edges with normalized metric length in [1/sqrt2, sqrt2] (UGAWG range).
   double PercentEdgesInUnitRange = 0.0;
   double HistogramBinWidth = 5.0;           ///< degrees
   std::vector<std::size_t> AngleHistogram;  ///< counts of per-cell min angles, bins [0,90)
@@ -40,7 +41,7 @@ struct MeshQualityResult
   std::vector<double> G;                ///< quality G per cell after the metric mapping
   std::vector<double> MinAngle;         ///< min angle / min dihedral angle per cell, degrees
   std::vector<std::uint8_t> Inverted;   ///< 1 where the signed measure in input space <= 0
-  std::vector<double> EdgeLengths;      ///< normalised metric length per unique edge
+  std::vector<double> EdgeLengths;      ///< normalized metric length per unique edge
   std::vector<std::int32_t> Edges;      ///< unique edges, 2 point ids each (sorted pairs)
 };
 

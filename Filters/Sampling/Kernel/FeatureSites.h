@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // FeatureSites: initial particles on the sharp features of an embedded mesh (one at each
 // corner, evenly spaced ones along the feature lines), VTK-free. Paper §4.1: "constrain the
 // movement of the particles along the feature edges or fix the feature corners".

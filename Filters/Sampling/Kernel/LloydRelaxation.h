@@ -1,6 +1,7 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // LloydRelaxation: constrained centroidal Voronoi (Lloyd) steps of sites on an embedded
-// simplicial mesh. Not in the paper (§4.1 stops after the particle optimisation): an optional
-// post-processing that regularises the sites and so the restricted Delaunay mesh.
+// simplicial mesh. Not in the paper (§4.1 stops after the particle optimization): an optional
+// post-processing that regularizes the sites and so the restricted Delaunay mesh.
 #ifndef av_LloydRelaxation_h
 #define av_LloydRelaxation_h
 

@@ -60,9 +60,9 @@ public:
     else
       res.Energy.push_back(Energy.Evaluate(
         res.Sites.Coords, res.Sites.CellIds, res.Sites.Bary, res.FeatureEdge, nullptr));
-    res.MeanNeighbours = Lists.MeanNeighbors(res.Sites.Coords);
+    res.MeanNeighbors = Lists.MeanNeighbors(res.Sites.Coords);
     res.EnergyEvaluations = Energy.Evaluations();
-    res.NeighbourRebuilds = Lists.OuterBuilds();
+    res.NeighborRebuilds = Lists.OuterBuilds();
     if (opt.Progress)
       opt.Progress(1.0);
   }
@@ -74,8 +74,8 @@ private:
     // Skins tuned on cube2 (5000 sites): a thin inner skin keeps the energy loops short
     // (the inner lists are rebuilt most iterations, cheaply), the outer one makes grid
     // builds rare (about one in 9 evaluations).
-    Energy.SetKernel(sigma, opt.NeighbourCutoff * sigma);
-    Lists.SetRadii(opt.NeighbourCutoff * sigma, 0.5 * sigma, 2.0 * sigma);
+    Energy.SetKernel(sigma, opt.NeighborCutoff * sigma);
+    Lists.SetRadii(opt.NeighborCutoff * sigma, 0.5 * sigma, 2.0 * sigma);
   }
 
   MeshParticles<D, K> Particles;

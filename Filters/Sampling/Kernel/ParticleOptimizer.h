@@ -16,7 +16,7 @@ namespace sampling
 /**
  * Runs opt.WarmupIterations projected L-BFGS iterations at the warm-up kernel, then
  * opt.Iterations at res.Sigma, on res.Sites (with res.FeatureKind / FeatureEdge, moved in
- * place), and fills the energy histories, iteration and evaluation counts, MeanNeighbours
+ * place), and fills the energy histories, iteration and evaluation counts, MeanNeighbors
  * and Aborted of `res`. `features`: the sharp features the line sites follow (nullptr when
  * there are none). Dispatches once on the embedding dimension (compiled for 2-6 and 8, a
  * runtime-size fallback otherwise) and the simplex dimension.

@@ -62,15 +62,15 @@ void CheckOptions(const SimplexMesh& mesh, const ParticleSamplerOptions& opt)
       "); refine the input mesh or ask for fewer sites");
   if (opt.Iterations < 0 || opt.WarmupIterations < 0 || !(opt.KernelWidthFactor > 0.0) ||
     !std::isfinite(opt.KernelWidthFactor) || !(opt.WarmupKernelWidthFactor > 0.0) ||
-    !std::isfinite(opt.WarmupKernelWidthFactor) || !(opt.NeighbourCutoff > 0.0) ||
-    !std::isfinite(opt.NeighbourCutoff) || opt.History < 1 || opt.MaxThreads < 0 ||
+    !std::isfinite(opt.WarmupKernelWidthFactor) || !(opt.NeighborCutoff > 0.0) ||
+    !std::isfinite(opt.NeighborCutoff) || opt.History < 1 || opt.MaxThreads < 0 ||
     opt.InitialCandidates < 1 || !std::isfinite(opt.FeatureAngle) || !(opt.FeatureAngle > 0.0) ||
     !std::isfinite(opt.FeatureSpacingFactor) || opt.FeatureSpacingFactor < 0.0)
     throw InputError("SampleParticles: Iterations >= 0, WarmupIterations >= 0, History >= 1, "
                      "InitialCandidates >= 1, MaxThreads >= 0, FeatureAngle > 0, "
                      "FeatureSpacingFactor >= 0 and a positive, finite "
                      "KernelWidthFactor, "
-                     "WarmupKernelWidthFactor and NeighbourCutoff are required");
+                     "WarmupKernelWidthFactor and NeighborCutoff are required");
 }
 
 /// Empty result for n sites in R^dim (zero coordinates, all sites free).

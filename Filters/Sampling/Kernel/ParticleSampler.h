@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // ParticleSampler: isotropic Gaussian-repulsion particle sampling on the embedded
 // surface / volume (paper §4.1), VTK-free.
 #ifndef av_ParticleSampler_h
@@ -23,7 +24,7 @@ struct ParticleSamplerOptions
   int Iterations = 150;
   std::uint64_t Seed = 1;        ///< seeds the initial sampling; same seed -> same output
   double KernelWidthFactor = 0.3; ///< sigma = factor * (|embedded mesh| / n)^{1/k}
-  double NeighbourCutoff = 5.0;  ///< pairs farther than this many sigma are ignored
+  double NeighborCutoff = 5.0;  ///< pairs farther than this many sigma are ignored
   int History = 7;               ///< L-BFGS memory (pairs of vectors)
   int MaxThreads = 0;            ///< 0: all cores; the result does not depend on it
   /// Iterations at WarmupKernelWidthFactor before the Iterations at KernelWidthFactor (not
@@ -49,7 +50,7 @@ struct ParticleSamplerOptions
   bool PreserveSharpFeatures = true;
   double FeatureAngle = 30.0; ///< degrees, in (0, 180]; 180 = no features
   /// The feature lines get one particle per FeatureSpacingFactor * (|embedded mesh| / n)^{1/k}
-  /// of embedded length (1.26 = 2^{1/3}: the edge of the body-centred cubic cell holding two
+  /// of embedded length (1.26 = 2^{1/3}: the edge of the body-centered cubic cell holding two
   /// sites of volume |mesh| / n each; 1.075 for triangles: the hexagonal spacing).
   double FeatureSpacingFactor = 0.0; ///< 0: 1.26 for tets, 1.075 for triangles
   /// Called once per iteration with the fraction done in [0,1]; return false to abort.
@@ -76,9 +77,9 @@ struct ParticleSamplerResult
   int WarmupIterationsDone = 0;
   double Sigma = 0.0;          ///< the kernel width of the (final) Iterations
   double EmbeddedMeasure = 0.0; ///< |embedded mesh|: area (triangles) or volume (tets)
-  double MeanNeighbours = 0.0; ///< average neighbour count within the cutoff at the end
+  double MeanNeighbors = 0.0; ///< average neighbor count within the cutoff at the end
   int EnergyEvaluations = 0;   ///< energy evaluations (line-search trials included)
-  int NeighbourRebuilds = 0;   ///< builds of the outer neighbour lists (grid)
+  int NeighborRebuilds = 0;   ///< builds of the outer neighbor lists (grid)
   int IterationsDone = 0;
   bool Aborted = false;        ///< the progress callback asked to stop
   double Seconds = 0.0;        ///< wall time of the whole call
@@ -87,16 +88,16 @@ struct ParticleSamplerResult
 /**
  * Samples NumSites particles on the embedded mesh (the cells of `mesh` with the vertex
  * positions of `embedding`, triangles or tets in R^Dim, Dim 2..20) and spreads them
- * isotropically by minimising E = sum_{p<q} [exp(-|x_p - x_q|^2 / (4 sigma^2)) - exp(-c^2/4)]
- * over pairs closer than the cutoff c * sigma (c = NeighbourCutoff). The constant shift
- * makes E continuous, so it is a function of the positions alone; neighbours come from
+ * isotropically by minimizing E = sum_{p<q} [exp(-|x_p - x_q|^2 / (4 sigma^2)) - exp(-c^2/4)]
+ * over pairs closer than the cutoff c * sigma (c = NeighborCutoff). The constant shift
+ * makes E continuous, so it is a function of the positions alone; neighbors come from
  * two-level Verlet lists: outer lists of radius c sigma + 2.5 sigma built on a grid over the
  * particles' three principal coordinates (a projection only shortens distances, so no pair
  * is missed), inner lists of radius c sigma + sigma / 2 re-filtered from them; each level is
  * rebuilt when the particles' moves could let a pair closer than c sigma escape it.
  *
  * Initial particles are drawn with probability proportional to the embedded cell measure
- * and uniformly inside the cell. The minimiser is a projected L-BFGS: the gradient of every
+ * and uniformly inside the cell. The minimizer is a projected L-BFGS: the gradient of every
  * particle is projected onto the tangent space of its cell (and onto the boundary face when
  * it pushes outward), a step is walked in barycentric coordinates across cell faces, and a
  * particle that reaches the mesh boundary slides along it; a backtracking (Armijo) line

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // SharpFeatures: feature lines and corners of a simplicial mesh (paper §4.1, "Boundary and
 // Sharp Feature Handling"), VTK-free. The sampler keeps particles on the lines and fixes one at
 // each corner, so that the dual mesh reproduces the domain's edges and corners.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Walk of a site over an embedded simplicial mesh.
 #include "SiteWalk.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // RestrictedVoronoi: the Voronoi diagram of sites in R^Dim restricted to an embedded simplicial
 // mesh (paper §4.2). Every element is clipped in its own barycentric coordinates, so the work
 // per clip is k-dimensional whatever Dim is.
@@ -32,7 +33,7 @@ struct RestrictedVoronoiOptions
   /// Per-site cells: drop internal element faces and sort pieces by site (then by element).
   /// What renders a Voronoi cell with its bisector and boundary faces.
   bool MergeBySite = false;
-  /// Nearest neighbours prefetched per site (0: automatic). More are fetched on demand.
+  /// Nearest neighbors prefetched per site (0: automatic). More are fetched on demand.
   int NumNeighbors = 0;
   /// Clip only elements [ElementBegin, ElementEnd) (ElementEnd < 0: up to the last element)
   /// against all sites: one process's share of a distributed run. The pieces of the range are

@@ -19,8 +19,8 @@ namespace rvd
 /**
  * Clips elements first..last-1 (or list[first..last-1] when `list` is not null), block b of
  * `blockSize` of them into chunks[b] (chunks.size() blocks). Builds the site kd-tree and the
- * neighbour lists, then dispatches once on (SimplexDim, Dim) into code compiled for that
- * dimension (Dim 2, 3, 4, 5, 6, 8; any other at run time). `adjacency`: element neighbours
+ * neighbor lists, then dispatches once on (SimplexDim, Dim) into code compiled for that
+ * dimension (Dim 2, 3, 4, 5, 6, 8; any other at run time). `adjacency`: element neighbors
  * (only their sign, on the domain boundary or not, matters without ComputeGeometry).
  */
 void ClipElementBlocks(const SimplexMesh& mesh, const Embedding& embedding, const SiteSet& sites,

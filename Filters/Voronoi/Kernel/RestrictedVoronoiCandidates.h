@@ -47,7 +47,7 @@ public:
    * U = max_a |v_a - p_n| (the distance to a fixed site is convex, so its maximum is at a
    * vertex). A site farther than U + Rho from the centroid is farther than U from every x: it
    * owns nothing here, and its bisector with an owner cannot cut that owner's piece. The set
-   * is taken from n's neighbour list (|p_j - p_n| <= |c - p_n| + U + Rho), or a kd-tree query
+   * is taken from n's neighbor list (|p_j - p_n| <= |c - p_n| + U + Rho), or a kd-tree query
    * when the list is too short, and sorted by (distance to the centroid, id): it is the same
    * whatever path found it, so the output does not depend on the previous element or the
    * thread. C.Cand[0] is n.
@@ -91,7 +91,7 @@ private:
     return std::sqrt(Dist2<DIM>(F.Centroid.data(), F.SiteP(j), F.Dim));
   }
 
-  // C.CandOrder = n and the sites within `bound` of the centroid, from n's neighbour list or,
+  // C.CandOrder = n and the sites within `bound` of the centroid, from n's neighbor list or,
   // when it is too short, a kd-tree radius query.
   void CollectWithin(Context<K>& C, std::int32_t n, double bound) const
   {
@@ -154,7 +154,7 @@ private:
   }
 
   // The site nearest to the centroid (ties: lowest id). Greedy walk on the prefetched
-  // neighbour lists from the previous element's nearest site: a site j closer to the centroid
+  // neighbor lists from the previous element's nearest site: a site j closer to the centroid
   // than s satisfies |p_j - p_s| <= 2 |c - p_s|, so when s's list covers that radius and holds
   // no closer site, s is the nearest. Otherwise (list too short) a kd-tree radius query decides.
   std::int32_t NearestSite(Context<K>& C) const

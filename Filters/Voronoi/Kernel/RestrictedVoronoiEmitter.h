@@ -136,7 +136,7 @@ private:
       out.BoundaryDualFaces.insert(out.BoundaryDualFaces.end(), s.begin(), s.begin() + ns);
   }
 
-  // What the plane of a face / edge is, and its neighbour (site, element or -1).
+  // What the plane of a face / edge is, and its neighbor (site, element or -1).
   void PlaneKind(std::int32_t pl, RVDFaceKind& kind, std::int32_t& nbr) const
   {
     if (!IsFacet(pl))

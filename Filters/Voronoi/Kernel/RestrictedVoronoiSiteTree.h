@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Internal to the Voronoi kernel: the kd-tree over the sites (nanoflann) and the prefetched
-// nearest-neighbour lists of every site.
+// nearest-neighbor lists of every site.
 #ifndef av_RestrictedVoronoiSiteTree_h
 #define av_RestrictedVoronoiSiteTree_h
 

@@ -69,7 +69,7 @@ public:
         continue;
       }
       any = true;
-      // Neighbours across bisector faces / edges also have pieces here.
+      // Neighbors across bisector faces / edges also have pieces here.
       const std::vector<std::int32_t>& planes = (K == 2) ? C.EdgePlane : C.FacePlane;
       for (std::int32_t pl : planes)
         if (!IsFacet(pl))

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Tests the CalculiX .frd reader on a hand-made file of two 20-node hexahedra (fixed columns,
 // glued numbers, node order, tensor/vector component order, several steps), its errors, a
 // fuzz loop, and, when the Debian package calculix-cgx-examples is installed, the real

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Tests the Medit .mesh/.sol reader and writer: content, tensor order, exact round trip,
 // error messages with line numbers, and a fuzz loop (truncations / byte flips).
 #include "MeditIO.h"

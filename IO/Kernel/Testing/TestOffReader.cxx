@@ -1,4 +1,5 @@
-// OFF parser: content of a small file (quad fanned into two triangles, comments, colours),
+// SPDX-License-Identifier: BSD-3-Clause
+// OFF parser: content of a small file (quad fanned into two triangles, comments, colors),
 // and every malformed variant rejected with the line number, never a crash.
 #include "OffReader.h"
 #include "AnisoTestChecks.h"

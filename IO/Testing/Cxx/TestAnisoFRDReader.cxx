@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // vtkAnisoFRDReader on a hand-made one-element he20 file (node order, step selection,
 // tensor/vector arrays, errors) and, when installed (Debian calculix-cgx-examples), on the
 // real CalculiX compressor example, read at run time and never copied into the repository.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // vtkAnisoMeditWriter -> vtkAnisoMeditReader round trip: points, tets, refs and a tensor
 // metric come back bit for bit; the .sol holds Medit's tensor order; errors do not crash.
 #include "vtkAnisoTestUtilities.h" // CHECK, EventCounter, Result

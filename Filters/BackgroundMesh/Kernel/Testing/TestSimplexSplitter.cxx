@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // SimplexSplitter: exact volume, conformity (every interior face shared by exactly two tets,
 // boundary area exact) on hex blocks with randomly permuted point ids, mixed
 // hex/wedge/pyramid columns, voxels/pixels, quadratic cells, interpolation weights, errors.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Kuhn tet grid / triangle grid: positive orientation, exact volume partition, conformity
 // (every interior face shared by two cells), edge and boundary counts.
 #include "MeshTopology.h"

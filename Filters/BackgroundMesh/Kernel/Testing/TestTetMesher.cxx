@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // TetMesher: validity (orientation, volume, closed boundary), target counts, error handling.
 #include "SurfaceGenerators.h"
 #include "TetMesher.h"

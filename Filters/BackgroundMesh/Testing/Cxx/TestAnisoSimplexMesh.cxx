@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Tests of vtkAnisoSimplexMesh on a sheared block of hexahedra with one quadratic hexahedron:
 // all output cells are positive tetrahedra, the volume is kept, linear point fields are
 // interpolated exactly at the added points, cell data follows the parent, the mesh is
@@ -172,7 +173,7 @@ void CheckPositiveVolume(vtkUnstructuredGrid* out, int nx, int ny, int nz)
   AV_CHECK_NEAR(volume, DetA() * nx * ny * nz, 1e-12);
 }
 
-// Point data: linear fields exact at every point (added centres included); "Ref" maps back.
+// Point data: linear fields exact at every point (added centers included); "Ref" maps back.
 void CheckPointData(vtkUnstructuredGrid* out, vtkUnstructuredGrid* block, vtkIdType numHex)
 {
   vtkDataArray* ref = out->GetPointData()->GetArray("Ref");
@@ -180,7 +181,7 @@ void CheckPointData(vtkUnstructuredGrid* out, vtkUnstructuredGrid* block, vtkIdT
   vtkDataArray* ids = out->GetPointData()->GetArray("Id");
   AV_CHECK(ref && field && ids);
   double maxErr = 0;
-  int centres = 0;
+  int centers = 0;
   for (vtkIdType i = 0; i < out->GetNumberOfPoints(); ++i)
   {
     double r[3], x[3];
@@ -190,9 +191,9 @@ void CheckPointData(vtkUnstructuredGrid* out, vtkUnstructuredGrid* block, vtkIdT
       maxErr =
         std::max(maxErr, std::abs(x[d] - (A[d][0] * r[0] + A[d][1] * r[1] + A[d][2] * r[2])));
     maxErr = std::max(maxErr, std::abs(field->GetTuple1(i) - Field(r)));
-    const bool isCentre = std::abs(r[0] - std::floor(r[0]) - 0.5) < 1e-12;
-    centres += isCentre;
-    if (!isCentre) // a kept input point keeps its "Id" and coordinates
+    const bool isCenter = std::abs(r[0] - std::floor(r[0]) - 0.5) < 1e-12;
+    centers += isCenter;
+    if (!isCenter) // a kept input point keeps its "Id" and coordinates
     {
       const vtkIdType id = static_cast<vtkIdType>(ids->GetTuple1(i));
       double y[3];
@@ -202,7 +203,7 @@ void CheckPointData(vtkUnstructuredGrid* out, vtkUnstructuredGrid* block, vtkIdT
     }
   }
   AV_CHECK(maxErr < 1e-12);
-  AV_CHECK(centres == numHex);
+  AV_CHECK(centers == numHex);
 }
 
 // Cell data from the parent cell.
@@ -321,7 +322,7 @@ void TestHexBlock(EventCounter* events)
   AV_CHECK(out->GetNumberOfCells() == 12 * numHex);
   AV_CHECK(filter->GetNumberOfSplitCells() == numHex);
   AV_CHECK(filter->GetNumberOfAddedPoints() == numHex);
-  // Corners + centres; the 12 mid-edge nodes of the quadratic cell are dropped.
+  // Corners + centers; the 12 mid-edge nodes of the quadratic cell are dropped.
   AV_CHECK(out->GetNumberOfPoints() == inPoints - 12 + numHex);
   auto* summary =
     vtkStringArray::SafeDownCast(out->GetFieldData()->GetAbstractArray("SplitSummary"));

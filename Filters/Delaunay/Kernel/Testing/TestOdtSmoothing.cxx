@@ -1,6 +1,7 @@
-// Tests of SmoothSitesOdt: one ODT step regularises the restricted Delaunay mesh of random
+// SPDX-License-Identifier: BSD-3-Clause
+// Tests of SmoothSitesOdt: one ODT step regularizes the restricted Delaunay mesh of random
 // sites, moves each free site exactly to the measure-weighted mean of its star's
-// circumcentres, keeps boundary sites and stays on the mesh; bad input throws.
+// circumcenters, keeps boundary sites and stays on the mesh; bad input throws.
 #include "OdtSmoothing.h"
 #include "RestrictedDelaunayRefinement.h"
 #include "StructuredMeshes.h"
@@ -44,8 +45,8 @@ double MeanQuality(const av::RestrictedDelaunayMesh& rdt, const av::SiteSet& s)
   return total / static_cast<double>(n);
 }
 
-// Reference targets: measure-weighted mean of circumcentres, computed independently
-// (circumcentre as the point of the simplex's hull equidistant from its vertices, by a
+// Reference targets: measure-weighted mean of circumcenters, computed independently
+// (circumcenter as the point of the simplex's hull equidistant from its vertices, by a
 // least-squares solve of the bisector equations): the sums acc (dim per site) and weights w.
 void ReferenceOdtSums(const av::RestrictedDelaunayMesh& rdt, const av::SiteSet& sites, int dim,
   std::vector<double>& acc, std::vector<double>& w)
@@ -130,7 +131,7 @@ void CheckOdt(const av::SimplexMesh& mesh, int dim, std::size_t numSites)
   // Sites stay on the mesh: valid barycentrics whose combination is the coordinates.
   av::ValidateRestrictedVoronoiInput(mesh, emb, r.Sites);
 
-  // The step regularises the mesh of the moved sites.
+  // The step regularizes the mesh of the moved sites.
   const av::RestrictedVoronoiDiagram rvd2 = av::ComputeRestrictedVoronoi(mesh, emb, r.Sites, vo);
   const av::RestrictedDelaunayMesh rdt2 = av::ComputeRestrictedDelaunay(mesh, emb, r.Sites, rvd2);
   const double after = MeanQuality(rdt2, r.Sites);

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Restricted Delaunay mesh: equals the brute-force Delaunay triangulation restricted to the
 // domain (identity embedding, 2D and 3D), manifold and never inverted for well-spread sites,
 // and rejects a Voronoi diagram computed from other inputs.
@@ -36,7 +37,7 @@ av::SiteSet Lattice(const av::SimplexMesh& m, const av::Embedding& e, int n, uns
   return s;
 }
 
-// Brute-force Delaunay simplices whose circumcentre lies strictly inside [0,1]^k.
+// Brute-force Delaunay simplices whose circumcenter lies strictly inside [0,1]^k.
 std::set<Key> BruteRestrictedDelaunay(const av::SiteSet& s, int k)
 {
   const int n = static_cast<int>(s.NumSites());
@@ -47,7 +48,7 @@ std::set<Key> BruteRestrictedDelaunay(const av::SiteSet& s, int k)
   std::function<void(int, int)> rec = [&](int start, int depth) {
     if (depth == k + 1)
     {
-      // Circumcentre c: 2 (p_a - p_0) . c = |p_a|^2 - |p_0|^2.
+      // Circumcenter c: 2 (p_a - p_0) . c = |p_a|^2 - |p_0|^2.
       double A[3][3], b[3];
       for (int a = 0; a < k; ++a)
       {
@@ -200,7 +201,7 @@ void TestBadInput()
   AV_CHECK_THROWS(av::ComputeRestrictedDelaunay(m, e, none, rvd));
 }
 
-// Four sites on a square of the boundary face z = 0, one lifted by 1e-9: their circumcentre is
+// Four sites on a square of the boundary face z = 0, one lifted by 1e-9: their circumcenter is
 // 5e-10 inside the cube, so the restricted Delaunay mesh has a flat tet there. It must be
 // flagged (as inverted: the repair then breaks it up), the lattice's other tets must not.
 void TestFlatBoundaryTet()

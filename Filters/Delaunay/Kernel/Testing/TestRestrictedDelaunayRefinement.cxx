@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Repair of the restricted Delaunay mesh by Voronoi-vertex insertion: a wavy 8D embedding with
 // few sites has inverted dual elements; the repair must remove all of them (checked in input
 // space, independently of the kernel's flags), keep the input sites first and unchanged, insert
@@ -124,7 +125,7 @@ void CheckRepaired(const av::SimplexMesh& m, const av::Embedding& e, const av::S
 
 void TestVoronoiVertex()
 {
-  // Identity embedding: the dual Voronoi vertex is the circumcentre.
+  // Identity embedding: the dual Voronoi vertex is the circumcenter.
   const av::SimplexMesh m = TriGrid(9, 9, 0, 0, 1, 1);
   const av::Embedding e = MakeEmbedding(m, 2, nullptr);
   av::SiteSet s;
@@ -138,9 +139,9 @@ void TestVoronoiVertex()
   AV_CHECK_NEAR(r2, 0.08, 1e-12);
   for (int a = 0; a < 4; ++a)
     AV_CHECK_NEAR(b[a], s.Bary[12 + a], 1e-12);
-  // An element that does not hold the circumcentre is refused.
+  // An element that does not hold the circumcenter is refused.
   AV_CHECK(!av::ComputeDualVoronoiVertex(m, e, s, ids, s.CellIds[0], b, r2));
-  // Collinear sites: no circumcentre.
+  // Collinear sites: no circumcenter.
   av::SiteSet c;
   c.Dim = 2;
   const double y[3][2] = { { 0.1, 0.1 }, { 0.3, 0.3 }, { 0.5, 0.5 } };

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Tests of PerturbSliverSites / MinDihedralAngle: a sliver's sites move apart along its flat
 // direction (the tet gets fatter), moved sites stay on the mesh, other sites are untouched.
 #include "SliverPerturbation.h"

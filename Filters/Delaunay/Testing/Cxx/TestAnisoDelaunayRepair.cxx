@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // vtkAnisoRestrictedDelaunay's repair of inverted elements: a unit square folded in an 8D
 // embedding with 60 random sites has inverted triangles. With RepairInverted off they are
 // reported; with it on none is left (checked by the input-space signed areas, not only the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // §5.1 relative edge length error: exact values on hand-made embeddings.
 #include "AnalyticMetrics.h"
 #include "EdgeLengthError.h"
@@ -62,7 +63,7 @@ int TestEdgeLengthError(int, char*[])
   }
   AV_CHECK(sawY);
 
-  // The exact Gaussian embedding (x, y, h(x, y)) has only a discretisation error.
+  // The exact Gaussian embedding (x, y, h(x, y)) has only a discretization error.
   const AnalyticDomain d = RecommendedDomain(AnalyticPreset::Gaussian2D);
   const SimplexMesh grid = MakeTriangleGrid(81, 81, d.Lo, d.Hi);
   const MetricField g = EvaluateAnalyticMetric(AnalyticPreset::Gaussian2D, grid);

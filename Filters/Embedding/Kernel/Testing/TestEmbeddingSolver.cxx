@@ -115,7 +115,7 @@ void CheckPlainRandomWeighted(const SimplexMesh& cube, const MetricField& cubeMe
   EmbeddingOptions o;
   o.Iterations = 15;
   o.AndersonWindow = 0;
-  o.Initialisation = EmbeddingInitialisation::Random;
+  o.Initialization = EmbeddingInitialization::Random;
   o.ElementMeasureWeighting = true;
   o.TargetDim = 5;
   const EmbeddingResult r = ComputeEmbedding(cube, cubeMetric, o);

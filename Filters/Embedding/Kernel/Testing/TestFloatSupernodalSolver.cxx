@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // FloatSupernodalSolver against CHOLMOD's double-precision solve on a squared-Laplacian grid
 // system like the embedding's global step, with the subtree split forced coarse and fine.
 #include "FloatSupernodalSolver.h"
@@ -17,7 +18,7 @@ struct Cholesky : Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen
   const cholmod_factor* Factor() const { return this->m_cholmodFactor; }
 };
 
-/// Graph Laplacian of an nx x ny x nz grid (26 neighbours) plus mu LᵀL, first vertex pinned
+/// Graph Laplacian of an nx x ny x nz grid (26 neighbors) plus mu LᵀL, first vertex pinned
 /// (the embedding's K has the same two-ring structure).
 Eigen::SparseMatrix<double> GridSystem(int nx, int ny, int nz, double mu)
 {

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Reference embeddings: the pull-back of the map (central differences at sample points) equals
 // the analytic metric for every supported preset; Cube1's height matches its closed form;
 // Cube3's height across the cusp matches an independent fine quadrature; the piecewise-linear

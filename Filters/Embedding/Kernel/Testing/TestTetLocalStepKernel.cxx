@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // TetLocalStepKernel (four tets per SIMD vector) against a direct reference: T from the
 // embedded vertices, polar factor of B = T A by SVD, R = V A, energy w‖T − R‖², C = w G R_fᵀ.
 #include "TetLocalStepKernel.h"

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """vtkAnisoEmbedding on bad input: every case must fail RequestData with an error message a
 user can act on (caught here through an ErrorEvent observer), never crash, and leave the
 input untouched. Also: empty input gives an empty output without error."""

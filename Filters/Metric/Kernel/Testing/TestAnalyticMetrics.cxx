@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Analytic presets: values at sample points against the paper's formulas (independently
 // re-typed here), the Gaussian metric against finite differences of its height field, stretch
 // ranges, name lookup and dimension checks.

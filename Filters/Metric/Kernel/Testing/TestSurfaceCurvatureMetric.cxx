@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // SurfaceCurvatureMetric: principal curvatures and directions on a cylinder (known: 1/r around,
 // 0 along the axis), isotropy on a sphere, a flat patch, Eq. 19 structure, errors.
 #include "MetricAlgebra.h"

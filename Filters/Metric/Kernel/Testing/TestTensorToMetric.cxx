@@ -1,5 +1,6 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // TensorToMetric: exact metrics for known tensors in every mode, anisotropy cap, global scale,
-// symmetrisation report, 2D, log-Euclidean smoothing, and error handling.
+// symmetrization report, 2D, log-Euclidean smoothing, and error handling.
 #include "MetricAlgebra.h"
 #include "TensorToMetric.h"
 #include "AnisoTestChecks.h"
@@ -104,7 +105,7 @@ void CheckClampNegativeEigenvalueGoesFloor()
   AV_CHECK(r.NumClamped == 1 && r.NumNegative == 1);
 }
 
-// Tensor used as a metric directly; non-symmetric input is symmetrised and reported.
+// Tensor used as a metric directly; non-symmetric input is symmetrized and reported.
 void CheckTensorUsedMetricDirectlyNon()
 {
   const Eigen::Matrix3d R = Rotation(0.3, -0.7, 1.1);
@@ -153,7 +154,7 @@ void CheckLogEuclideanSmoothingOneIteration()
     AV_CHECK(MaxDiff(Eigen::Vector3d(2, 2, 1).asDiagonal().toDenseMatrix(), r.Metric.At(i)) <
       1e-12);
   }
-  // A constant field is a fixed point; an isolated outlier is pulled to its neighbours.
+  // A constant field is a fixed point; an isolated outlier is pulled to its neighbors.
   std::vector<double> chain;
   for (int i = 0; i < 20; ++i)
   {

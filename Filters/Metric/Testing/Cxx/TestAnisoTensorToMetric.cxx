@@ -1,5 +1,6 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Tests of vtkAnisoTensorToMetric: eigen-structure of the produced metric, negative eigenvalues,
-// the global scale, symmetrisation of 9-component input, cell tensors averaged to points,
+// the global scale, symmetrization of 9-component input, cell tensors averaged to points,
 // smoothing along cell edges, 2D detection, errors, and that the input is left unmodified.
 #include "vtkAnisoTensorToMetric.h"
 #include "vtkAnisoTestUtilities.h"
@@ -320,8 +321,8 @@ void TestCellTensors(EventCounter* events)
   }
 }
 
-// Smoothing follows the cell edges: after one iteration an edge neighbour of the perturbed
-// point changes, a face-diagonal neighbour does not.
+// Smoothing follows the cell edges: after one iteration an edge neighbor of the perturbed
+// point changes, a face-diagonal neighbor does not.
 void TestSmoothingEdges(EventCounter* events)
 {
   auto grid = MakeGrid(3, 3, 3);
@@ -330,7 +331,7 @@ void TestSmoothingEdges(EventCounter* events)
   const double id[6] = { 1, 1, 1, 0, 0, 0 };
   const double big[6] = { 4, 4, 4, 0, 0, 0 };
   for (vtkIdType i = 0; i < n; ++i)
-    tensors->SetTypedTuple(i, i == 13 ? big : id); // 13 = the centre point (1, 1, 1)
+    tensors->SetTypedTuple(i, i == 13 ? big : id); // 13 = the center point (1, 1, 1)
   grid->GetPointData()->SetTensors(tensors);
 
   vtkNew<vtkAnisoTensorToMetric> filter;
@@ -344,11 +345,11 @@ void TestSmoothingEdges(EventCounter* events)
   AV_CHECK(filter->GetExecutive()->Update() == 1);
   vtkDataArray* metric =
     vtkDataSet::SafeDownCast(filter->GetOutputDataObject(0))->GetPointData()->GetArray("Metric");
-  const vtkIdType edgeNeighbour = 13 + 1;     // (2, 1, 1)
-  const vtkIdType diagonalNeighbour = 13 + 4; // (2, 2, 1): a face diagonal of a voxel
+  const vtkIdType edgeNeighbor = 13 + 1;     // (2, 1, 1)
+  const vtkIdType diagonalNeighbor = 13 + 4; // (2, 2, 1): a face diagonal of a voxel
   const vtkIdType corner = 0;
-  AV_CHECK(metric->GetComponent(edgeNeighbour, 0) > 1.01);
-  AV_CHECK_NEAR(metric->GetComponent(diagonalNeighbour, 0), 1.0, 1e-12);
+  AV_CHECK(metric->GetComponent(edgeNeighbor, 0) > 1.01);
+  AV_CHECK_NEAR(metric->GetComponent(diagonalNeighbor, 0), 1.0, 1e-12);
   AV_CHECK_NEAR(metric->GetComponent(corner, 0), 1.0, 1e-12);
   AV_CHECK(metric->GetComponent(13, 0) < 3.99);
   AV_CHECK(events->Errors == 0);

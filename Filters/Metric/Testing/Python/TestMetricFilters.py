@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The metric filters from Python (/usr/bin/python3 with ParaView's vtkmodules):
 vtkAnisoTensorToMetric, vtkAnisoSimplexMesh and vtkAnisoCurvatureMetric, chained with
 vtkAnisoAnalyticMetricSource and vtkAnisoEmbedding. Asserts values, not only that it ran."""
@@ -156,14 +157,14 @@ msgs = Messages(splitter)
 check(splitter.GetExecutive().Update() == 1, "simplex mesh ran")
 tet = splitter.GetOutputDataObject(0)
 check(tet.GetNumberOfCells() == 12 * 12, "12 voxels -> 144 tets")
-check(tet.GetNumberOfPoints() == 36 + 12, "36 corners + 12 centres")
+check(tet.GetNumberOfPoints() == 36 + 12, "36 corners + 12 centers")
 check(len(msgs.warnings) == 1 and "12 voxels" in msgs.warnings[0], "split summary: %s" % msgs.warnings)
 check("12 voxels" in tet.GetFieldData().GetAbstractArray("SplitSummary").GetValue(0), "SplitSummary")
 ramp_out = vtk_to_numpy(tet.GetPointData().GetArray("Ramp"))
 check(np.array_equal(ramp_out[:36], np.arange(36.0)), "corner point data kept with its ids")
-# Ramp = i + 4 j + 12 k is linear, so each centre gets the ramp at the centre.
+# Ramp = i + 4 j + 12 k is linear, so each center gets the ramp at the center.
 cp = vtk_to_numpy(tet.GetPoints().GetData())[36:]
-check(np.allclose(ramp_out[36:], cp[:, 0] + 4 * cp[:, 1] + 12 * cp[:, 2]), "centres interpolated")
+check(np.allclose(ramp_out[36:], cp[:, 0] + 4 * cp[:, 1] + 12 * cp[:, 2]), "centers interpolated")
 
 # 4. Curvature metric: sphere (umbilic: KMin = KMax = 1/R, Stretch 1) and cylinder.
 sphere = vtkSphereSource()

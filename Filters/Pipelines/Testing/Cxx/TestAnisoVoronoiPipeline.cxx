@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The 2D chain of the paper (Gaussian2D, §6.2): analytic source -> embedding (3D) -> particle
 // sampler (300 sites) -> restricted Delaunay mesh -> quality. Checks the dual mesh is a valid
 // triangulated disk (no inverted triangle, every interior edge in exactly two triangles, the

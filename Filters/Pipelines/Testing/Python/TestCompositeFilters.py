@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The one-click C++ filters vtkAnisoVoronoiCells / vtkAnisoAnisotropicMesh used directly.
 
 Cube1 (6^3 Kuhn grid, M = diag(S^2, 1, 1), S = 1 + 9x): 100 shrunken cells filling 0.8^3 of

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Checks the §5.2 quality measures on shapes with known answers, including metric mappings
 // that only give G = 1 when A is the averaged per-vertex square root of the metric.
 #include "MeshQuality.h"
@@ -164,7 +165,7 @@ void CheckInvertedTetTwoVerticesSwapped()
 }
 
 // Edge-length ratio: a 2x1 rectangle split in two triangles has edges 1,1,2,2,sqrt5;
-// median 2 -> normalised 0.5,0.5,1,1,1.118 -> 60 % in [1/sqrt2, sqrt2].
+// median 2 -> normalized 0.5,0.5,1,1,1.118 -> 60 % in [1/sqrt2, sqrt2].
 void CheckEdgeLengthRatio2x1Rectangle()
 {
   const Eigen::Matrix3d id = Eigen::Matrix3d::Identity();

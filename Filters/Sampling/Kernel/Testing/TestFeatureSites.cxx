@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Feature sites: corners exactly at the cube's corners, evenly spaced sites on its 12 edges,
 // a closed loop, chain continuation and bad input.
 #include "FeatureSites.h"

@@ -1,6 +1,7 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Checks the Lloyd (CVT) relaxation: exact energy / centroids on the identity-embedded unit
 // square and cube, monotone energy and sites on the mesh for random starts (flat and curved
-// embedding), the nearest-neighbour spread dropping, and bad input.
+// embedding), the nearest-neighbor spread dropping, and bad input.
 #include "LloydRelaxation.h"
 #include "ParticleSampler.h"
 #include "StructuredMeshes.h"
@@ -74,7 +75,7 @@ av::SiteSet SitesAt(const av::SimplexMesh& mesh, const av::Embedding& emb,
   return s;
 }
 
-double NearestNeighbourCV(const av::SiteSet& s)
+double NearestNeighborCV(const av::SiteSet& s)
 {
   return av_test::CoefficientOfVariation(av_test::NearestDistances(s, s.Dim));
 }
@@ -183,7 +184,7 @@ int TestLloydRelaxation(int, char*[])
       const av::SiteSet start = av::SampleParticles(mesh, e, so).Sites;
       const av::LloydResult r = av::RelaxSitesLloyd(mesh, e, start, 15);
       const double final = av::ComputeCVTEnergy(mesh, e, r.Sites);
-      const double cv0 = NearestNeighbourCV(start), cv = NearestNeighbourCV(r.Sites);
+      const double cv0 = NearestNeighborCV(start), cv = NearestNeighborCV(r.Sites);
       std::cout << (vol ? "cube" : "square") << (curved ? " curved" : " flat") << ": energy "
                 << r.Energy.front() << " -> " << final << ", NN CV " << cv0 << " -> " << cv
                 << ", mean move " << r.MeanMove.front() << " -> " << r.MeanMove.back()

@@ -156,9 +156,9 @@ int Bench()
   const double cpu = static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
   std::cout << "points " << mesh.NumPoints() << " cells " << mesh.NumCells() << " dim 8 sites "
             << opt.NumSites << "\nembedded volume " << res.EmbeddedMeasure << " sigma "
-            << res.Sigma << " iterations " << res.IterationsDone << " mean neighbours "
-            << res.MeanNeighbours << " energy evaluations " << res.EnergyEvaluations
-            << " list builds " << res.NeighbourRebuilds << "\nenergy " << res.Energy.front() << " -> "
+            << res.Sigma << " iterations " << res.IterationsDone << " mean neighbors "
+            << res.MeanNeighbors << " energy evaluations " << res.EnergyEvaluations
+            << " list builds " << res.NeighborRebuilds << "\nenergy " << res.Energy.front() << " -> "
             << res.Energy.back() << "\nseconds " << res.Seconds << " (cpu " << cpu
             << " s, threads " << opt.MaxThreads << ")" << std::endl;
   CheckOnMesh(mesh, emb, res.Sites);
@@ -225,9 +225,9 @@ void CheckSquareSchedule(const av::SimplexMesh& mesh, const av::Embedding& emb,
   AV_CHECK(worstRandom > worstStrat);
   std::cout << "square: energy " << res.Energy.front() << " -> " << res.Energy.back()
             << " in " << res.IterationsDone << " it, NN CV " << cv0 << " -> " << cv
-            << ", neighbours " << res.MeanNeighbours << ", " << res.Seconds << " s"
+            << ", neighbors " << res.MeanNeighbors << ", " << res.Seconds << " s"
             << std::endl;
-  AV_CHECK_MSG(cv < 0.10, "nearest-neighbour CV " << cv);
+  AV_CHECK_MSG(cv < 0.10, "nearest-neighbor CV " << cv);
   AV_CHECK(cv0 > 0.3);
 }
 
@@ -428,9 +428,9 @@ void CheckCube()
   CheckEnergy(res, 0.5);
   const double cv = CoefficientOfVariation(NearestDistances(res.Sites, 3));
   std::cout << "cube: energy " << res.Energy.front() << " -> " << res.Energy.back() << " in "
-            << res.IterationsDone << " it, NN CV " << cv << ", neighbours "
-            << res.MeanNeighbours << ", " << res.Seconds << " s" << std::endl;
-  AV_CHECK_MSG(cv < 0.15, "nearest-neighbour CV " << cv);
+            << res.IterationsDone << " it, NN CV " << cv << ", neighbors "
+            << res.MeanNeighbors << ", " << res.Seconds << " s" << std::endl;
+  AV_CHECK_MSG(cv < 0.15, "nearest-neighbor CV " << cv);
   CheckCubeFeatures(mesh, emb, opt, res);
   const double h = std::cbrt(1.0 / 400.0);
   for (int axis = 0; axis < 3; ++axis)
@@ -476,7 +476,7 @@ void CheckBoxSurface()
   const double cv = CoefficientOfVariation(NearestDistances(res.Sites, 3));
   std::cout << "box surface: " << res.NumCornerSites << " corner + " << res.NumFeatureLineSites
             << " crease sites, NN CV " << cv << std::endl;
-  AV_CHECK_MSG(cv < 0.15, "nearest-neighbour CV " << cv);
+  AV_CHECK_MSG(cv < 0.15, "nearest-neighbor CV " << cv);
 }
 
 /// Linear anisotropic embedding (x, y, a x): metric diag(1 + a^2, 1) = diag(s^2, 1).
@@ -495,8 +495,8 @@ void CheckAnisotropic()
   CheckEnergy(res, 0.5);
   const double cvEmb = CoefficientOfVariation(NearestDistances(res.Sites, 3));
   AV_CHECK_MSG(cvEmb < 0.12, "embedded NN CV " << cvEmb);
-  // Second moments of the input-space offsets to each site's 6 nearest neighbours in the
-  // embedding: isotropic there (a hexagonal neighbourhood has isotropic second moments
+  // Second moments of the input-space offsets to each site's 6 nearest neighbors in the
+  // embedding: isotropic there (a hexagonal neighborhood has isotropic second moments
   // whatever its orientation), so sum dy^2 / sum dx^2 = s^2 in input space.
   double sx = 0.0, sy = 0.0;
   const std::size_t ns = res.Sites.NumSites();

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Feature lines and corners: the cube's 12 edges and 8 corners, a square's 4 corners, a folded
 // sheet's crease, none on a ball, and bad input.
 #include "SharpFeatures.h"

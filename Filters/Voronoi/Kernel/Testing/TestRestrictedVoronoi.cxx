@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Restricted Voronoi diagram: partition of the domain, nearest-site property of every piece,
 // brute-force cells, face bookkeeping, determinism, bad input. `TestRestrictedVoronoi bench`
 // times the cube2-sized case (101x21x21 Kuhn grid, 8D, 5000 sites).
@@ -224,7 +225,7 @@ void TestSquareIdentity()
   AV_CHECK_MSG(bad == 0, bad << " cells differ from the brute-force Voronoi cells");
   for (std::size_t i = 0; i < s.NumSites(); ++i)
     AV_CHECK(r.SiteMeasure[i] > 0.0);
-  // Internal element edges are labelled with the neighbouring element.
+  // Internal element edges are labelled with the neighboring element.
   for (std::size_t f = 0; f < r.NumFaces(); ++f)
     if (r.FaceKind[f] == av::RVDFaceKind::ElementFace)
       AV_CHECK(r.FaceNeighbor[f] >= 0 && r.FaceNeighbor[f] < static_cast<int>(m.NumCells()));
@@ -398,7 +399,7 @@ void TestFewSites()
   r = av::ComputeRestrictedVoronoi(m, e, s);
   CheckPartition(m, e, r, "three sites");
   CheckNearestSite(r, s, "three sites");
-  // Small prefetch: the on-demand neighbour fetch must give the same result.
+  // Small prefetch: the on-demand neighbor fetch must give the same result.
   const av::SiteSet s2 = RandomSites(m, e, 30, 10);
   av::RestrictedVoronoiOptions o;
   o.NumNeighbors = 2;

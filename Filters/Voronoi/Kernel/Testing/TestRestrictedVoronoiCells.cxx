@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // RVD cells (BuildRestrictedVoronoiCells): merged cells are closed, outward surfaces whose
 // vertices are glued across elements, their measures partition the domain, pieces add up to
-// the merged cells, face kinds and neighbours, shrink, mirrored meshes, 2D loops, abort.
+// the merged cells, face kinds and neighbors, shrink, mirrored meshes, 2D loops, abort.
 #include "RestrictedVoronoiCells.h"
 #include "AnisoTestChecks.h"
 #include "VoronoiTestMeshes.h"
@@ -121,7 +121,7 @@ PolyhedraCheck CheckPolyhedra(const av::RestrictedVoronoiCells& cells)
   return r;
 }
 
-/// Face kinds and neighbours: bisectors name another site, other faces -1.
+/// Face kinds and neighbors: bisectors name another site, other faces -1.
 void CheckFaceNeighbors(const av::RestrictedVoronoiCells& cells, std::size_t numSites)
 {
   int bad = 0;
@@ -134,7 +134,7 @@ void CheckFaceNeighbors(const av::RestrictedVoronoiCells& cells, std::size_t num
       else
         bad += n != -1;
     }
-  AV_CHECK_MSG(bad == 0, bad << " faces with a wrong neighbour");
+  AV_CHECK_MSG(bad == 0, bad << " faces with a wrong neighbor");
 }
 
 struct VolumeCase

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Incremental restricted Voronoi diagram: UpdateRestrictedVoronoi after inserting / moving a few
 // sites must equal ComputeRestrictedVoronoi of the new sites field by field (bit-identical),
 // while clipping only a small part of the mesh; and the Delaunay repair, which uses it for its
@@ -101,7 +102,7 @@ void MoveSite(av::SiteSet& s, std::size_t i, const av::SimplexMesh& m, const av:
 {
   const int nv = m.SimplexDim + 1;
   std::int32_t c = s.CellIds[i];
-  // A few steps to neighbouring elements through shared vertices (brute force: small meshes).
+  // A few steps to neighboring elements through shared vertices (brute force: small meshes).
   for (int step = 0; step < 3; ++step)
   {
     const std::int32_t v = m.Cell(c)[rng() % nv];
@@ -248,7 +249,7 @@ int TestRestrictedVoronoiUpdate(int, char*[])
     RunCase(m, Bumpy(m), 400, 4, 0.2, "tets");
   }
   // Coarse meshes (several pieces per element): most candidates of an element cut none of its
-  // pieces, which the per-piece test (last cut, security radius) must recognise exactly.
+  // pieces, which the per-piece test (last cut, security radius) must recognize exactly.
   {
     const av::SimplexMesh m = TriGrid(16, 16, 0, 0, 1, 1);
     RunCase(m, Bumpy(m), 700, 6, 0.6, "coarse triangles");

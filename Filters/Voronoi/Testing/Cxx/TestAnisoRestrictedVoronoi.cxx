@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Tests of vtkAnisoRestrictedVoronoi on a small anisotropic volume (Cube1, 6^3 grid, 5D
 // embedding, 100 sites): the cells partition the box (measure sums, boundary face area = box
 // surface), every merged polyhedron is a closed, outward-oriented surface whose enclosed volume
