@@ -10,7 +10,7 @@
  * warning. Mixed 2D/3D cells and other types (polygons, polyhedra, ...) are errors that name
  * the type.
  *
- * Splitting (Core/SimplexSplitter.h): quadrilateral faces are cut by the diagonal through their
+ * Splitting (Kernel/SimplexSplitter.h): quadrilateral faces are cut by the diagonal through their
  * smallest point id, so neighboring cells agree and the result is conforming; wedges give 3
  * tetrahedra, pyramids 2, quads 2 triangles; hexahedra and voxels get one new point at their
  * center and 12 tetrahedra. Quadratic cells are reduced to their corner nodes (mid-edge nodes

@@ -16,7 +16,7 @@
  * - SphereCylindrical (unit ball): S = 1 + 4 sqrt(x^2+y^2) along (x/r, y/r, 0).
  * - SphereCosine (unit ball): S = 10 along normalize(2 cos 4x, 1, 0).
  *
- * Documentation/metrics.md explains the readings chosen where the paper's formulas are
+ * Filters/Metric/README.md explains the readings chosen where the paper's formulas are
  * garbled. Points with a non-finite coordinate make RequestData fail.
  */
 #ifndef vtkAnisoAnalyticMetric_h

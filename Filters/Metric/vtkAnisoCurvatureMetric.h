@@ -10,7 +10,7 @@
  * by no triangle get a zero metric (with a warning).
  *
  * Principal curvatures/directions per vertex from per-face second fundamental form fits
- * averaged over the one-ring (Core/SurfaceCurvatureMetric.h); stretches s1 = sqrt|K_min|,
+ * averaged over the one-ring (Kernel/SurfaceCurvatureMetric.h); stretches s1 = sqrt|K_min|,
  * s2 = sqrt|K_max| with |K| floored at CurvatureThreshold / (bounding-box diagonal), Laplacian
  * smoothing of the stretches and directions (SmoothingIterations), the ratio s2 / s1 capped at
  * MaxStretch, then M = v_min v_min^T + (s2/s1)^2 v_max v_max^T (rank 2, zero along the normal;

@@ -13,7 +13,6 @@
 #include <vtkExecutive.h>
 #include <vtkFieldData.h>
 
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -61,11 +60,6 @@ inline double FieldValue(vtkDataObject* o, const char* name)
   return a ? a->GetTuple1(0) : std::nan("");
 }
 
-/// Seconds elapsed since t0.
-inline double Seconds(std::chrono::steady_clock::time_point t0)
-{
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
 } // namespace av_vtk_test
 
 #endif

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // OdtSmoothing: optimal-Delaunay-triangulation (ODT) smoothing of the sites of a restricted
-// Delaunay mesh in the embedding (not in the paper; see Documentation/sampling.md). The caller
+// Delaunay mesh in the embedding (not in the paper; see Filters/Delaunay/README.md). The caller
 // recomputes the RVD / RDT of the moved sites.
 #ifndef av_OdtSmoothing_h
 #define av_OdtSmoothing_h

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // SiteImprovement: one round of site moves between two restricted Voronoi diagrams: ODT
 // smoothing, then the sliver perturbation (neither is in the paper; see
-// Documentation/sampling.md). The caller recomputes the RVD / RDT of the moved sites.
+// Filters/Delaunay/README.md). The caller recomputes the RVD / RDT of the moved sites.
 #ifndef av_SiteImprovement_h
 #define av_SiteImprovement_h
 

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // SliverPerturbation: moves the sites of sliver tetrahedra of a restricted Delaunay mesh apart
 // along the sliver's flat direction, keeping every site on the embedded mesh (not in the
-// paper; see Documentation/sampling.md). The caller recomputes the RVD / RDT of the moved sites.
+// paper; see Filters/Delaunay/README.md). The caller recomputes the RVD / RDT of the moved sites.
 #ifndef av_SliverPerturbation_h
 #define av_SliverPerturbation_h
 

@@ -10,6 +10,7 @@
 #include "vtkAnisoParticleSampler.h"
 #include "vtkAnisoRestrictedDelaunay.h"
 #include "vtkAnisoRestrictedVoronoi.h"
+#include "Stopwatch.h"
 #include "vtkAnisoTestUtilities.h"
 
 #include <vtkCellData.h>
@@ -33,7 +34,6 @@
 
 using av_vtk_test::EventCounter;
 using av_vtk_test::FieldValue;
-using av_vtk_test::Seconds;
 
 namespace
 {
@@ -63,16 +63,16 @@ void RunChain(Chain& chain)
   rdt->SetInputConnection(0, embedding->GetOutputPort());
   rdt->SetInputConnection(1, sampler->GetOutputPort());
   quality->SetInputConnection(rdt->GetOutputPort());
-  auto t0 = std::chrono::steady_clock::now();
+  av::Stopwatch t0;
   embedding->Update();
   std::printf(
-    "embedding %.3f s, L_avg %.3g %%\n", Seconds(t0), embedding->GetAverageEdgeLengthError());
-  t0 = std::chrono::steady_clock::now();
+    "embedding %.3f s, L_avg %.3g %%\n", t0.Seconds(), embedding->GetAverageEdgeLengthError());
+  t0.Restart();
   sampler->Update();
-  std::printf("sampler %.3f s, sigma %.4g\n", Seconds(t0), sampler->GetSigma());
-  t0 = std::chrono::steady_clock::now();
+  std::printf("sampler %.3f s, sigma %.4g\n", t0.Seconds(), sampler->GetSigma());
+  t0.Restart();
   quality->Update();
-  std::printf("RDT + quality %.3f s\n", Seconds(t0));
+  std::printf("RDT + quality %.3f s\n", t0.Seconds());
 }
 
 void CheckSites(vtkAnisoParticleSampler* sampler)

@@ -9,6 +9,7 @@
 #include "vtkAnisoEmbedding.h"
 #include "vtkAnisoParticleSampler.h"
 #include "vtkAnisoRestrictedVoronoi.h"
+#include "Stopwatch.h"
 #include "vtkAnisoTestUtilities.h"
 
 #include <vtkCellArray.h>
@@ -36,7 +37,6 @@ namespace
 {
 using av_vtk_test::EventCounter;
 using av_vtk_test::FieldValue;
-using av_vtk_test::Seconds;
 
 /// Area vector of a polygon (Newell): half the sum of cross products.
 void AreaVector(vtkPoints* pts, const vtkIdType* ids, vtkIdType n, double a[3])
@@ -166,9 +166,9 @@ struct Pipeline
     this->Sampler->SetIterations(10);
     this->Voronoi->SetInputConnection(0, this->Embedding->GetOutputPort());
     this->Voronoi->SetInputConnection(1, this->Sampler->GetOutputPort());
-    auto t0 = std::chrono::steady_clock::now();
+    av::Stopwatch t0;
     this->Voronoi->Update();
-    std::printf("pipeline: %.3f s\n", Seconds(t0));
+    std::printf("pipeline: %.3f s\n", t0.Seconds());
     double* b = this->Domain.Bounds;
     this->Source->GetOutput()->GetBounds(b);
     const double lx = b[1] - b[0], ly = b[3] - b[2], lz = b[5] - b[4];
