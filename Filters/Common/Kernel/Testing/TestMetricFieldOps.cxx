@@ -1,0 +1,105 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// MetricFieldOps on known answers: log-Euclidean means are geometric and SPD, intersections
+// contain both metrics and keep the smaller size per direction, the complexity of a uniform
+// metric on a box is its metric volume.
+#include "AnisoTestChecks.h"
+#include "MetricAlgebra.h"
+#include "MetricFieldOps.h"
+#include "StructuredMeshes.h"
+
+#include <Eigen/Dense>
+
+#include <cmath>
+#include <random>
+
+namespace
+{
+Eigen::Matrix3d RandomSpd(std::mt19937& rng)
+{
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  Eigen::Matrix3d a;
+  for (int i = 0; i < 9; ++i)
+    a(i / 3, i % 3) = u(rng);
+  return a * a.transpose() + 0.05 * Eigen::Matrix3d::Identity();
+}
+
+void CheckLogEuclideanMean()
+{
+  double a[6], b[6];
+  av::PackSymmetric(Eigen::Matrix3d::Identity(), a);
+  av::PackSymmetric(4.0 * Eigen::Matrix3d::Identity(), b);
+  const double* ms[2] = { a, b };
+  const double w[2] = { 0.5, 0.5 };
+  const Eigen::Matrix3d m = av::LogEuclideanMean(ms, w, 2);
+  AV_CHECK((m - 2.0 * Eigen::Matrix3d::Identity()).norm() < 1e-12);
+  std::mt19937 rng(3);
+  for (int t = 0; t < 50; ++t)
+  {
+    double p[6], q[6];
+    av::PackSymmetric(RandomSpd(rng), p);
+    av::PackSymmetric(RandomSpd(rng), q);
+    const double* pq[2] = { p, q };
+    const double wt[2] = { 0.3, 0.7 };
+    AV_CHECK(av::IsPositiveDefinite(av::LogEuclideanMean(pq, wt, 2)));
+    const double one[1] = { 1.0 };
+    AV_CHECK((av::LogEuclideanMean(pq, one, 1) - av::UnpackSymmetric(p)).norm() <
+      1e-9 * av::UnpackSymmetric(p).norm());
+  }
+  // Rank-2 surface metrics stay rank 2.
+  double s[6];
+  av::PackSymmetric(Eigen::Vector3d(1.0, 9.0, 0.0).asDiagonal(), s);
+  const double* ss[2] = { s, s };
+  const Eigen::Matrix3d r = av::LogEuclideanMean(ss, w, 2);
+  AV_CHECK(std::abs(r(2, 2)) < 1e-12 && std::abs(r(1, 1) - 9.0) < 1e-9);
+}
+
+void CheckIntersection()
+{
+  std::mt19937 rng(5);
+  for (int t = 0; t < 100; ++t)
+  {
+    const Eigen::Matrix3d a = RandomSpd(rng), b = RandomSpd(rng);
+    const Eigen::Matrix3d m = av::IntersectMetrics(a, b);
+    // m >= a and m >= b (Loewner): the unit ball of m is inside both.
+    AV_CHECK(Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(m - a).eigenvalues().minCoeff() >
+      -1e-9 * m.norm());
+    AV_CHECK(Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(m - b).eigenvalues().minCoeff() >
+      -1e-9 * m.norm());
+    // Intersecting with itself, or with a smaller metric, changes nothing.
+    AV_CHECK((av::IntersectMetrics(a, a) - a).norm() < 1e-9 * a.norm());
+    AV_CHECK((av::IntersectMetrics(a, 0.5 * a) - a).norm() < 1e-9 * a.norm());
+  }
+  // Axis-aligned: the larger eigenvalue in each direction.
+  const Eigen::Matrix2d x = Eigen::Vector2d(4.0, 1.0).asDiagonal();
+  const Eigen::Matrix2d y = Eigen::Vector2d(1.0, 9.0).asDiagonal();
+  AV_CHECK((av::IntersectMetrics(x, y) - Eigen::Matrix2d(Eigen::Vector2d(4.0, 9.0).asDiagonal()))
+             .norm() < 1e-12);
+}
+
+void CheckComplexity()
+{
+  const double lo[3] = { 0, 0, 0 }, hi[3] = { 2, 1, 1 };
+  const av::SimplexMesh m = av::MakeKuhnTetGrid(5, 4, 3, lo, hi);
+  av::MetricField f;
+  const Eigen::Matrix3d metric = Eigen::Vector3d(9.0, 4.0, 1.0).asDiagonal();
+  for (std::size_t i = 0; i < m.NumPoints(); ++i)
+  {
+    double v[6];
+    av::PackSymmetric(metric, v);
+    f.Values.insert(f.Values.end(), v, v + 6);
+  }
+  // sqrt(det M) x volume = 6 x 2.
+  AV_CHECK_NEAR(av::MetricComplexity(m, f), 12.0, 1e-9);
+  const double a[3] = { 0, 0, 0 }, b[3] = { 1, 1, 0 };
+  AV_CHECK_NEAR(av::MetricEdgeLength(f.At(0), f.At(1), a, b, 3), std::sqrt(13.0), 1e-12);
+  AV_CHECK_NEAR(av::UnitVertexMeasure(2), std::sqrt(3.0) / 2.0, 1e-15);
+}
+} // namespace
+
+int TestMetricFieldOps(int, char*[])
+{
+  CheckLogEuclideanMean();
+  CheckIntersection();
+  CheckComplexity();
+  return AV_TEST_RESULT();
+}
