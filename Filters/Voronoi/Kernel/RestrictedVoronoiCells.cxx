@@ -94,7 +94,8 @@ public:
   {
     this->Compact();
     const std::size_t np = this->P.size();
-    if (np == 0 || this->FaceSizes.empty())
+    // A 2D piece inside its site's cell has no kept edge, only its loop: it still covers area.
+    if (np == 0 || (K == 2 ? this->Loop.size() < 3 : this->FaceSizes.empty()))
       return;
     double c[3] = { 0, 0, 0 };
     for (const auto& p : this->P)
@@ -156,8 +157,17 @@ private:
       }
       id = remap[id];
     }
+    // A 2D piece emitted on its own keeps every loop point, also those only on the element
+    // edges that the merged diagram does not list as faces.
     for (std::int64_t& id : this->Loop)
+    {
+      if (remap[id] < 0)
+      {
+        remap[id] = static_cast<std::int64_t>(this->Q.size());
+        this->Q.push_back(this->P[id]);
+      }
       id = remap[id];
+    }
     this->P.swap(this->Q);
   }
 };

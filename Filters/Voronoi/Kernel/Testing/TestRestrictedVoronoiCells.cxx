@@ -326,6 +326,55 @@ void TestPolygons()
   }
 }
 
+/// A U-shaped domain where one site's cell meets both prongs: its kept edges are two loops, so
+/// the site comes out as one polygon per piece, each a closed loop of its own points.
+void TestSplitSitePolygons()
+{
+  av::SimplexMesh grid = TriGrid(21, 21, 0, 0, 1, 1);
+  av::SimplexMesh m = grid;
+  m.Cells.clear();
+  double area = 0.0;
+  for (std::size_t c = 0; c < grid.NumCells(); ++c)
+  {
+    const std::int32_t* t = grid.Cell(c);
+    const double cx = (grid.Point(t[0])[0] + grid.Point(t[1])[0] + grid.Point(t[2])[0]) / 3.0;
+    const double cy = (grid.Point(t[0])[1] + grid.Point(t[1])[1] + grid.Point(t[2])[1]) / 3.0;
+    if (cx > 0.35 && cx < 0.65 && cy > 0.3)
+      continue; // the slot between the prongs
+    m.Cells.insert(m.Cells.end(), t, t + 3);
+    area += 0.5 / (20.0 * 20.0);
+  }
+  const av::Embedding e = MakeEmbedding(m, 2, nullptr);
+  av::SiteSet s;
+  s.Dim = 2;
+  const double xs[][2] = { { 0.33, 0.9 }, { 0.1, 0.9 }, { 0.95, 0.35 }, { 0.8, 0.1 },
+    { 0.5, 0.1 }, { 0.2, 0.1 }, { 0.1, 0.5 } };
+  for (const auto& x : xs)
+    AV_CHECK(SiteAt(s, m, e, x));
+  av::RestrictedVoronoiOptions o;
+  o.MergeBySite = true;
+  const av::RestrictedVoronoiDiagram r = av::ComputeRestrictedVoronoi(m, e, s, o);
+  const av::RestrictedVoronoiCells c = Cells(m, r, true);
+  AV_CHECK_MSG(c.NumCells() > s.NumSites(), "the split site must fall back to pieces");
+  int bad = 0;
+  double total = 0.0;
+  for (std::size_t i = 0; i < c.NumCells(); ++i)
+  {
+    const std::int64_t l0 = c.CellLoopOffsets[i], l1 = c.CellLoopOffsets[i + 1];
+    double a = 0.0;
+    for (std::int64_t t = l0; t < l1; ++t)
+    {
+      const std::int64_t p = c.LoopPoints[t], q = c.LoopPoints[t + 1 == l1 ? l0 : t + 1];
+      bad += p < c.CellPointOffsets[i] || p >= c.CellPointOffsets[i + 1];
+      a += 0.5 * (CellPoint(c, p)[0] * CellPoint(c, q)[1] - CellPoint(c, p)[1] * CellPoint(c, q)[0]);
+    }
+    bad += l1 - l0 < 3 || std::abs(a - c.CellMeasure[i]) > 1e-9;
+    total += c.CellMeasure[i];
+  }
+  AV_CHECK_MSG(bad == 0, bad << " loop points outside their cell or loops without the cell's area");
+  AV_CHECK_NEAR(total, area, 1e-9);
+}
+
 /// Abort: polled every 1024 sites, the cells so far are kept.
 void TestAbort()
 {
@@ -354,6 +403,7 @@ int TestRestrictedVoronoiCells(int, char*[])
   TestShrink();
   TestMirroredVolume();
   TestPolygons();
+  TestSplitSitePolygons();
   TestAbort();
   return AV_TEST_RESULT();
 }
