@@ -2,6 +2,7 @@
 #include "RealCases.h"
 
 #include "FrdReader.h"
+#include "MeshTopology.h"
 #include "OffReader.h"
 #include "SimplexSplitter.h"
 #include "SurfaceCurvatureMetric.h"
@@ -89,7 +90,7 @@ std::vector<double> InterpolateTensors(const av::SimplexSplitResult& s, const av
   return t;
 }
 
-RealInput LoadVolume(const RealCaseInfo& info, const std::string& path)
+RealInput LoadVolume(const RealCaseInfo& info, const std::string& path, const RealCaseOptions& o)
 {
   const av::FrdData d = av::ReadFrd(path);
   const std::vector<int> steps = d.Steps();
@@ -108,8 +109,12 @@ RealInput LoadVolume(const RealCaseInfo& info, const std::string& path)
   in.FileCells = d.NumElements();
   av::SimplexSplitResult split = SplitFrd(d);
   const std::vector<double> tensors = InterpolateTensors(split, d.Results[ri]);
-  const av::TensorToMetricResult m =
-    av::TensorToMetric(tensors.data(), split.Mesh.NumPoints(), 6, av::TensorToMetricOptions());
+  av::TensorToMetricOptions mo;
+  mo.MinimumEigenvalue = o.MinEigenvalue;
+  mo.MaximumAnisotropy = o.MaxAnisotropy;
+  mo.SmoothingIterations = o.SmoothingIterations;
+  const av::TensorToMetricResult m = av::TensorToMetric(tensors.data(), split.Mesh.NumPoints(), 6,
+    mo, o.SmoothingIterations > 0 ? av::UniqueEdges(split.Mesh) : std::vector<std::int32_t>());
   in.Mesh = std::move(split.Mesh);
   in.Metric = m.Metric;
   in.StretchMin = m.MinStretch;
@@ -188,7 +193,8 @@ std::string RealDataDirectory(const std::string& option)
   return (up == std::string::npos ? std::string(".") : binDir.substr(0, up)) + "/real-data";
 }
 
-RealInput LoadRealCase(const std::string& name, const std::string& dataDir)
+RealInput LoadRealCase(
+  const std::string& name, const std::string& dataDir, const RealCaseOptions& options)
 {
   const RealCaseInfo& info = FindCase(name);
   const std::string path = dataDir + "/" + info.File;
@@ -198,7 +204,7 @@ RealInput LoadRealCase(const std::string& name, const std::string& dataDir)
       " (make it with scripts/make-real-data.sh " + dataDir +
       ", or point --data-dir / AV_REAL_DATA_DIR at it)");
   }
-  return info.Field.empty() ? LoadSurface(info, path) : LoadVolume(info, path);
+  return info.Field.empty() ? LoadSurface(info, path) : LoadVolume(info, path, options);
 }
 
 std::size_t DefaultRealSites(const RealInput& input)

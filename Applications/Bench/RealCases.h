@@ -36,6 +36,15 @@ bool IsRealCaseName(const std::string& caseName);
  */
 std::string RealDataDirectory(const std::string& option);
 
+/// The tensor -> metric options of the volume cases (the anisovoronoi tool's --min-eigenvalue,
+/// --max-anisotropy and --smooth; defaults = av::TensorToMetricOptions, as the tool's).
+struct RealCaseOptions
+{
+  double MinEigenvalue = 1e-3;
+  double MaxAnisotropy = 25.0;
+  int SmoothingIterations = 0;
+};
+
 /// A real case ready for the embedding.
 struct RealInput
 {
@@ -50,11 +59,12 @@ struct RealInput
 /**
  * Reads case `name` ("real:rotor") from `dataDir`. Volumes: the .frd mesh split into
  * simplices (av::SplitIntoSimplices), the tensor interpolated onto the new points, then
- * av::TensorToMetric with its defaults. Surfaces: the .off, then av::SurfaceCurvatureMetric
+ * av::TensorToMetric (`options`, else its defaults). Surfaces: the .off, then av::SurfaceCurvatureMetric
  * with its defaults. Throws std::runtime_error for an unknown case or a missing file (naming
  * scripts/make-real-data.sh), av::InputError for bad data.
  */
-RealInput LoadRealCase(const std::string& name, const std::string& dataDir);
+RealInput LoadRealCase(const std::string& name, const std::string& dataDir,
+  const RealCaseOptions& options = RealCaseOptions());
 
 /// Sites of a real case when --sites is not given: 3000 for volumes, 2000 for surfaces.
 std::size_t DefaultRealSites(const RealInput& input);

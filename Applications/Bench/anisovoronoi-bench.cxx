@@ -70,6 +70,7 @@ struct Args
   bool Reference = false;    // closed-form isometric embedding instead of the solver
   double FeatureAngle = 30.0;
   std::string DataDir;       // real cases: --data-dir, else AV_REAL_DATA_DIR, else build/real-data
+  avbench::RealCaseOptions RealMetric; // real tensor cases: --min-eigenvalue, --max-anisotropy, --smooth
 };
 
 /// Paper values (Tab. 5 and Fig. 4); NaN where the paper gives none.
@@ -137,7 +138,8 @@ Case BuildRealCase(const Args& a)
   Case c;
   c.Real = true;
   const av::Stopwatch watch;
-  avbench::RealInput in = avbench::LoadRealCase(a.CaseName, avbench::RealDataDirectory(a.DataDir));
+  avbench::RealInput in =
+    avbench::LoadRealCase(a.CaseName, avbench::RealDataDirectory(a.DataDir), a.RealMetric);
   c.MeshSeconds = watch.Seconds();
   c.Mesh = std::move(in.Mesh);
   c.Metric = std::move(in.Metric);
@@ -459,6 +461,8 @@ void Usage(std::ostream& os)
         "        default 2000 sites); Documentation/real-data.md)\n"
         "  --data-dir D      real-data directory (default $AV_REAL_DATA_DIR, else\n"
         "                    real-data next to the bin/ folder of this program)\n"
+        "  --min-eigenvalue F, --max-anisotropy A, --smooth N  real tensor cases: the tensor ->\n"
+        "                    metric options of the anisovoronoi tool (defaults 1e-3, 25, 0)\n"
         "  --stage S         embed | mesh (embedding, then sampling + RVD + RDT + quality) | all\n"
         "                    (both reports); default embed\n"
         "  --dim D           target dimension (default 3 for gaussian2d, else 8)\n"
@@ -599,6 +603,12 @@ bool Parse(int argc, char** argv, Args& a)
       a.FeatureAngle = std::stod(next());
     else if (k == "--data-dir")
       a.DataDir = next();
+    else if (k == "--min-eigenvalue")
+      a.RealMetric.MinEigenvalue = std::stod(next());
+    else if (k == "--max-anisotropy")
+      a.RealMetric.MaxAnisotropy = std::stod(next());
+    else if (k == "--smooth")
+      a.RealMetric.SmoothingIterations = std::stoi(next());
     else if (!k.empty() && k[0] != '-' && a.CaseName.empty())
       a.CaseName = k;
     else
