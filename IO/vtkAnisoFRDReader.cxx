@@ -30,43 +30,6 @@ vtkAnisoFRDReader::vtkAnisoFRDReader()
   this->SetNumberOfInputPorts(0);
 }
 
-namespace
-{
-int CellTypeOfFrd(int frdType)
-{
-  switch (frdType)
-  {
-    case av::FrdHe8:
-      return VTK_HEXAHEDRON;
-    case av::FrdPe6:
-      return VTK_WEDGE;
-    case av::FrdTe4:
-      return VTK_TETRA;
-    case av::FrdHe20:
-      return VTK_QUADRATIC_HEXAHEDRON;
-    case av::FrdPe15:
-      return VTK_QUADRATIC_WEDGE;
-    case av::FrdTe10:
-      return VTK_QUADRATIC_TETRA;
-    case av::FrdTr3:
-      return VTK_TRIANGLE;
-    case av::FrdTr6:
-      return VTK_QUADRATIC_TRIANGLE;
-    case av::FrdQu4:
-      return VTK_QUAD;
-    case av::FrdQu8:
-      return VTK_QUADRATIC_QUAD;
-    case av::FrdBe2:
-      return VTK_LINE;
-    case av::FrdBe3:
-      return VTK_QUADRATIC_EDGE;
-    default:
-      return VTK_EMPTY_CELL;
-  }
-}
-
-} // namespace
-
 int vtkAnisoFRDReader::RequestData(vtkInformation*,
   vtkInformationVector**,
   vtkInformationVector* outputVector)
@@ -116,7 +79,7 @@ int vtkAnisoFRDReader::RequestData(vtkInformation*,
       ids[i] = conn[order[i]];
     }
     cells->InsertNextCell(n, ids);
-    types[e] = CellTypeOfFrd(t);
+    types[e] = av::FrdToVTKCellType(t);
   }
   output->SetPoints(points);
   output->SetCells(types.data(), cells);

@@ -10,6 +10,7 @@
 #include "JsonLine.h"
 #include "MeshStage.h"
 #include "MetricAlgebra.h"
+#include "RealCases.h"
 #include "ReferenceEmbedding.h"
 #include "Stopwatch.h"
 #include "StructuredMeshes.h"
@@ -68,6 +69,8 @@ struct Args
   bool Features = true;      // corner / feature-line particles
   bool Reference = false;    // closed-form isometric embedding instead of the solver
   double FeatureAngle = 30.0;
+  std::string DataDir;       // real cases: --data-dir, else AV_REAL_DATA_DIR, else build/real-data
+  avbench::RealCaseOptions RealMetric; // real tensor cases: --min-eigenvalue, --max-anisotropy, --smooth
 };
 
 /// Paper values (Tab. 5 and Fig. 4); NaN where the paper gives none.
@@ -78,7 +81,11 @@ struct PaperValues
 
 struct Case
 {
-  av::AnalyticPreset Preset;
+  av::AnalyticPreset Preset = av::AnalyticPreset::Cube1; // unused by real cases
+  bool Real = false;          // a real:NAME case (RealCases.h)
+  std::size_t RealSites = 0;  // its default number of sites
+  double StretchMin = 0.0, StretchMax = 0.0;
+  std::size_t FilePoints = 0, FileCells = 0; // real: as read, before the split into simplices
   av::SimplexMesh Mesh;
   av::MetricField Metric;
   double MeshSeconds = 0.0;
@@ -113,8 +120,44 @@ PaperValues PaperFor(av::AnalyticPreset p)
   return v;
 }
 
+void StretchRange(const Case& c, double& smin, double& smax)
+{
+  smin = std::numeric_limits<double>::infinity();
+  smax = 0.0;
+  for (std::size_t i = 0; i < c.Metric.NumPoints(); ++i)
+  {
+    const double s = c.Mesh.AmbientDim == 2 ? av::StretchRatio(av::UnpackSymmetric2(c.Metric.At(i)))
+                                            : av::StretchRatio(av::UnpackSymmetric(c.Metric.At(i)));
+    smin = std::min(smin, s);
+    smax = std::max(smax, s);
+  }
+}
+
+Case BuildRealCase(const Args& a)
+{
+  Case c;
+  c.Real = true;
+  const av::Stopwatch watch;
+  avbench::RealInput in =
+    avbench::LoadRealCase(a.CaseName, avbench::RealDataDirectory(a.DataDir), a.RealMetric);
+  c.MeshSeconds = watch.Seconds();
+  c.Mesh = std::move(in.Mesh);
+  c.Metric = std::move(in.Metric);
+  c.MeshDescription = in.Description;
+  c.StretchMin = in.StretchMin;
+  c.StretchMax = in.StretchMax;
+  c.FilePoints = in.FilePoints;
+  c.FileCells = in.FileCells;
+  c.RealSites = avbench::DefaultRealSites(in);
+  return c;
+}
+
 Case BuildCase(const Args& a)
 {
+  if (avbench::IsRealCaseName(a.CaseName))
+  {
+    return BuildRealCase(a);
+  }
   Case c;
   c.Preset = av::AnalyticPresetFromName(a.CaseName);
   c.Paper = PaperFor(c.Preset);
@@ -156,6 +199,7 @@ Case BuildCase(const Args& a)
   }
   c.Metric = av::EvaluateAnalyticMetric(c.Preset, c.Mesh);
   c.MeshSeconds = watch.Seconds();
+  StretchRange(c, c.StretchMin, c.StretchMax);
   return c;
 }
 
@@ -164,19 +208,6 @@ double PeakRssMb()
   rusage u{};
   getrusage(RUSAGE_SELF, &u);
   return u.ru_maxrss / 1024.0; // Linux: kilobytes
-}
-
-void StretchRange(const Case& c, double& smin, double& smax)
-{
-  smin = std::numeric_limits<double>::infinity();
-  smax = 0.0;
-  for (std::size_t i = 0; i < c.Metric.NumPoints(); ++i)
-  {
-    const double s = c.Mesh.AmbientDim == 2 ? av::StretchRatio(av::UnpackSymmetric2(c.Metric.At(i)))
-                                            : av::StretchRatio(av::UnpackSymmetric(c.Metric.At(i)));
-    smin = std::min(smin, s);
-    smax = std::max(smax, s);
-  }
 }
 
 /// The preset's exact isometric embedding (ReferenceEmbedding.h) instead of the solver: what
@@ -202,7 +233,8 @@ av::EmbeddingOptions EmbeddingOptionsFor(const Args& a, const Case& c, int dim)
 {
   av::EmbeddingOptions o;
   o.TargetDim = dim;
-  o.Iterations = a.Iterations >= 0 ? a.Iterations : (c.Preset == av::AnalyticPreset::Gaussian2D ? 20 : 50);
+  const bool gaussian2d = !c.Real && c.Preset == av::AnalyticPreset::Gaussian2D;
+  o.Iterations = a.Iterations >= 0 ? a.Iterations : (gaussian2d ? 20 : 50);
   o.Mu = a.Mu;
   o.Seed = a.Seed;
   o.AndersonWindow = a.Anderson;
@@ -256,6 +288,10 @@ void StageEmbed(const Args& a, const Case& c, JsonLine& out, av::Embedding* keep
   const int dim = a.Dim > 0 ? a.Dim : (c.Mesh.AmbientDim == 2 ? 3 : 8);
   if (a.Reference)
   {
+    if (c.Real)
+    {
+      throw std::runtime_error("--reference-embedding needs an analytic preset");
+    }
     EmbedReference(c, dim, out, keep);
     return;
   }
@@ -317,7 +353,7 @@ av::Embedding EmbedForMesh(const Args& a, const Case& c, JsonLine& out)
 avbench::MeshStageOptions MeshStageOptionsFor(const Args& a, const Case& c)
 {
   avbench::MeshStageOptions o;
-  o.Sites = a.Sites > 0 ? a.Sites : avbench::DefaultSitesFor(c.Preset);
+  o.Sites = a.Sites > 0 ? a.Sites : (c.Real ? c.RealSites : avbench::DefaultSitesFor(c.Preset));
   o.SampleIterations = a.SampleIterations;
   o.WarmupIterations = a.WarmupIterations;
   o.Seed = a.Seed;
@@ -338,7 +374,8 @@ avbench::MeshStageOptions MeshStageOptionsFor(const Args& a, const Case& c)
 void ReportMesh(const Case& c, const avbench::MeshStageOptions& o,
   const avbench::MeshStageResult& r, JsonLine& out)
 {
-  const avbench::PaperMeshValues p = avbench::PaperMeshValuesFor(c.Preset);
+  const avbench::PaperMeshValues p = c.Real ? avbench::PaperMeshValues{ kNaN, kNaN, kNaN, kNaN, kNaN, kNaN }
+                                            : avbench::PaperMeshValuesFor(c.Preset);
   out.Set("sites", r.Sites);
   out.Set("sharp_features", o.PreserveSharpFeatures);
   out.Set("feature_angle", o.FeatureAngle);
@@ -390,7 +427,7 @@ void ReportMesh(const Case& c, const avbench::MeshStageOptions& o,
   out.Set("paper_theta_avg", p.ThetaAvg);
   out.Set("paper_pct_bad", p.PercentBad);
   out.Set("paper_mesh_seconds", p.MeshSeconds);
-  if (c.Preset == av::AnalyticPreset::Gaussian2D)
+  if (!c.Real && c.Preset == av::AnalyticPreset::Gaussian2D)
   {
     out.Set("paper_mesh_note", "Tab. 3 2D Domain row: a different metric");
   }
@@ -418,6 +455,14 @@ void Usage(std::ostream& os)
 {
   os << "usage: anisovoronoi-bench CASE [options]\n"
         "  CASE: gaussian2d | cube1 | cube2 | cube3 | sphere-cyl | sphere-cos | all\n"
+        "        | real:NAME | real:all  (real data of scripts/make-real-data.sh; NAME:\n"
+        "        compressor rotor segmenttet cubef2f1 hueeber1 squarebend mixer (tensor\n"
+        "        fields, default 3000 sites) turbine knot1 mushroom fandisk (curvature,\n"
+        "        default 2000 sites); Documentation/real-data.md)\n"
+        "  --data-dir D      real-data directory (default $AV_REAL_DATA_DIR, else\n"
+        "                    real-data next to the bin/ folder of this program)\n"
+        "  --min-eigenvalue F, --max-anisotropy A, --smooth N  real tensor cases: the tensor ->\n"
+        "                    metric options of the anisovoronoi tool (defaults 1e-3, 25, 0)\n"
         "  --stage S         embed | mesh (embedding, then sampling + RVD + RDT + quality) | all\n"
         "                    (both reports); default embed\n"
         "  --dim D           target dimension (default 3 for gaussian2d, else 8)\n"
@@ -556,6 +601,14 @@ bool Parse(int argc, char** argv, Args& a)
       a.Reference = true;
     else if (k == "--feature-angle")
       a.FeatureAngle = std::stod(next());
+    else if (k == "--data-dir")
+      a.DataDir = next();
+    else if (k == "--min-eigenvalue")
+      a.RealMetric.MinEigenvalue = std::stod(next());
+    else if (k == "--max-anisotropy")
+      a.RealMetric.MaxAnisotropy = std::stod(next());
+    else if (k == "--smooth")
+      a.RealMetric.SmoothingIterations = std::stoi(next());
     else if (!k.empty() && k[0] != '-' && a.CaseName.empty())
       a.CaseName = k;
     else
@@ -577,13 +630,16 @@ bool RunCase(const Args& args, const std::string& name, const StageFn& stage, in
     Args a = args;
     a.CaseName = name;
     const Case c = BuildCase(a);
-    double smin, smax;
-    StretchRange(c, smin, smax);
     out.Set("mesh", c.MeshDescription);
+    if (c.Real)
+    {
+      out.Set("file_points", c.FilePoints);
+      out.Set("file_cells", c.FileCells);
+    }
     out.Set("input_vertices", c.Mesh.NumPoints());
     out.Set("input_elements", c.Mesh.NumCells());
-    out.Set("stretch_min", smin);
-    out.Set("stretch_max", smax);
+    out.Set("stretch_min", c.StretchMin);
+    out.Set("stretch_max", c.StretchMax);
     out.Set("input_mesh_seconds", c.MeshSeconds);
     stage(a, c, out);
     out.Set("threads", threads);
@@ -631,6 +687,13 @@ int main(int argc, char** argv)
     for (av::AnalyticPreset p : av::AllAnalyticPresets())
     {
       cases.push_back(av::AnalyticPresetName(p));
+    }
+  }
+  else if (args.CaseName == "real:all")
+  {
+    for (const avbench::RealCaseInfo& r : avbench::RealCases())
+    {
+      cases.push_back("real:" + r.Name);
     }
   }
   else

@@ -56,6 +56,15 @@ const int* FrdToVTKNodeOrder(int type)
   return FrdNodesPerElement(type) > 0 ? Identity : nullptr;
 }
 
+int FrdToVTKCellType(int type)
+{
+  // VTK ids: 3 line, 5 triangle, 9 quad, 10 tetra, 12 hexahedron, 13 wedge, 21 quadratic
+  // edge, 22 quadratic triangle, 23 quadratic quad, 24 quadratic tetra, 25 quadratic
+  // hexahedron, 26 quadratic wedge (vtkCellType.h; the kernels are VTK-free).
+  static const int vtkType[13] = { 0, 12, 13, 10, 25, 26, 24, 5, 22, 9, 23, 3, 21 };
+  return type >= 1 && type <= 12 ? vtkType[type] : 0;
+}
+
 std::vector<int> FrdData::Steps() const
 {
   std::vector<int> steps;

@@ -44,6 +44,10 @@ int FrdCornersPerElement(int type);
  */
 const int* FrdToVTKNodeOrder(int type);
 
+/// VTK's cell type id of an frd element type (numeric: 12 hexahedron, 25 quadratic
+/// hexahedron, ...; see the table in IO/README.md), 0 (VTK_EMPTY_CELL) for an unknown type.
+int FrdToVTKCellType(int type);
+
 /**
  * One result block (`100C`) of an frd file: one named nodal field of one step.
  *
