@@ -67,6 +67,7 @@ protected:
   int FillOutputPortInformation(int port, vtkInformation* info) override;
   int RequestBackEnd(vtkUnstructuredGrid* embedded, vtkPolyData* sites, vtkTable* energy,
     vtkInformationVector* outputVector) override;
+  const char* GetUserLabel() const override { return "Aniso Anisotropic Mesh"; }
 
   bool RepairInverted = true;
   bool RepairNonManifold = false;
