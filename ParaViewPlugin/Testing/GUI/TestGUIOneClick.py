@@ -165,7 +165,7 @@ try:
     if os.path.exists(baseline):
         mean, share = compare_images(shot, baseline)
         log("image difference: mean %s, share of pixels off by > 80: %s" % (mean, share))
-        check(mean is not None and mean < 12.0 and share < 0.05,
+        check(mean is not None and mean < 1.5 and share < 0.01,
               "screenshot matches the reference %s" % baseline)
     else:
         check(False, "reference image missing: %s" % baseline)
