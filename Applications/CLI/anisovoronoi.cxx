@@ -464,7 +464,6 @@ int main(int argc, char* argv[])
   if (!o.Quiet)
     std::cerr << "[anisovoronoi] wrote embedded.vtu sites.vtp voronoi.vtu voronoi_faces.vtp "
                  "mesh.vtu energy.csv report.json"
-              << (o.FormatMedit ? " mesh.mesh mesh.sol" : "") << " to " << o.OutputDir
-              << std::endl;
+              << (o.FormatMedit ? " mesh.mesh mesh.sol" : "") << " to " << o.OutputDir << std::endl;
   return 0;
 }

@@ -19,12 +19,12 @@
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
 #include <vtkNew.h>
+#include <vtkOutputWindow.h>
 #include <vtkPointData.h>
 #include <vtkPolyData.h>
 #include <vtkSmartPointer.h>
-#include <vtkTable.h>
-#include <vtkOutputWindow.h>
 #include <vtkStringArray.h>
+#include <vtkTable.h>
 #include <vtkUnstructuredGrid.h>
 
 #include <sstream>
@@ -149,13 +149,15 @@ void vtkAnisoTensorPipeline::AddFrontFieldData(vtkFieldData* fd) const
   AddFieldValue(fd, "MetricScale", this->MetricScale);
   vtkNew<vtkStringArray> mode;
   mode->SetName("FieldMode");
-  mode->InsertNextValue(
-    (this->FieldModeUsed == METRIC_FIELD ? std::string("Metric Field") : std::string("Tensor Field")) +
+  mode->InsertNextValue((this->FieldModeUsed == METRIC_FIELD ? std::string("Metric Field")
+                                                             : std::string("Tensor Field")) +
     (this->FieldModeReason.empty() ? "" : " (" + this->FieldModeReason + ")"));
   fd->AddArray(mode);
 }
 
-int vtkAnisoTensorPipeline::ResolveFieldMode(vtkDataArray* chosen, int association, vtkDataSet* input)
+int vtkAnisoTensorPipeline::ResolveFieldMode(vtkDataArray* chosen,
+  int association,
+  vtkDataSet* input)
 {
   this->FieldModeReason.clear();
   if (this->FieldMode != AUTOMATIC)
@@ -165,9 +167,9 @@ int vtkAnisoTensorPipeline::ResolveFieldMode(vtkDataArray* chosen, int associati
   // Every metric producer of this project names its point array "Metric" (analytic source and
   // filter, tensor to metric, the Medit .sol reader); converting a metric as if it were a
   // stress would change it (Gaussian2D's stretch 1-3.84 became 1-9.2).
-  vtkDataArray* candidate =
-    chosen ? (association == vtkDataObject::FIELD_ASSOCIATION_POINTS ? chosen : nullptr)
-           : input->GetPointData()->GetTensors();
+  vtkDataArray* candidate = chosen
+    ? (association == vtkDataObject::FIELD_ASSOCIATION_POINTS ? chosen : nullptr)
+    : input->GetPointData()->GetTensors();
   if (candidate && candidate->GetName() && std::string(candidate->GetName()) == "Metric")
   {
     this->FieldModeReason = "automatic: the point array \"Metric\" already is a metric";
@@ -371,8 +373,9 @@ void vtkAnisoTensorPipeline::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "FieldMode: "
-     << (this->FieldMode == METRIC_FIELD ? "MetricField"
-                                         : (this->FieldMode == AUTOMATIC ? "Automatic" : "TensorField"))
+     << (this->FieldMode == METRIC_FIELD
+            ? "MetricField"
+            : (this->FieldMode == AUTOMATIC ? "Automatic" : "TensorField"))
      << "\n";
   os << indent << "NumberOfCells: " << this->NumberOfCells << "\n";
   os << indent << "TargetDimension: " << this->TargetDimension << "\n";

@@ -159,8 +159,12 @@ private:
 };
 
 /// Reads `count` simplices of `nv` 1-based ids + ref into 0-based ids and refs.
-void ReadSimplices(Cursor& in, int nv, std::size_t numPoints, const char* what,
-  std::vector<std::int32_t>& ids, std::vector<std::int32_t>& refs)
+void ReadSimplices(Cursor& in,
+  int nv,
+  std::size_t numPoints,
+  const char* what,
+  std::vector<std::int32_t>& ids,
+  std::vector<std::int32_t>& refs)
 {
   const std::size_t n = in.Count(in.IntBytes() * (nv + 1), what);
   ids.resize(n * nv);
@@ -333,8 +337,9 @@ std::string FormatMeditMeshBinary(const MeditMesh& m)
       w.Real(mesh.Points[i * dim + d]);
     w.Int(m.PointRefs.empty() ? 0 : m.PointRefs[i]);
   }
-  auto simplices = [&w](int code, const std::vector<std::int32_t>& ids,
-                     const std::vector<std::int32_t>& refs, int nv)
+  auto simplices =
+    [&w](
+      int code, const std::vector<std::int32_t>& ids, const std::vector<std::int32_t>& refs, int nv)
   {
     const std::size_t n = ids.size() / nv;
     if (n == 0)
@@ -391,8 +396,9 @@ MeditSol ParseMeditSolBinary(const std::string& bytes, const std::string& source
       {
         const int type = in.Int32();
         if (type < 1 || type > 3)
-          in.Fail("solution field type " + std::to_string(type) + " (only 1 scalar, 2 vector, "
-                                                                   "3 symmetric tensor)");
+          in.Fail("solution field type " + std::to_string(type) +
+            " (only 1 scalar, 2 vector, "
+            "3 symmetric tensor)");
         sol.FieldTypes.push_back(type);
         realsPerLine += type == 1 ? 1 : (type == 2 ? dim : SymmetricSize(dim));
       }
@@ -480,8 +486,8 @@ MeditSol ReadMeditSolFile(const std::string& fileName)
 
 void WriteMeditMeshFile(const std::string& fileName, const MeditMesh& mesh)
 {
-  WriteBytes(fileName, EndsWith(fileName, ".meshb") ? FormatMeditMeshBinary(mesh)
-                                                    : FormatMeditMesh(mesh));
+  WriteBytes(
+    fileName, EndsWith(fileName, ".meshb") ? FormatMeditMeshBinary(mesh) : FormatMeditMesh(mesh));
 }
 
 void WriteMeditSolFile(const std::string& fileName, const MeditSol& sol)

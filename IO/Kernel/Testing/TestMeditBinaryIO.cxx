@@ -120,8 +120,8 @@ void TestLayout()
   AV_CHECK(Int32At(b, 8) == 3 && Int32At(b, 12) == 20 && Int32At(b, 16) == 3);
   AV_CHECK(Int32At(b, 20) == 4);
   const std::int32_t tetPos = Int32At(b, 24);
-  AV_CHECK(Int32At(b, 28) == 5);                   // 5 vertices
-  AV_CHECK(tetPos == 32 + 5 * (3 * 8 + 4));        // 3 doubles + int32 ref each
+  AV_CHECK(Int32At(b, 28) == 5);            // 5 vertices
+  AV_CHECK(tetPos == 32 + 5 * (3 * 8 + 4)); // 3 doubles + int32 ref each
   AV_CHECK(Int32At(b, static_cast<std::size_t>(tetPos)) == 8);
   AV_CHECK(Int32At(b, b.size() - 8) == 54 && Int32At(b, b.size() - 4) == 0); // End, position 0
 }
@@ -185,7 +185,7 @@ void TestOtherVersions()
   };
   for (int k = 0; k < 7; ++k)
     swap(4); // code, version, Dimension kwd/pos/value, Vertices kwd/pos
-  swap(4); // count
+  swap(4);   // count
   for (int i = 0; i < 3; ++i)
   {
     swap(8);
@@ -204,7 +204,8 @@ void TestOtherVersions()
 void TestFiles(const std::string& tmp)
 {
   const av::MeditMesh m = av::ParseMeditMesh(TetMesh);
-  const std::string ascii = tmp + "/medit_binary_test.mesh", binary = tmp + "/medit_binary_test.meshb";
+  const std::string ascii = tmp + "/medit_binary_test.mesh",
+                    binary = tmp + "/medit_binary_test.meshb";
   av::WriteMeditMeshFile(ascii, m);
   av::WriteMeditMeshFile(binary, m);
   AV_CHECK(av::ReadMeditMeshFile(ascii).Mesh.Points == m.Mesh.Points);
@@ -241,8 +242,8 @@ void TestErrors()
 void TestFuzz()
 {
   const std::string mesh = av::FormatMeditMeshBinary(av::ParseMeditMesh(TetMesh));
-  const std::string sol =
-    av::FormatMeditSolBinary(av::MeditSolFromMetric(av::MetricField{ std::vector<double>(30, 2.0) }, 3));
+  const std::string sol = av::FormatMeditSolBinary(
+    av::MeditSolFromMetric(av::MetricField{ std::vector<double>(30, 2.0) }, 3));
   std::mt19937 rng(2024);
   int parsed = 0, rejected = 0;
   for (int it = 0; it < 6000; ++it)
@@ -268,7 +269,8 @@ void TestFuzz()
         const av::MeditMesh r = av::ParseMeditMeshBinary(s);
         for (std::int32_t id : r.Mesh.Cells)
           AV_CHECK(id >= 0 && static_cast<std::size_t>(id) < r.Mesh.NumPoints());
-        AV_CHECK(r.CellRefs.size() == r.Mesh.NumCells() && r.PointRefs.size() == r.Mesh.NumPoints());
+        AV_CHECK(
+          r.CellRefs.size() == r.Mesh.NumCells() && r.PointRefs.size() == r.Mesh.NumPoints());
       }
       ++parsed;
     }
