@@ -3,7 +3,9 @@
 "Aniso Anisotropic Voronoi", Apply with the defaults. Then, through the Python API: the
 render view shows the cells colored by Stretch with one color bar (Stretch) and the Faces
 output hidden; one energy chart view (Iteration on x, log y, the E_* series only); the
-screenshot of the views matches the reference within a tolerance.
+screenshot of the views matches the reference within a tolerance. Then "Aniso Anisotropic
+Mesh" on the same reader opens one angle histogram view (bin centers in degrees as x, only
+the counts as bars).
 
 Apply is what pqApplyBehavior::showData does on a source's first Apply, through the same
 server-manager calls (ShowInPreferredView for every output port with the active view,
@@ -170,6 +172,27 @@ try:
     else:
         check(False, "reference image missing: %s" % baseline)
 
+    # The mesh companion on the same reader: its histogram opens in one angle histogram view
+    # with the bin centers (degrees) as x and only the counts as bars.
+    SetActiveView(rv)
+    mesh = AnisoAnisotropicMesh(Input=reader)
+    SetActiveSource(mesh)
+    before = len(GetViews())
+    apply_first_time(mesh)
+    hist = [v for v in GetViews() if v.GetXMLName() == "AnisoAngleHistogramView"]
+    check(len(GetViews()) == before + 1 and len(hist) == 1, "one angle histogram view")
+    if hist:
+        hr = port_reps(hist[0], mesh).get(1)
+        check(hr is not None and hr.UseIndexForXAxis == 0 and hr.XArrayName == "MinAngle",
+              "histogram x axis is the bin centers in degrees")
+        if hr is not None:
+            vis = dict(zip(hr.SeriesVisibility[0::2], hr.SeriesVisibility[1::2]))
+            check(vis == {"MinAngle": "0", "Count": "1"}, "only Count drawn as bars: %s" % vis)
+            col = servermanager.Fetch(mesh, idx=1).GetColumnByName("MinAngle")
+            check(col is not None and abs(col.GetValue(0) - 2.5) < 1e-12,
+                  "bin centers in degrees (first 2.5)")
+    mrep = port_reps(rv, mesh).get(0)
+    check(mrep is not None and mrep.Visibility == 1, "the mesh shown in the render view")
 except Exception:  # noqa: BLE001 - report and fail, never hang the GUI
     log(traceback.format_exc())
     failures.append("exception")
