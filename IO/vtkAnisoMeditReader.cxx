@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkAnisoMeditReader.h"
 
-#include "MeditIO.h"
+#include "MeditBinaryIO.h"
 #include "vtkAnisoDataConversion.h"
 #include "vtkAnisoFilterUtilities.h"
 
@@ -37,7 +37,7 @@ int vtkAnisoMeditReader::RequestData(vtkInformation*,
     ("reading " + this->FileName).c_str(),
     [&]
     {
-      const av::MeditMesh m = av::ReadMeditMesh(this->FileName);
+      const av::MeditMesh m = av::ReadMeditMeshFile(this->FileName);
       const av::SimplexMesh& mesh = m.Mesh;
       const vtkIdType np = static_cast<vtkIdType>(mesh.NumPoints());
       auto points = vtkSmartPointer<vtkPoints>::New();
@@ -66,7 +66,7 @@ int vtkAnisoMeditReader::RequestData(vtkInformation*,
 
       if (!this->SolFileName.empty())
       {
-        const av::MeditSol sol = av::ReadMeditSol(this->SolFileName);
+        const av::MeditSol sol = av::ReadMeditSolFile(this->SolFileName);
         if (sol.NumVertices != mesh.NumPoints())
         {
           throw av::InputError("The .sol file " + this->SolFileName + " has " +

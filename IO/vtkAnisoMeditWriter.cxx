@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkAnisoMeditWriter.h"
 
-#include "MeditIO.h"
+#include "MeditBinaryIO.h"
 #include "vtkAnisoDataConversion.h"
 #include "vtkAnisoFilterUtilities.h"
 
@@ -151,10 +151,10 @@ void vtkAnisoMeditWriter::WriteData()
         ("writing " + this->FileName).c_str(),
         [&]
         {
-          av::WriteMeditMesh(this->FileName, m);
+          av::WriteMeditMeshFile(this->FileName, m);
           if (!this->SolFileName.empty())
           {
-            av::WriteMeditSol(this->SolFileName, av::MeditSolFromMetric(field, dim));
+            av::WriteMeditSolFile(this->SolFileName, av::MeditSolFromMetric(field, dim));
           }
         }))
   {

@@ -11,10 +11,11 @@ namespace avcli
 namespace
 {
 const char* const Usage = R"(usage: anisovoronoi [INPUT] --metric SPEC --output-dir DIR [options]
+       anisovoronoi in.mesh --sol in.sol -o out.mesh [options]      (MMG style)
 
 Anisotropic Voronoi cells and meshes from a Riemannian metric through a high-dimensional
-embedding (AnisoVoronoi). INPUT: VTK legacy (.vtk) or XML (.vtu/.vtp/...), Medit .mesh
-(metric from --sol), CalculiX .frd, or a surface (.stl/.ply/.obj/.off). Non-simplex cells
+embedding (AnisoVoronoi). INPUT: VTK legacy (.vtk) or XML (.vtu/.vtp/...), Medit .mesh or
+.meshb (metric from --sol: .sol or .solb), CalculiX .frd, or a surface (.stl/.ply/.obj/.off). Non-simplex cells
 (hexahedra, quadratic cells, ...) are split into simplices. INPUT may be omitted with
 --metric preset:NAME: the preset's own mesh is generated.
 
@@ -25,7 +26,8 @@ metric SPEC:
   preset:NAME      analytic metric: gaussian2d cube1 cube2 cube3 sphere-cyl sphere-cos
 
 options:
-  --sol FILE               Medit .sol metric for a .mesh input
+  --sol FILE               Medit .sol/.solb metric (tensor, or scalar size h) for a
+                           .mesh/.meshb input; without --metric it is the metric
   --step N                 result step of a .frd input (0-based, default 0)
   --resolution N           mesh size for preset:NAME without INPUT (0 = paper size)
   --sites N                number of Voronoi cells / mesh vertices (default 2000)
@@ -58,13 +60,38 @@ options:
                            paper's pipeline): ODT steps and sliver pushes, diagram redone
   --odt-iterations N       ODT steps per improvement round (default 3; 0 = sliver pushes only)
   --output-dir DIR         where the results go (created if missing)
+  -o PATH                  PATH ending in .mesh or .meshb: write the anisotropic mesh there
+                           and its metric next to it (.sol / .solb, Medit tensor order);
+                           other PATHs: the same as --output-dir PATH
+  --format medit           also write mesh.mesh and mesh.sol into the output directory
   --quiet                  no progress on stderr
   --help                   this text
 
 writes into DIR: embedded.vtu, sites.vtp, voronoi.vtu, voronoi_faces.vtp, mesh.vtu,
 energy.csv, report.json (the benchmark's keys). With the repair, mesh.vtu and voronoi.vtu
 use the final sites (sampled ones first, then inserted ones; sites.vtp: the sampled ones).
+With only -o FILE.mesh, nothing but FILE.mesh and its .sol is written.
+
+exit status: 0 success; 1 failure (unreadable or invalid input, a stage failed, a file
+could not be written), with a one-line reason on stderr; 2 bad command line.
 )";
+
+bool HasMeditMeshExtension(const std::string& path)
+{
+  auto endsWith = [&path](const std::string& suffix)
+  {
+    if (path.size() < suffix.size())
+      return false;
+    for (std::size_t i = 0; i < suffix.size(); ++i)
+    {
+      const char c = path[path.size() - suffix.size() + i];
+      if ((c >= 'A' && c <= 'Z' ? static_cast<char>(c - 'A' + 'a') : c) != suffix[i])
+        return false;
+    }
+    return true;
+  };
+  return endsWith(".mesh") || endsWith(".meshb");
+}
 
 int ParseInt(const std::string& flag, const char* value)
 {
@@ -88,9 +115,11 @@ double ParseDouble(const std::string& flag, const char* value)
 void CheckOptions(const Options& o)
 {
   if (o.Metric.empty())
-    Fail("--metric SPEC is required (see --help)", 2);
-  if (o.OutputDir.empty())
-    Fail("--output-dir DIR is required", 2);
+    Fail("--metric SPEC is required (or --sol FILE with a .mesh INPUT; see --help)", 2);
+  if (o.OutputDir.empty() && o.MeditOutput.empty())
+    Fail("--output-dir DIR (or -o FILE.mesh) is required", 2);
+  if (o.FormatMedit && o.OutputDir.empty())
+    Fail("--format medit writes into --output-dir DIR, which is missing", 2);
   if (o.Input.empty() && o.Metric.rfind("preset:", 0) != 0)
     Fail("an INPUT file is required unless --metric preset:NAME", 2);
   if (o.Sites < 1)
@@ -134,8 +163,20 @@ Options ParseCommandLine(int argc, char* argv[])
       o.Metric = next();
     else if (a == "--sol")
       o.Sol = next();
-    else if (a == "--output-dir" || a == "-o")
+    else if (a == "--output-dir")
       o.OutputDir = next();
+    else if (a == "-o")
+    {
+      const std::string path = next();
+      (HasMeditMeshExtension(path) ? o.MeditOutput : o.OutputDir) = path;
+    }
+    else if (a == "--format")
+    {
+      const std::string format = next();
+      if (format != "medit" && format != "vtk")
+        Fail("--format expects medit or vtk, got '" + format + "'", 2);
+      o.FormatMedit = format == "medit";
+    }
     else if (a == "--step")
       o.Step = ParseInt(a, next());
     else if (a == "--resolution")
@@ -193,6 +234,9 @@ Options ParseCommandLine(int argc, char* argv[])
     else
       Fail("more than one INPUT given ('" + o.Input + "', '" + a + "')", 2);
   }
+  // MMG style: a .sol given with a .mesh is the metric (the reader names it "Metric").
+  if (o.Metric.empty() && !o.Sol.empty() && HasMeditMeshExtension(o.Input))
+    o.Metric = "metric:Metric";
   CheckOptions(o);
   return o;
 }

@@ -12,6 +12,8 @@ namespace avcli
 struct Options
 {
   std::string Input, Metric, Sol, OutputDir;
+  std::string MeditOutput;  ///< -o FILE.mesh|.meshb: the mesh and its metric .sol|.solb
+  bool FormatMedit = false; ///< --format medit: also mesh.mesh + mesh.sol in OutputDir
   int Step = 0, Resolution = 0, Sites = 2000, Dim = 8, Iterations = 50, SampleIterations = 150;
   int WarmupIterations = 100, Seed = 1, Smooth = 0, Refine = 0, RepairRounds = 10,
       ImproveRounds = 1, OdtIterations = 3;

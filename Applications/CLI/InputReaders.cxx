@@ -64,7 +64,7 @@ vtkSmartPointer<vtkAlgorithm> MakeReader(const Options& o)
     Fail("cannot read '" + o.Input + "': no such file");
   const std::string ext =
     vtksys::SystemTools::LowerCase(vtksys::SystemTools::GetFilenameLastExtension(o.Input));
-  if (ext == ".mesh")
+  if (ext == ".mesh" || ext == ".meshb")
   {
     auto r = vtkSmartPointer<vtkAnisoMeditReader>::New();
     r->SetFileName(o.Input.c_str());
@@ -73,7 +73,7 @@ vtkSmartPointer<vtkAlgorithm> MakeReader(const Options& o)
     return r;
   }
   if (!o.Sol.empty())
-    Fail("--sol is only meaningful with a Medit .mesh INPUT", 2);
+    Fail("--sol is only meaningful with a Medit .mesh/.meshb INPUT", 2);
   if (ext == ".frd")
   {
     auto r = vtkSmartPointer<vtkAnisoFRDReader>::New();
@@ -123,7 +123,7 @@ vtkSmartPointer<vtkAlgorithm> MakeReader(const Options& o)
   else
   {
     Fail("unsupported INPUT extension '" + ext +
-      "' (use .vtk .vtu .vtp .mesh .frd .stl .ply .obj .off)");
+      "' (use .vtk .vtu .vtp .mesh .meshb .frd .stl .ply .obj .off)");
   }
   // Surfaces: polygons -> triangles.
   auto tri = vtkSmartPointer<vtkTriangleFilter>::New();

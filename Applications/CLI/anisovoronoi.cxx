@@ -9,6 +9,7 @@
 #include "CapturingOutputWindow.h"
 #include "CommandLine.h"
 #include "InputReaders.h"
+#include "MeditOutput.h"
 #include "StageRunner.h"
 #include "vtkAnisoAnalyticMetric.h"
 #include "vtkAnisoAnalyticMetricSource.h"
@@ -440,18 +441,29 @@ int main(int argc, char* argv[])
   vtkOutputWindow::SetInstance(window);
   const Options o = avcli::ParseCommandLine(argc, argv);
   window->ShowWarnings = !o.Quiet;
-  if (!vtksys::SystemTools::MakeDirectory(o.OutputDir))
+  if (!o.OutputDir.empty() && !vtksys::SystemTools::MakeDirectory(o.OutputDir))
     Fail("cannot create the output directory '" + o.OutputDir + "'");
   StageRunner runner(o.Quiet);
   MeshingStages stages;
   const std::string metricName = RunInputStages(o, stages, runner);
   RunMeshingStages(o, metricName, stages, runner);
+  if (!o.MeditOutput.empty())
+  {
+    avcli::WriteMeditOutput(stages.Quality->GetOutputDataObject(0), o.MeditOutput);
+    if (!o.Quiet)
+      std::cerr << "[anisovoronoi] wrote " << o.MeditOutput << " and "
+                << avcli::SolPathFor(o.MeditOutput) << std::endl;
+  }
+  if (o.OutputDir.empty())
+    return 0;
   const std::string dir = o.OutputDir + "/";
   WriteFiles(dir, stages);
   WriteReport(dir, o, stages, runner);
+  if (o.FormatMedit)
+    avcli::WriteMeditOutput(stages.Quality->GetOutputDataObject(0), dir + "mesh.mesh");
   if (!o.Quiet)
     std::cerr << "[anisovoronoi] wrote embedded.vtu sites.vtp voronoi.vtu voronoi_faces.vtp "
-                 "mesh.vtu energy.csv report.json to "
-              << o.OutputDir << std::endl;
+                 "mesh.vtu energy.csv report.json"
+              << (o.FormatMedit ? " mesh.mesh mesh.sol" : "") << " to " << o.OutputDir << std::endl;
   return 0;
 }

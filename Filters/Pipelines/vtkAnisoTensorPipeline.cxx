@@ -19,11 +19,16 @@
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
 #include <vtkNew.h>
+#include <vtkOutputWindow.h>
 #include <vtkPointData.h>
 #include <vtkPolyData.h>
 #include <vtkSmartPointer.h>
+#include <vtkStringArray.h>
 #include <vtkTable.h>
 #include <vtkUnstructuredGrid.h>
+
+#include <sstream>
+#include <vector>
 
 namespace
 {
@@ -50,10 +55,15 @@ public:
       if (this->Error.empty() && callData)
         this->Error = static_cast<const char*>(callData);
     }
+    else if (event == vtkCommand::WarningEvent && callData)
+    {
+      this->Warnings.emplace_back(static_cast<const char*>(callData));
+    }
   }
   vtkAlgorithm* Owner = nullptr;
   double Begin = 0.0, End = 1.0;
   std::string Error;
+  std::vector<std::string> Warnings;
 };
 
 // VTK error text looks like "ERROR: In file, line N\nvtkX (0x..): message": keep the message.
@@ -102,6 +112,8 @@ bool vtkAnisoTensorPipeline::RunStage(vtkAlgorithm* stage,
   observer->End = end;
   const unsigned long progressTag = stage->AddObserver(vtkCommand::ProgressEvent, observer);
   const unsigned long errorTag = stage->AddObserver(vtkCommand::ErrorEvent, observer);
+  // Observed warnings are not printed by VTK: they are re-issued below under this filter.
+  const unsigned long warningTag = stage->AddObserver(vtkCommand::WarningEvent, observer);
   // The executive's "returned failure for request" follow-up is swallowed the same way.
   vtkNew<StageObserver> executiveObserver;
   vtkExecutive* executive = stage->GetExecutive();
@@ -109,16 +121,21 @@ bool vtkAnisoTensorPipeline::RunStage(vtkAlgorithm* stage,
   stage->Update();
   stage->RemoveObserver(progressTag);
   stage->RemoveObserver(errorTag);
+  stage->RemoveObserver(warningTag);
   executive->RemoveObserver(execTag);
+  for (const std::string& warning : observer->Warnings)
+  {
+    vtkWarningMacro(<< this->GetUserLabel() << ": " << what << ": " << StripLocation(warning));
+  }
   if (!observer->Error.empty() || !executiveObserver->Error.empty())
   {
-    error = std::string(what) + ": " +
+    error = std::string(this->GetUserLabel()) + ": " + what + ": " +
       StripLocation(observer->Error.empty() ? executiveObserver->Error : observer->Error);
     return false;
   }
   if (this->GetAbortExecute())
   {
-    error = std::string(what) + ": aborted";
+    error = std::string(this->GetUserLabel()) + ": " + what + ": aborted";
     return false;
   }
   return true;
@@ -130,6 +147,36 @@ void vtkAnisoTensorPipeline::AddFrontFieldData(vtkFieldData* fd) const
   AddFieldValue(fd, "L_avg", this->AverageEdgeLengthError);
   AddFieldValue(fd, "L_max", this->MaximumEdgeLengthError);
   AddFieldValue(fd, "MetricScale", this->MetricScale);
+  vtkNew<vtkStringArray> mode;
+  mode->SetName("FieldMode");
+  mode->InsertNextValue((this->FieldModeUsed == METRIC_FIELD ? std::string("Metric Field")
+                                                             : std::string("Tensor Field")) +
+    (this->FieldModeReason.empty() ? "" : " (" + this->FieldModeReason + ")"));
+  fd->AddArray(mode);
+}
+
+int vtkAnisoTensorPipeline::ResolveFieldMode(vtkDataArray* chosen,
+  int association,
+  vtkDataSet* input)
+{
+  this->FieldModeReason.clear();
+  if (this->FieldMode != AUTOMATIC)
+  {
+    return this->FieldMode;
+  }
+  // Every metric producer of this project names its point array "Metric" (analytic source and
+  // filter, tensor to metric, the Medit .sol reader); converting a metric as if it were a
+  // stress would change it (Gaussian2D's stretch 1-3.84 became 1-9.2).
+  vtkDataArray* candidate = chosen
+    ? (association == vtkDataObject::FIELD_ASSOCIATION_POINTS ? chosen : nullptr)
+    : input->GetPointData()->GetTensors();
+  if (candidate && candidate->GetName() && std::string(candidate->GetName()) == "Metric")
+  {
+    this->FieldModeReason = "automatic: the point array \"Metric\" already is a metric";
+    return METRIC_FIELD;
+  }
+  this->FieldModeReason = "automatic: the array is not a point array named \"Metric\"";
+  return TENSOR_FIELD;
 }
 
 bool vtkAnisoTensorPipeline::ChooseFieldArray(vtkInformationVector** inputVector,
@@ -149,6 +196,7 @@ bool vtkAnisoTensorPipeline::ChooseFieldArray(vtkInformationVector** inputVector
       "the input has no array named '" << arrayInfo->Get(vtkDataObject::FIELD_NAME()) << "'");
     return false;
   }
+  this->FieldModeUsed = this->ResolveFieldMode(chosen, association, input);
   copy = vtk::TakeSmartPointer(input->NewInstance());
   copy->ShallowCopy(input);
   if (chosen)
@@ -171,7 +219,7 @@ bool vtkAnisoTensorPipeline::ChooseFieldArray(vtkInformationVector** inputVector
         ->AddArray(named);
     }
   }
-  if (this->FieldMode == METRIC_FIELD)
+  if (this->FieldModeUsed == METRIC_FIELD)
   {
     vtkDataArray* metric = vtkAnisoDataConversion::FindPointTensorArray(chosen, association, input);
     if (!metric || (chosen && association != vtkDataObject::FIELD_ASSOCIATION_POINTS))
@@ -204,7 +252,7 @@ vtkSmartPointer<vtkDataSet> vtkAnisoTensorPipeline::RunMetricStages(vtkDataSet* 
   vtkSmartPointer<vtkDataSet> withMetric = simplexMesh->GetOutput();
   metricName = arrayName;
   tensorScale = 1.0;
-  if (this->FieldMode == TENSOR_FIELD)
+  if (this->FieldModeUsed == TENSOR_FIELD)
   {
     vtkNew<vtkAnisoTensorToMetric> tensorToMetric;
     tensorToMetric->SetInputData(withMetric);
@@ -259,6 +307,15 @@ int vtkAnisoTensorPipeline::RequestData(vtkInformation*,
   if (!this->ChooseFieldArray(inputVector, input, copy, arrayName, association))
   {
     return 0;
+  }
+  // Say which mode ran: the same array read as a tensor or as a metric gives other cells.
+  {
+    std::ostringstream text;
+    text << this->GetUserLabel() << ": Field Mode "
+         << (this->FieldModeUsed == METRIC_FIELD ? "Metric Field" : "Tensor Field") << " on '"
+         << (arrayName.empty() ? std::string("(active point tensors)") : arrayName) << "'"
+         << (this->FieldModeReason.empty() ? "" : " (" + this->FieldModeReason + ")") << "\n";
+    vtkOutputWindowDisplayText(text.str().c_str());
   }
   vtkSmartPointer<vtkDataSet> withMetric =
     this->RunMetricStages(copy, arrayName, association, metricName, tensorScale);
@@ -315,7 +372,10 @@ int vtkAnisoTensorPipeline::RequestData(vtkInformation*,
 void vtkAnisoTensorPipeline::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "FieldMode: " << (this->FieldMode == METRIC_FIELD ? "MetricField" : "TensorField")
+  os << indent << "FieldMode: "
+     << (this->FieldMode == METRIC_FIELD
+            ? "MetricField"
+            : (this->FieldMode == AUTOMATIC ? "Automatic" : "TensorField"))
      << "\n";
   os << indent << "NumberOfCells: " << this->NumberOfCells << "\n";
   os << indent << "TargetDimension: " << this->TargetDimension << "\n";

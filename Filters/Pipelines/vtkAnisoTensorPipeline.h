@@ -11,7 +11,11 @@
  *   turned into a metric by vtkAnisoTensorToMetric (paper Eq. 20) with MinimumEigenvalue,
  *   MaximumAnisotropy and SmoothingIterations;
  * - FieldMode METRIC_FIELD: the point array already is an SPD metric (e.g. "Metric" of
- *   vtkAnisoAnalyticMetric) and is used as is (those three knobs are ignored).
+ *   vtkAnisoAnalyticMetric) and is used as is (those three knobs are ignored);
+ * - FieldMode AUTOMATIC: METRIC_FIELD when the array is a point array named "Metric" (the
+ *   name every metric producer of this project gives: the analytic metric source and filter,
+ *   vtkAnisoTensorToMetric, the Medit .sol reader), else TENSOR_FIELD. The mode that ran is
+ *   told as a text message (vtkOutputWindow) and as the field-data string "FieldMode".
  * Front (run internally on a shallow copy of the input, never modifying it):
  * vtkAnisoSimplexMesh -> vtkAnisoTensorToMetric (TENSOR_FIELD) -> vtkAnisoEmbedding
  * (TargetDimension, Iterations, Seed) -> vtkAnisoParticleSampler (NumberOfCells sites,
@@ -29,6 +33,7 @@
 #include <string> // std::string
 
 class vtkAlgorithm;
+class vtkDataArray;
 class vtkDataSet;
 class vtkFieldData;
 class vtkPolyData;
@@ -43,16 +48,21 @@ public:
   enum FieldModes
   {
     TENSOR_FIELD = 0, ///< physical tensor -> metric with vtkAnisoTensorToMetric
-    METRIC_FIELD = 1  ///< the point array is the metric
+    METRIC_FIELD = 1, ///< the point array is the metric
+    AUTOMATIC = 2     ///< METRIC_FIELD for a point array named "Metric", else TENSOR_FIELD
   };
 
   ///@{
-  /// How the chosen array is read (default TENSOR_FIELD).
-  vtkSetClampMacro(FieldMode, int, TENSOR_FIELD, METRIC_FIELD);
+  /// How the chosen array is read (default AUTOMATIC).
+  vtkSetClampMacro(FieldMode, int, TENSOR_FIELD, AUTOMATIC);
   vtkGetMacro(FieldMode, int);
   void SetFieldModeToTensorField() { this->SetFieldMode(TENSOR_FIELD); }
   void SetFieldModeToMetricField() { this->SetFieldMode(METRIC_FIELD); }
+  void SetFieldModeToAutomatic() { this->SetFieldMode(AUTOMATIC); }
   ///@}
+
+  /// The mode of the last run (TENSOR_FIELD or METRIC_FIELD; AUTOMATIC resolved).
+  vtkGetMacro(FieldModeUsed, int);
 
   ///@{
   /// Number of sites, i.e. of Voronoi cells / mesh vertices (default 2000; at most 8 x the
@@ -156,10 +166,20 @@ protected:
   vtkSmartPointer<vtkDataSet> RunMetricStages(vtkDataSet* input, const std::string& arrayName,
     int association, std::string& metricName, double& tensorScale);
 
-  /// Adds the front's figures (L_avg, L_max, MetricScale) to a field data.
+  /// FieldMode with AUTOMATIC resolved for the chosen array (null: the active point tensors);
+  /// sets FieldModeReason.
+  int ResolveFieldMode(vtkDataArray* chosen, int association, vtkDataSet* input);
+
+  /// Adds the front's figures (L_avg, L_max, MetricScale, the FieldMode string) to a field data.
   void AddFrontFieldData(vtkFieldData* fd) const;
 
-  int FieldMode = TENSOR_FIELD;
+  /// The name users see (the ParaView label): messages of the inner stages are re-issued
+  /// under it, so that they name the filter the user applied.
+  virtual const char* GetUserLabel() const = 0;
+
+  int FieldMode = AUTOMATIC;
+  int FieldModeUsed = TENSOR_FIELD;
+  std::string FieldModeReason;
   int NumberOfCells = 2000;
   int TargetDimension = 8;
   int Iterations = 50;

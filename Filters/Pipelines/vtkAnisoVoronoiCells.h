@@ -8,7 +8,7 @@
  * SetInputArrayToProcess; simplex split, tensor-to-metric, embedding, particle sampling with
  * NumberOfCells sites), then vtkAnisoRestrictedVoronoi with ShrinkFactor.
  * Output 0 (vtkUnstructuredGrid): one shrunken polyhedron (volume) or polygon (2D domain,
- * surface) per site, cell data "SiteId", "Measure", "EmbeddedMeasure", "ElementId" and
+ * surface) per site, cell data "SiteId", "Measure", "EmbeddedMeasure" and
  * "Stretch" = sqrt(λmax / λmin) of the metric at the cell's site (a zero eigenvalue of a 2D /
  * surface metric is ignored).
  * Output 1 (vtkPolyData): the faces (edges in 2D) with "SiteId", "FaceKind", "NeighborSiteId"
@@ -20,7 +20,7 @@
  * Parameters (defaults): NumberOfCells (2000), TargetDimension (8), Iterations (50),
  * SamplingIterations (150), SamplingWarmupIterations (100), PreserveSharpFeatures (on),
  * FeatureAngle (30), MaximumAnisotropy (10), MinimumEigenvalue (0.1), SmoothingIterations
- * (10), ShrinkFactor (0.8), Seed (1), FieldMode (TENSOR_FIELD).
+ * (10), ShrinkFactor (0.8), Seed (1), FieldMode (AUTOMATIC).
  */
 #ifndef vtkAnisoVoronoiCells_h
 #define vtkAnisoVoronoiCells_h
@@ -47,6 +47,7 @@ protected:
   int FillOutputPortInformation(int port, vtkInformation* info) override;
   int RequestBackEnd(vtkUnstructuredGrid* embedded, vtkPolyData* sites, vtkTable* energy,
     vtkInformationVector* outputVector) override;
+  const char* GetUserLabel() const override { return "Aniso Anisotropic Voronoi"; }
 
   double ShrinkFactor = 0.8;
 

@@ -59,8 +59,8 @@ vtkSmartPointer<vtkPoints> MakePoints(const av::RestrictedVoronoiCells& cells)
   return points;
 }
 
-/// Output 0: VTK_POLYHEDRON (3D, with their face streams) or VTK_POLYGON (2D) cells with SiteId, Measure,
-/// EmbeddedMeasure, ElementId.
+/// Output 0: VTK_POLYHEDRON (3D, with their face streams) or VTK_POLYGON (2D) cells with SiteId,
+/// Measure, EmbeddedMeasure and, when some cells are element pieces, ElementId.
 void FillCellOutput(const av::RestrictedVoronoiCells& cells, vtkPoints* points, vtkUnstructuredGrid* output)
 {
   const bool volume = cells.SimplexDim == 3;
@@ -106,7 +106,10 @@ void FillCellOutput(const av::RestrictedVoronoiCells& cells, vtkPoints* points, 
   output->GetCellData()->SetActiveScalars("SiteId");
   AddCellArray<vtkDoubleArray>(output, "Measure", cells.CellMeasure);
   AddCellArray<vtkDoubleArray>(output, "EmbeddedMeasure", cells.CellEmbeddedMeasure);
-  AddCellArray<vtkIntArray>(output, "ElementId", cells.CellElement);
+  // ElementId only names something for element pieces; merged cells would carry -1 only.
+  if (std::any_of(
+        cells.CellElement.begin(), cells.CellElement.end(), [](std::int32_t e) { return e >= 0; }))
+    AddCellArray<vtkIntArray>(output, "ElementId", cells.CellElement);
 }
 
 /// Output 1: the faces (polygons) or edges (lines) of every cell with SiteId, FaceKind,

@@ -22,8 +22,8 @@
  * - 2D domains and surfaces: VTK_POLYGON, one per site when its pieces form one simple loop,
  *   else one per piece.
  * Cell data "SiteId", "Measure" (area / volume in input space of the drawn cell, so scaled
- * by ShrinkFactor^k), "EmbeddedMeasure" (in R^m̄, scaled the same way), "ElementId" (the input
- * element of a piece; -1 for merged cells).
+ * by ShrinkFactor^k), "EmbeddedMeasure" (in R^m̄, scaled the same way) and, only when some
+ * cells are element pieces, "ElementId" (the input element of a piece; -1 for merged cells).
  * ShrinkFactor (default 1 = none) scales every cell about its vertex centroid (points are not
  * shared between cells), the usual way to show Voronoi cells (paper Fig. 15-18).
  *

@@ -124,4 +124,63 @@ e = configure(vtkAnisoVoronoiCells(), cube, POINTS, "NoSuchArray")
 errors = Errors(e)
 e.Update()
 assert errors and "NoSuchArray" in errors[0], errors
+
+# Automatic field mode (the default): Gaussian2D's "Metric" is used as a metric, so the cells
+# keep its stretch range [1, 3.84] (read as a tensor, Eq. 20 would square it: up to 9.2).
+# The mode that ran is a field-data string; the merged cells carry no ElementId (all -1).
+g = vtkAnisoAnalyticMetricSource()
+g.SetPresetByName("gaussian2d")
+g.SetResolution(30)
+auto = vtkAnisoVoronoiCells()
+auto.SetInputConnection(g.GetOutputPort())
+auto.SetNumberOfCells(300)
+auto.SetTargetDimension(3)
+auto.SetIterations(10)
+auto.SetSamplingIterations(20)
+assert auto.GetFieldMode() == vtkAnisoVoronoiCells.AUTOMATIC
+auto.Update()
+ac = auto.GetOutput()
+lo, hi = ac.GetCellData().GetArray("Stretch").GetRange()
+mode = ac.GetFieldData().GetAbstractArray("FieldMode").GetValue(0)
+print("automatic mode on gaussian2d: %d cells, stretch %.3f..%.3f, FieldMode '%s'"
+      % (ac.GetNumberOfCells(), lo, hi, mode))
+assert auto.GetFieldModeUsed() == vtkAnisoVoronoiCells.METRIC_FIELD
+assert mode.startswith("Metric Field (automatic"), mode
+assert 1.0 - 1e-9 <= lo < 1.5 and 3.0 < hi <= 3.85, (lo, hi)
+assert ac.GetCellData().GetArray("ElementId") is None
+# The same array forced to Tensor Field changes the metric (the silent change of issue 16:
+# Eq. 20 squares the stretch, capped at MaximumAnisotropy 10 and smoothed; at this
+# resolution and site count the cells' largest stretch comes out well above 3.84).
+auto.SetFieldModeToTensorField()
+auto.Update()
+tlo, thi = auto.GetOutput().GetCellData().GetArray("Stretch").GetRange()
+print("forced tensor mode: stretch %.3f..%.3f" % (tlo, thi))
+assert thi > 4.0, thi
+assert auto.GetOutput().GetFieldData().GetAbstractArray("FieldMode").GetValue(0) == "Tensor Field"
+
+# A warning of an inner stage is re-issued by the composite under its ParaView label: a vertex
+# cell in the input makes the simplex split warn that it ignored it.
+from vtkmodules.vtkCommonDataModel import VTK_VERTEX
+withVertex = cube.NewInstance()
+withVertex.DeepCopy(cube)
+withVertex.InsertNextCell(VTK_VERTEX, 1, [0])
+for a in range(withVertex.GetCellData().GetNumberOfArrays()):
+    arr = withVertex.GetCellData().GetArray(a)
+    arr.InsertNextTuple(arr.GetTuple(0))
+w = configure(vtkAnisoVoronoiCells(), withVertex, POINTS, "Metric")
+warnings = []
+
+
+@calldata_type(VTK_STRING)
+def on_warning(caller, event, data):
+    warnings.append(str(data))
+
+
+w.AddObserver(vtkCommand.WarningEvent, on_warning)
+w.Update()
+print("re-issued warnings: %s" % warnings)
+assert any("Aniso Anisotropic Voronoi: simplex mesh: 1 vertex/line cell(s) were ignored" in m
+           for m in warnings), warnings
+assert not any("vtkAnisoSimplexMesh" in m for m in warnings), warnings
+assert w.GetOutput().GetNumberOfCells() == 100
 print("TestCompositeFilters: OK")
