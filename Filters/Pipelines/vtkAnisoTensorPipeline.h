@@ -10,6 +10,8 @@
  * - FieldMode TENSOR_FIELD (default): a point or cell physical tensor (stress, strain, ...)
  *   turned into a metric by vtkAnisoTensorToMetric (paper Eq. 20) with MinimumEigenvalue,
  *   MaximumAnisotropy and SmoothingIterations;
+ *   and the metric preparation of vtkAnisoTensorToMetric for NumberOfCells output cells
+ *   (SizeMode, SizeBlend, HMin, HMax, Gradation, GradationFactor; gradation on by default);
  * - FieldMode METRIC_FIELD: the point array already is an SPD metric (e.g. "Metric" of
  *   vtkAnisoAnalyticMetric) and is used as is (those three knobs are ignored).
  * Front (run internally on a shallow copy of the input, never modifying it):
@@ -116,6 +118,25 @@ public:
   ///@}
 
   ///@{
+  /// TENSOR_FIELD: metric preparation (see vtkAnisoTensorToMetric): size mode (0 tensor,
+  /// 1 uniform, 2 blend; default 0), blend exponent (0.5), size limits in the input's length
+  /// units (0 = none), gradation (on) and its factor (MMG's hgrad, 1.3).
+  vtkSetClampMacro(SizeMode, int, 0, 2);
+  vtkGetMacro(SizeMode, int);
+  vtkSetClampMacro(SizeBlend, double, 0.0, 1.0);
+  vtkGetMacro(SizeBlend, double);
+  vtkSetClampMacro(HMin, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(HMin, double);
+  vtkSetClampMacro(HMax, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(HMax, double);
+  vtkSetMacro(Gradation, bool);
+  vtkGetMacro(Gradation, bool);
+  vtkBooleanMacro(Gradation, bool);
+  vtkSetClampMacro(GradationFactor, double, 1.0001, 1000.0);
+  vtkGetMacro(GradationFactor, double);
+  ///@}
+
+  ///@{
   /// Seed of the embedding's initial field and of the sampling (default 1).
   vtkSetMacro(Seed, int);
   vtkGetMacro(Seed, int);
@@ -156,7 +177,8 @@ protected:
   vtkSmartPointer<vtkDataSet> RunMetricStages(vtkDataSet* input, const std::string& arrayName,
     int association, std::string& metricName, double& tensorScale);
 
-  /// Adds the front's figures (L_avg, L_max, MetricScale) to a field data.
+  /// Adds the front's figures (L_avg, L_max, MetricScale, and against the raw metric L_avg_raw,
+  /// L_max_raw with the preparation's deviation figures when it ran) to a field data.
   void AddFrontFieldData(vtkFieldData* fd) const;
 
   int FieldMode = TENSOR_FIELD;
@@ -170,11 +192,18 @@ protected:
   double MaximumAnisotropy = 10.0;
   double MinimumEigenvalue = 0.1;
   int SmoothingIterations = 10;
+  int SizeMode = 0;
+  double SizeBlend = 0.5;
+  double HMin = 0.0;
+  double HMax = 0.0;
+  bool Gradation = true;
+  double GradationFactor = 1.3;
   int Seed = 1;
 
   double AverageEdgeLengthError = 0.0;
   double MaximumEdgeLengthError = 0.0;
   double MetricScale = 1.0;
+  double FrontFigures[6] = { -1, -1, -1, -1, -1, -1 }; ///< raw L_avg/L_max, deviation; -1 = none
 
 private:
   vtkAnisoTensorPipeline(const vtkAnisoTensorPipeline&) = delete;
