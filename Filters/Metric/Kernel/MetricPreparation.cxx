@@ -337,6 +337,7 @@ MetricPreparationResult Prepare(const SimplexMesh& mesh, const MetricField& metr
   const double hi = o.HMin > 0.0 ? 1.0 / (o.HMin * o.HMin) : 0.0;
   const int rounds = r.TargetComplexity > 0.0 ? o.MaxNormalizationRounds : 1;
   std::vector<Mat<D>> m;
+  double previousScale = scale, previousComplexity = 0.0;
   for (int round = 0; round < rounds; ++round)
   {
     // Every round starts again from the sized field, so the result does not depend on the
@@ -365,7 +366,17 @@ MetricPreparationResult Prepare(const SimplexMesh& mesh, const MetricField& metr
     const double ratio = r.TargetComplexity / r.Complexity;
     if (std::abs(ratio - 1.0) <= o.ComplexityTolerance)
       break;
-    scale *= std::pow(ratio, 2.0 / k);
+    // Newton on log C(log s): the slope is k/2 for a plain scaling, less where hmin or hmax
+    // hold the sizes; secant estimate after the first round.
+    double slope = 0.5 * k;
+    if (round > 0 && std::abs(std::log(scale / previousScale)) > 1e-12)
+    {
+      slope = std::log(r.Complexity / previousComplexity) / std::log(scale / previousScale);
+      slope = std::clamp(slope, 0.05, k);
+    }
+    previousScale = scale;
+    previousComplexity = r.Complexity;
+    scale *= std::exp(std::log(ratio) / slope);
   }
   r.ImpliedSites = r.Complexity / unit;
   r.StretchRatio.resize(m.size());
