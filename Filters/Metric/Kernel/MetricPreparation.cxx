@@ -142,8 +142,11 @@ void Range(const Mat<D>& m, double& lo, double& hi)
 }
 
 template <int D>
-std::size_t Grade(const SimplexMesh& mesh, const VertexGraph& g, double lnBeta,
-  std::vector<Mat<D>>& m, int& sweeps)
+std::size_t Grade(const SimplexMesh& mesh,
+  const VertexGraph& g,
+  double lnBeta,
+  std::vector<Mat<D>>& m,
+  int& sweeps)
 {
   const std::size_t n = m.size();
   std::vector<double> lo(n), hi(n);
@@ -228,8 +231,10 @@ std::size_t Grade(const SimplexMesh& mesh, const VertexGraph& g, double lnBeta,
 }
 
 template <int D>
-MetricDeviation Deviation(const SimplexMesh& mesh, const MetricField& raw,
-  const MetricField& prepared, double threshold)
+MetricDeviation Deviation(const SimplexMesh& mesh,
+  const MetricField& raw,
+  const MetricField& prepared,
+  double threshold)
 {
   const std::size_t n = raw.NumPoints();
   MetricDeviation d;
@@ -256,8 +261,8 @@ MetricDeviation Deviation(const SimplexMesh& mesh, const MetricField& raw,
       change[i] = worst;
     });
   d.ChangedFraction =
-    static_cast<double>(std::count_if(change.begin(), change.end(),
-      [threshold](double c) { return c > threshold; })) /
+    static_cast<double>(std::count_if(
+      change.begin(), change.end(), [threshold](double c) { return c > threshold; })) /
     static_cast<double>(n);
   d.Maximum = *std::max_element(change.begin(), change.end());
   auto quantile = [&](double q)
@@ -271,16 +276,18 @@ MetricDeviation Deviation(const SimplexMesh& mesh, const MetricField& raw,
   return d;
 }
 
-void CheckInputs(const SimplexMesh& mesh, const MetricField& metric,
-  const MetricPreparationOptions& o, const std::vector<std::int32_t>& edges)
+void CheckInputs(const SimplexMesh& mesh,
+  const MetricField& metric,
+  const MetricPreparationOptions& o,
+  const std::vector<std::int32_t>& edges)
 {
   const std::string who = "metric preparation: ";
   const std::size_t n = mesh.NumPoints();
   if (n == 0 || mesh.NumCells() == 0)
     throw InputError(who + "the mesh is empty");
   if (metric.NumPoints() != n || metric.Values.size() != 6 * n)
-    throw InputError(who + "the metric has " + std::to_string(metric.NumPoints()) +
-      " tuples for " + std::to_string(n) + " vertices");
+    throw InputError(who + "the metric has " + std::to_string(metric.NumPoints()) + " tuples for " +
+      std::to_string(n) + " vertices");
   if (o.Dimension != 2 && o.Dimension != 3)
     throw InputError(who + "Dimension must be 2 or 3");
   if (!(o.SizeBlend >= 0.0 && o.SizeBlend <= 1.0))
@@ -315,8 +322,10 @@ void CheckInputs(const SimplexMesh& mesh, const MetricField& metric,
 }
 
 template <int D>
-MetricPreparationResult Prepare(const SimplexMesh& mesh, const MetricField& metric,
-  const MetricPreparationOptions& o, const std::vector<std::int32_t>& edges)
+MetricPreparationResult Prepare(const SimplexMesh& mesh,
+  const MetricField& metric,
+  const MetricPreparationOptions& o,
+  const std::vector<std::int32_t>& edges)
 {
   MetricPreparationResult r;
   const double k = mesh.SimplexDim;
@@ -391,16 +400,22 @@ MetricPreparationResult Prepare(const SimplexMesh& mesh, const MetricField& metr
 }
 } // namespace
 
-MetricPreparationResult PrepareMetric(const SimplexMesh& mesh, const MetricField& metric,
-  const MetricPreparationOptions& options, const std::vector<std::int32_t>& edges)
+MetricPreparationResult PrepareMetric(const SimplexMesh& mesh,
+  const MetricField& metric,
+  const MetricPreparationOptions& options,
+  const std::vector<std::int32_t>& edges)
 {
   CheckInputs(mesh, metric, options, edges);
   return options.Dimension == 2 ? Prepare<2>(mesh, metric, options, edges)
                                 : Prepare<3>(mesh, metric, options, edges);
 }
 
-std::size_t GradeMetric(const SimplexMesh& mesh, const std::vector<std::int32_t>& edges,
-  double beta, int dimension, MetricField& metric, int& sweeps)
+std::size_t GradeMetric(const SimplexMesh& mesh,
+  const std::vector<std::int32_t>& edges,
+  double beta,
+  int dimension,
+  MetricField& metric,
+  int& sweeps)
 {
   MetricPreparationOptions o;
   o.Dimension = dimension;
@@ -424,8 +439,11 @@ std::size_t GradeMetric(const SimplexMesh& mesh, const std::vector<std::int32_t>
   return changed;
 }
 
-MetricDeviation MeasureMetricDeviation(const SimplexMesh& mesh, const MetricField& raw,
-  const MetricField& prepared, int dimension, double changeThreshold)
+MetricDeviation MeasureMetricDeviation(const SimplexMesh& mesh,
+  const MetricField& raw,
+  const MetricField& prepared,
+  int dimension,
+  double changeThreshold)
 {
   MetricPreparationOptions o;
   o.Dimension = dimension;

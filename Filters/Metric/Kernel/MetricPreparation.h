@@ -72,17 +72,17 @@ struct MetricPreparationResult
 {
   MetricField Metric;               ///< the prepared field, 6 components per vertex
   std::vector<double> StretchRatio; ///< s_max / s_min per vertex
-  double Scale = 1.0;            ///< normalization factor applied to the size-mode metric
-  double RawComplexity = 0.0;    ///< complexity of the input field
-  double Complexity = 0.0;       ///< complexity of the prepared field
-  double TargetComplexity = 0.0; ///< TargetSites x UnitVertexMeasure (0 when not normalized)
-  double ImpliedSites = 0.0;     ///< Complexity / UnitVertexMeasure: the sites it asks for
-  int NormalizationRounds = 0;   ///< rounds run (0 without TargetSites)
-  int GradationSweeps = 0;       ///< sweeps of the last gradation
-  std::size_t NumGraded = 0;     ///< vertices the last gradation changed
-  std::size_t NumHMinClamped = 0; ///< vertices with an eigenvalue lowered to 1 / HMin^2
-  std::size_t NumHMaxClamped = 0; ///< vertices with an eigenvalue raised to 1 / HMax^2
-  MetricDeviation Deviation;     ///< against the input field
+  double Scale = 1.0;               ///< normalization factor applied to the size-mode metric
+  double RawComplexity = 0.0;       ///< complexity of the input field
+  double Complexity = 0.0;          ///< complexity of the prepared field
+  double TargetComplexity = 0.0;    ///< TargetSites x UnitVertexMeasure (0 when not normalized)
+  double ImpliedSites = 0.0;        ///< Complexity / UnitVertexMeasure: the sites it asks for
+  int NormalizationRounds = 0;      ///< rounds run (0 without TargetSites)
+  int GradationSweeps = 0;          ///< sweeps of the last gradation
+  std::size_t NumGraded = 0;        ///< vertices the last gradation changed
+  std::size_t NumHMinClamped = 0;   ///< vertices with an eigenvalue lowered to 1 / HMin^2
+  std::size_t NumHMaxClamped = 0;   ///< vertices with an eigenvalue raised to 1 / HMax^2
+  MetricDeviation Deviation;        ///< against the input field
 };
 
 /**
@@ -95,8 +95,10 @@ struct MetricPreparationResult
  * metric that is not positive definite in its used Dimension x Dimension block, NaN/Inf, edges
  * out of range, invalid options.
  */
-MetricPreparationResult PrepareMetric(const SimplexMesh& mesh, const MetricField& metric,
-  const MetricPreparationOptions& options, const std::vector<std::int32_t>& edges = {});
+MetricPreparationResult PrepareMetric(const SimplexMesh& mesh,
+  const MetricField& metric,
+  const MetricPreparationOptions& options,
+  const std::vector<std::int32_t>& edges = {});
 
 /**
  * Gradation alone, in place: every edge pq ends with M_q >= eta M_p and M_p >= eta' M_q
@@ -106,12 +108,19 @@ MetricPreparationResult PrepareMetric(const SimplexMesh& mesh, const MetricField
  * bounded by the field's largest, so it terminates. Returns the number of vertices changed;
  * `sweeps` gets the number of sweeps.
  */
-std::size_t GradeMetric(const SimplexMesh& mesh, const std::vector<std::int32_t>& edges,
-  double beta, int dimension, MetricField& metric, int& sweeps);
+std::size_t GradeMetric(const SimplexMesh& mesh,
+  const std::vector<std::int32_t>& edges,
+  double beta,
+  int dimension,
+  MetricField& metric,
+  int& sweeps);
 
 /// The deviation of `prepared` from `raw` (see MetricDeviation); both SPD in their used block.
-MetricDeviation MeasureMetricDeviation(const SimplexMesh& mesh, const MetricField& raw,
-  const MetricField& prepared, int dimension, double changeThreshold = 0.05);
+MetricDeviation MeasureMetricDeviation(const SimplexMesh& mesh,
+  const MetricField& raw,
+  const MetricField& prepared,
+  int dimension,
+  double changeThreshold = 0.05);
 
 } // namespace av
 

@@ -47,8 +47,9 @@ av::SimplexMesh Cube(int n)
         mesh.Points.insert(mesh.Points.end(),
           { static_cast<double>(i) / n, static_cast<double>(j) / n, static_cast<double>(k) / n });
   auto id = [n](int i, int j, int k) { return (k * (n + 1) + j) * (n + 1) + i; };
-  const int paths[6][3] = { { 0, 1, 2 }, { 0, 2, 1 }, { 1, 0, 2 }, { 1, 2, 0 }, { 2, 0, 1 },
-    { 2, 1, 0 } };
+  const int paths[6][3] = {
+    { 0, 1, 2 }, { 0, 2, 1 }, { 1, 0, 2 }, { 1, 2, 0 }, { 2, 0, 1 }, { 2, 1, 0 }
+  };
   for (int k = 0; k < n; ++k)
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i)
@@ -117,8 +118,7 @@ double Excess(const Eigen::Matrix3d& b, const Eigen::Matrix3d& a)
 }
 
 /// Largest violation over every edge and both directions of M_q >= (1 + l_p ln beta)^-2 M_p.
-double WorstGradation(const av::SimplexMesh& mesh, const av::MetricField& f, double beta,
-  int dim)
+double WorstGradation(const av::SimplexMesh& mesh, const av::MetricField& f, double beta, int dim)
 {
   const std::vector<std::int32_t> edges = av::UniqueEdges(mesh);
   double worst = 0.0;
@@ -171,8 +171,8 @@ void CheckGradation(const av::SimplexMesh& mesh, int dim)
   {
     AV_CHECK(Excess(Block(raw, i, dim), Block(graded, i, dim)) <= 1.0 + 1e-9);
     if (mesh.Point(i)[0] < 0.5)
-      AV_CHECK((Block(graded, i, dim) - Block(raw, i, dim)).norm() <=
-        1e-9 * Block(raw, i, dim).norm());
+      AV_CHECK(
+        (Block(graded, i, dim) - Block(raw, i, dim)).norm() <= 1e-9 * Block(raw, i, dim).norm());
   }
   // A second pass has nothing left to do.
   av::MetricField again = graded;
@@ -208,7 +208,8 @@ void CheckUniform()
   for (std::size_t i = 1; i < mesh.NumPoints(); ++i)
     AV_CHECK_NEAR(av::UnpackSymmetric(b.Metric.At(i)).determinant() /
         std::sqrt(av::UnpackSymmetric(raw.At(i)).determinant()) / ratio0,
-      1.0, 1e-9);
+      1.0,
+      1e-9);
 }
 
 void CheckLimitsAndTarget()
@@ -274,8 +275,8 @@ void CheckIdempotenceAndDeviation()
   const std::size_t i = mesh.NumPoints() / 2;
   const auto e = av::EigenDecompose(av::UnpackSymmetric(raw.At(i)));
   const Eigen::Vector3d v = e.Vectors.col(2);
-  av::PackSymmetric(
-    av::UnpackSymmetric(raw.At(i)) + 3.0 * e.Values[2] * v * v.transpose(), local.Values.data() + 6 * i);
+  av::PackSymmetric(av::UnpackSymmetric(raw.At(i)) + 3.0 * e.Values[2] * v * v.transpose(),
+    local.Values.data() + 6 * i);
   const av::MetricDeviation d = av::MeasureMetricDeviation(mesh, raw, local, 3);
   AV_CHECK_NEAR(d.Maximum, 1.0, 0.01);
   AV_CHECK_NEAR(d.ChangedFraction, 1.0 / mesh.NumPoints(), 1e-12);
