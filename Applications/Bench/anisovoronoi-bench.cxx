@@ -11,6 +11,7 @@
 #include "MeshStage.h"
 #include "MetricAlgebra.h"
 #include "RealCases.h"
+#include "MetricPreparation.h"
 #include "ReferenceEmbedding.h"
 #include "Stopwatch.h"
 #include "StructuredMeshes.h"
@@ -71,6 +72,10 @@ struct Args
   double FeatureAngle = 30.0;
   std::string DataDir;       // real cases: --data-dir, else AV_REAL_DATA_DIR, else build/real-data
   avbench::RealCaseOptions RealMetric; // real tensor cases: --min-eigenvalue, --max-anisotropy, --smooth
+  // Metric preparation (presets keep their metric unless one of these is given).
+  bool Prepare = false;
+  bool NoPrepare = false; // real tensor cases: --no-prepare-metric keeps the raw metric
+  av::MetricPreparationOptions Preparation;
 };
 
 /// Paper values (Tab. 5 and Fig. 4); NaN where the paper gives none.
@@ -91,6 +96,8 @@ struct Case
   double MeshSeconds = 0.0;
   std::string MeshDescription;
   PaperValues Paper;
+  av::MetricField RawMetric;      ///< before preparation (empty: not prepared)
+  av::MetricPreparationResult Prep; ///< what the preparation did
 };
 
 PaperValues PaperFor(av::AnalyticPreset p)
@@ -133,6 +140,21 @@ void StretchRange(const Case& c, double& smin, double& smax)
   }
 }
 
+/// Metric preparation of the case (MetricPreparation.h) for `sites` sites; keeps the raw field,
+/// scaled to the prepared one's complexity, for L_avg against it.
+void PrepareCaseMetric(const Args& a, Case& c, std::size_t sites)
+{
+  av::MetricPreparationOptions o = a.Preparation;
+  o.Dimension = c.Mesh.AmbientDim == 2 ? 2 : 3;
+  o.TargetSites = static_cast<double>(sites);
+  c.Prep = av::PrepareMetric(c.Mesh, c.Metric, o);
+  c.RawMetric = std::move(c.Metric);
+  c.Metric = c.Prep.Metric;
+  const double t = std::pow(c.Prep.Complexity / c.Prep.RawComplexity, 2.0 / c.Mesh.SimplexDim);
+  for (double& v : c.RawMetric.Values)
+    v *= t;
+}
+
 Case BuildRealCase(const Args& a)
 {
   Case c;
@@ -149,6 +171,14 @@ Case BuildRealCase(const Args& a)
   c.FilePoints = in.FilePoints;
   c.FileCells = in.FileCells;
   c.RealSites = avbench::DefaultRealSites(in);
+  // Tensor data is prepared by default, as in the CLI; curvature metrics of surfaces only when
+  // asked.
+  const bool surface = c.Mesh.SimplexDim == 2 && c.Mesh.AmbientDim == 3;
+  if (a.Prepare || (!surface && !a.NoPrepare))
+  {
+    PrepareCaseMetric(a, c, a.Sites > 0 ? a.Sites : c.RealSites);
+    StretchRange(c, c.StretchMin, c.StretchMax);
+  }
   return c;
 }
 
@@ -199,6 +229,8 @@ Case BuildCase(const Args& a)
   }
   c.Metric = av::EvaluateAnalyticMetric(c.Preset, c.Mesh);
   c.MeshSeconds = watch.Seconds();
+  if (a.Prepare)
+    PrepareCaseMetric(a, c, a.Sites > 0 ? a.Sites : avbench::DefaultSitesFor(c.Preset));
   StretchRange(c, c.StretchMin, c.StretchMax);
   return c;
 }
@@ -255,6 +287,19 @@ void ReportEmbedding(const Args& a, const Case& c, const av::EmbeddingOptions& o
   out.Set("iterations", r.IterationsDone);
   out.Set("L_avg", e.AveragePercent);
   out.Set("L_max", e.MaxPercent);
+  out.Set("metric_prep", !c.RawMetric.Values.empty());
+  if (!c.RawMetric.Values.empty())
+  {
+    const av::EdgeLengthErrorResult raw = av::ComputeEdgeLengthError(c.Mesh, c.RawMetric, r.Embedded);
+    out.Set("L_avg_raw", raw.AveragePercent);
+    out.Set("L_max_raw", raw.MaxPercent);
+    out.Set("metric_prep_median_change", c.Prep.Deviation.Median);
+    out.Set("metric_prep_p95_change", c.Prep.Deviation.Percentile95);
+    out.Set("metric_prep_max_change", c.Prep.Deviation.Maximum);
+    out.Set("metric_prep_changed_fraction", c.Prep.Deviation.ChangedFraction);
+    out.Set("metric_prep_graded_vertices", c.Prep.NumGraded);
+    out.Set("metric_implied_sites", c.Prep.ImpliedSites);
+  }
   out.Set("embed_seconds", embedSeconds);
   out.Set("setup_seconds", r.SetupSeconds);
   out.Set("factor_seconds", r.FactorSeconds);
@@ -499,6 +544,11 @@ void Usage(std::ostream& os)
         "  --reference-embedding  the preset's exact isometric embedding (x, y, z, H) instead\n"
         "                    of the solver (all presets but sphere-cos): separates the\n"
         "                    embedding's share of a quality loss from the rest\n"
+        "  --prepare-metric  prepare the preset's metric for the sites (gradation 1.3), as do\n"
+        "  --hmin H --hmax H --hgrad B --size-mode tensor|uniform|blend --size-blend A\n"
+        "                    (--no-gradation: none); adds L_avg_raw, metric_prep_* keys\n"
+        "  --no-prepare-metric  real tensor cases (prepared by default, as the CLI does):\n"
+        "                    the raw metric\n"
         "Prints one JSON object per case on stdout.\n";
 }
 
@@ -609,6 +659,29 @@ bool Parse(int argc, char** argv, Args& a)
       a.RealMetric.MaxAnisotropy = std::stod(next());
     else if (k == "--smooth")
       a.RealMetric.SmoothingIterations = std::stoi(next());
+    else if (k == "--prepare-metric")
+      a.Prepare = true;
+    else if (k == "--no-prepare-metric")
+      a.NoPrepare = true;
+    else if (k == "--hmin" || k == "--hmax" || k == "--hgrad" || k == "--size-blend")
+    {
+      const double v = std::stod(next());
+      av::MetricPreparationOptions& p = a.Preparation;
+      (k == "--hmin" ? p.HMin : k == "--hmax" ? p.HMax : k == "--hgrad" ? p.GradationFactor : p.SizeBlend) = v;
+      a.Prepare = true;
+    }
+    else if (k == "--size-mode")
+    {
+      const std::string m = next();
+      if (m != "tensor" && m != "uniform" && m != "blend")
+        throw std::runtime_error("--size-mode must be tensor, uniform or blend");
+      a.Preparation.SizeMode = m == "uniform" ? av::MetricSizeMode::Uniform
+        : m == "blend"                        ? av::MetricSizeMode::Blend
+                                              : av::MetricSizeMode::Tensor;
+      a.Prepare = true;
+    }
+    else if (k == "--no-gradation")
+      a.Preparation.Gradation = false;
     else if (!k.empty() && k[0] != '-' && a.CaseName.empty())
       a.CaseName = k;
     else

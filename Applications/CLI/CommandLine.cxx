@@ -30,7 +30,8 @@ options:
                            .mesh/.meshb input; without --metric it is the metric
   --step N                 result step of a .frd input (0-based, default 0)
   --resolution N           mesh size for preset:NAME without INPUT (0 = paper size)
-  --sites N                number of Voronoi cells / mesh vertices (default 2000)
+  --sites N                number of Voronoi cells / mesh vertices (default 2000; with --sol
+                           and no --sites: the .sol's own count, its complexity / v_unit)
   --dim N                  embedding dimension (default 8)
   --iterations N           embedding iterations (default 50)
   --double-solve           embedding: CHOLMOD's double-precision solves (default: float copy)
@@ -49,6 +50,17 @@ options:
   --min-eigenvalue X       tensor: floor relative to the largest |eigenvalue| (default 1e-3)
   --max-anisotropy X       tensor: cap on the stretch ratio (default 25, 0 = none)
   --smooth N               tensor: log-Euclidean smoothing iterations (default 0)
+
+metric preparation (on for tensor:ARRAY; for metric:, preset: and --sol inputs only when one
+of these options is given; lengths in the input's units, the metric first normalized so that
+unit length is one of the --sites output cells):
+  --hmin H, --hmax H       smallest / largest size (default 0 = no limit)
+  --hgrad B                gradation: sizes grow by at most ~B per cell (default 1.3, MMG's)
+  --no-gradation           no gradation
+  --size-mode MODE         tensor (sizes from the tensor, default), uniform (shape only, equal
+                           sizes) or blend (det M = det(M_tensor)^A, A from --size-blend)
+  --size-blend A           blend exponent in [0, 1] (default 0.5)
+  --prepare-metric         prepare a metric:, preset: or --sol metric with the defaults above
   --refine N               volumes: remesh the domain with TetGen to about N vertices and
                            interpolate the input's point data onto it (a coarse FE mesh
                            cannot carry a fast-varying metric; default 0 = off)
@@ -124,6 +136,14 @@ void CheckOptions(const Options& o)
     Fail("an INPUT file is required unless --metric preset:NAME", 2);
   if (o.Sites < 1)
     Fail("--sites must be at least 1", 2);
+  if (o.HMin < 0 || o.HMax < 0 || (o.HMin > 0 && o.HMax > 0 && o.HMin > o.HMax))
+    Fail("--hmin and --hmax must be >= 0 and --hmin <= --hmax", 2);
+  if (!(o.HGrad > 1.0 && o.HGrad <= 1000.0))
+    Fail("--hgrad must be in (1, 1000]", 2);
+  if (o.SizeMode != "tensor" && o.SizeMode != "uniform" && o.SizeMode != "blend")
+    Fail("--size-mode must be tensor, uniform or blend", 2);
+  if (!(o.SizeBlend >= 0 && o.SizeBlend <= 1))
+    Fail("--size-blend must be in [0, 1]", 2);
   if (o.Dim < 3 || o.Dim > 20)
     Fail("--dim must be in [3, 20]", 2);
   if (o.Iterations < 0 || o.SampleIterations < 0 || o.WarmupIterations < 0)
@@ -182,7 +202,26 @@ Options ParseCommandLine(int argc, char* argv[])
     else if (a == "--resolution")
       o.Resolution = ParseInt(a, next());
     else if (a == "--sites")
+    {
       o.Sites = ParseInt(a, next());
+      o.SitesGiven = true;
+    }
+    else if (a == "--hmin" || a == "--hmax" || a == "--hgrad" || a == "--size-blend")
+    {
+      const double v = ParseDouble(a, next());
+      (a == "--hmin" ? o.HMin : a == "--hmax" ? o.HMax : a == "--hgrad" ? o.HGrad : o.SizeBlend) =
+        v;
+      o.PrepareAsked = true;
+    }
+    else if (a == "--size-mode")
+    {
+      o.SizeMode = next();
+      o.PrepareAsked = true;
+    }
+    else if (a == "--no-gradation")
+      o.Gradation = false;
+    else if (a == "--prepare-metric")
+      o.PrepareAsked = true;
     else if (a == "--dim")
       o.Dim = ParseInt(a, next());
     else if (a == "--iterations")

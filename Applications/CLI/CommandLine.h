@@ -22,6 +22,11 @@ struct Options
   double Mu = 100.0, Shrink = 0.8, MinEigenvalue = 1e-3, MaxAnisotropy = 25.0;
   bool TensorAsMetric = false, Clamp = false, Quiet = false, Repair = true;
   bool RepairNonManifold = false, DoubleSolve = false;
+  /// Metric preparation (on for tensor:ARRAY; metric, preset and .sol inputs only when a
+  /// preparation option is given, PrepareAsked). SitesGiven: --sites was on the command line.
+  double HMin = 0.0, HMax = 0.0, HGrad = 1.3, SizeBlend = 0.5;
+  std::string SizeMode = "tensor";
+  bool Gradation = true, PrepareAsked = false, SitesGiven = false;
 };
 
 /// Prints "anisovoronoi: error: <message>" on stderr and exits with `code` (2: bad command line).

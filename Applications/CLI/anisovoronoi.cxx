@@ -10,10 +10,12 @@
 #include "CommandLine.h"
 #include "InputReaders.h"
 #include "MeditOutput.h"
+#include "MetricFieldOps.h"
 #include "StageRunner.h"
 #include "vtkAnisoAnalyticMetric.h"
 #include "vtkAnisoAnalyticMetricSource.h"
 #include "vtkAnisoCurvatureMetric.h"
+#include "vtkAnisoDataConversion.h"
 #include "vtkAnisoEmbedding.h"
 #include "vtkAnisoMeshQuality.h"
 #include "vtkAnisoParticleSampler.h"
@@ -202,6 +204,56 @@ vtkSmartPointer<vtkAlgorithm> RunRefinement(const Options& o,
   return producer;
 }
 
+/// The metric preparation of --hmin, --hmax, --hgrad, --size-mode, --no-gradation on `m`.
+void SetPreparation(const Options& o, vtkAnisoTensorToMetric* m)
+{
+  m->SetSizeMode(o.SizeMode == "uniform" ? vtkAnisoTensorToMetric::SIZE_UNIFORM
+      : o.SizeMode == "blend"            ? vtkAnisoTensorToMetric::SIZE_BLEND
+                                         : vtkAnisoTensorToMetric::SIZE_FROM_TENSOR);
+  m->SetSizeBlend(o.SizeBlend);
+  m->SetNumberOfSites(o.Sites);
+  m->SetHMin(o.HMin);
+  m->SetHMax(o.HMax);
+  m->SetGradation(o.Gradation);
+  m->SetGradationFactor(o.HGrad);
+}
+
+/// metric:, preset: or --sol with a preparation option: the point metric `array` of
+/// `upstream`, prepared (read as a metric: no floor, no cap); its output array is "Metric".
+vtkSmartPointer<vtkAlgorithm> MakeMetricPreparation(
+  const Options& o, vtkAlgorithm* upstream, const std::string& array)
+{
+  auto m = vtkSmartPointer<vtkAnisoTensorToMetric>::New();
+  m->SetInputConnection(upstream->GetOutputPort());
+  m->SetInputArrayToProcess(
+    0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, array.c_str());
+  m->SetInterpretationToTensorAsMetric();
+  m->SetMinimumEigenvalue(1e-15);
+  m->SetMaximumAnisotropy(0.0);
+  m->ApplyGlobalScaleOff();
+  SetPreparation(o, m);
+  return m;
+}
+
+/// A .sol carries absolute sizes (MMG / Feflo.a): without --sites, as many sites as its
+/// complexity holds unit vertices, N = (integral of sqrt(det M)) / v_unit, as MMG does.
+int SitesFromMetric(vtkAlgorithm* domain, const std::string& array)
+{
+  vtkDataSet* ds = vtkDataSet::SafeDownCast(domain->GetOutputDataObject(0));
+  av::SimplexMesh mesh;
+  av::MetricField metric;
+  std::string error;
+  if (!ds || !vtkAnisoDataConversion::ToSimplexMesh(ds, mesh, error) ||
+    !vtkAnisoDataConversion::ToMetricField(
+      ds->GetPointData()->GetArray(array.c_str()), mesh.NumPoints(), metric, error))
+    Fail("cannot count the sites of the .sol metric: " + error);
+  const double n = av::MetricComplexity(mesh, metric) / av::UnitVertexMeasure(mesh.SimplexDim);
+  if (!(n >= 1.0 && n < 1e8))
+    Fail("the .sol metric asks for " + std::to_string(n) +
+      " vertices (complexity / unit vertex measure): give --sites N");
+  return static_cast<int>(std::lround(n));
+}
+
 /// tensor:ARRAY: the metric of a tensor point or cell array of `domain`.
 vtkSmartPointer<vtkAlgorithm> MakeTensorMetric(const Options& o, vtkAlgorithm* domain)
 {
@@ -224,14 +276,22 @@ vtkSmartPointer<vtkAlgorithm> MakeTensorMetric(const Options& o, vtkAlgorithm* d
   m->SetMinimumEigenvalue(o.MinEigenvalue);
   m->SetMaximumAnisotropy(o.MaxAnisotropy);
   m->SetSmoothingIterations(o.Smooth);
+  SetPreparation(o, m);
   return m;
 }
 
 /// 3. The metric of the domain (the domain itself when it already carries it); returns the
 /// name of its point array.
-std::string RunMetric(const Options& o, MeshingStages& s, StageRunner& runner)
+std::string RunMetric(Options& o, MeshingStages& s, StageRunner& runner)
 {
   std::string metricName = "Metric";
+  if (!o.Sol.empty() && !o.SitesGiven && o.Metric.rfind("metric:", 0) == 0)
+  {
+    o.Sites = SitesFromMetric(s.Domain, o.Metric.substr(7));
+    if (!o.Quiet)
+      std::cerr << "[anisovoronoi] " << o.Sites << " sites from the .sol metric's complexity"
+                << std::endl;
+  }
   if (IsPreset(o) && !o.Input.empty())
   {
     const std::string presetName = o.Metric.substr(7);
@@ -262,11 +322,18 @@ std::string RunMetric(const Options& o, MeshingStages& s, StageRunner& runner)
       2);
   if (s.Metric != s.Domain)
     runner.Run(s.Metric, "metric (" + o.Metric + ")");
+  // Presets and metric inputs keep their metric unless a preparation option asks otherwise.
+  if (o.PrepareAsked && o.Metric.rfind("tensor:", 0) != 0)
+  {
+    s.Metric = MakeMetricPreparation(o, s.Metric, metricName);
+    runner.Run(s.Metric, "metric preparation");
+    metricName = "Metric";
+  }
   return metricName;
 }
 
 /// 1. to 3.: the input, split into simplices, optionally refined, with its metric.
-std::string RunInputStages(const Options& o, MeshingStages& s, StageRunner& runner)
+std::string RunInputStages(Options& o, MeshingStages& s, StageRunner& runner)
 {
   RunSource(o, s, runner);
   // 2. Simplices (hexahedra, quadratic cells, ... are split).
@@ -376,6 +443,15 @@ std::vector<std::pair<std::string, std::string>> ReportEntries(const Options& o,
     { "stretch_max", JsonNumber(stretchRange[1]) },
     { "L_avg", JsonNumber(FieldValue(embedded, "L_avg")) },
     { "L_max", JsonNumber(FieldValue(embedded, "L_max")) },
+    { "L_avg_raw", JsonNumber(FieldValue(embedded, "L_avg_raw")) },
+    { "L_max_raw", JsonNumber(FieldValue(embedded, "L_max_raw")) },
+    { "metric_prep_median_change", JsonNumber(FieldValue(embedded, "MetricPrepMedianChange")) },
+    { "metric_prep_p95_change", JsonNumber(FieldValue(embedded, "MetricPrepP95Change")) },
+    { "metric_prep_max_change", JsonNumber(FieldValue(embedded, "MetricPrepMaxChange")) },
+    { "metric_prep_changed_fraction",
+      JsonNumber(FieldValue(embedded, "MetricPrepChangedFraction")) },
+    { "metric_prep_graded_vertices", JsonNumber(FieldValue(embedded, "NumGraded")) },
+    { "metric_implied_sites", JsonNumber(FieldValue(embedded, "ImpliedSites")) },
     { "embed_seconds", JsonNumber(runner.SecondsOf(EmbeddingStage(o))) },
     { "factor_seconds", JsonNumber(FieldValue(embedded, "FactorSeconds")) },
     { "sites", std::to_string(o.Sites) },
@@ -439,7 +515,7 @@ int main(int argc, char* argv[])
   vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
   vtkNew<avcli::CapturingOutputWindow> window;
   vtkOutputWindow::SetInstance(window);
-  const Options o = avcli::ParseCommandLine(argc, argv);
+  Options o = avcli::ParseCommandLine(argc, argv); // --sites may come from a .sol
   window->ShowWarnings = !o.Quiet;
   if (!o.OutputDir.empty() && !vtksys::SystemTools::MakeDirectory(o.OutputDir))
     Fail("cannot create the output directory '" + o.OutputDir + "'");

@@ -214,12 +214,34 @@ int vtkAnisoEmbedding::RequestData(
     return 0;
   }
   const double seconds = clock.Seconds();
+  // Against the unprepared metric too, when metric preparation left it ("RawMetric", at the
+  // prepared metric's complexity): preparation must not be a way to make L_avg easy.
+  av::EdgeLengthErrorResult rawErrors;
+  vtkDataArray* rawArray = input->GetPointData()->GetArray("RawMetric");
+  av::MetricField raw;
+  std::string rawError;
+  const bool withRaw = rawArray &&
+    vtkAnisoDataConversion::ToMetricField(rawArray, mesh.NumPoints(), raw, rawError);
+  if (withRaw &&
+    !vtkAnisoFilterUtilities::RunKernel(this, "edge length error against the raw metric", [&] {
+      for (double& v : raw.Values)
+        v *= this->MetricScale;
+      rawErrors = av::ComputeEdgeLengthError(mesh, raw, result.Embedded);
+    }))
+  {
+    return 0;
+  }
   this->AverageEdgeLengthError = errors.AveragePercent;
   this->MaximumEdgeLengthError = errors.MaxPercent;
 
   BuildEmbeddedMesh(input, mesh, this->EmbeddingArrayName ? this->EmbeddingArrayName : "Embedding",
     result.Embedded, errors, output);
   AddFigures(output->GetFieldData(), errors, this->MetricScale, result, seconds);
+  if (withRaw)
+  {
+    vtkAnisoFilterUtilities::AddFieldValue(output->GetFieldData(), "L_avg_raw", rawErrors.AveragePercent);
+    vtkAnisoFilterUtilities::AddFieldValue(output->GetFieldData(), "L_max_raw", rawErrors.MaxPercent);
+  }
   BuildEnergyTable(result.EnergyHistory, energyTable);
   this->UpdateProgress(1.0);
   return 1;

@@ -17,7 +17,9 @@
  * - "EdgeLengthError": per-cell largest relative edge length error (%) of the paper §5.1;
  * - field data "L_avg", "L_max" (%), "MetricScale" (c), "EmbeddingDimension",
  *   "EmbeddingIterations", "FactorSeconds", "SolveSeconds", "DoublePrecisionRetries",
- *   "EmbeddingSeconds".
+ *   "EmbeddingSeconds"; when the input has the point array "RawMetric" (left by the metric
+ *   preparation of vtkAnisoTensorToMetric: the unprepared metric at the same complexity), also
+ *   "L_avg_raw", "L_max_raw": the same errors measured with it.
  * Output 1 (vtkTable): per iteration (0 = initial state) E_em, E_reg, E_total — chartable.
  *
  * Solver: local step per element (polar factor of a small SVD, parallel), global step with

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkAnisoTensorToMetric.h"
 
+#include "MetricAlgebra.h"
+#include "MetricPreparation.h"
 #include "TensorToMetric.h"
 #include "vtkAnisoFilterUtilities.h"
 
@@ -16,6 +18,7 @@
 #include <vtkInformationVector.h>
 #include <vtkObjectFactory.h>
 #include <vtkPointData.h>
+#include <vtkPoints.h>
 
 #include <algorithm>
 #include <cmath>
@@ -151,6 +154,83 @@ bool AverageCellTensors(vtkDataSet* input,
   }
   out.Count = static_cast<vtkIdType>(out.Used.size());
   return true;
+}
+
+/**
+ * The simplices the preparation integrates the complexity over: the tuples' points (every point,
+ * or `pointToTuple`'s) and the cells of the highest dimension split by vtkCell::Triangulate.
+ * False with `error` when the input has no 2D or 3D cell.
+ */
+bool BuildSimplices(vtkDataSet* input,
+  const std::vector<std::int32_t>& pointToTuple,
+  std::size_t count,
+  av::SimplexMesh& mesh,
+  std::string& error)
+{
+  vtkNew<vtkGenericCell> cell;
+  int maxDim = 0;
+  const vtkIdType numCells = input->GetNumberOfCells();
+  for (vtkIdType c = 0; c < numCells; ++c)
+  {
+    input->GetCell(c, cell);
+    maxDim = std::max(maxDim, cell->GetCellDimension());
+  }
+  if (maxDim < 2)
+  {
+    error = "metric preparation needs 2D or 3D cells, the input has none (turn it off: "
+            "Gradation off, NumberOfSites 0, SizeMode Tensor, no HMin/HMax)";
+    return false;
+  }
+  mesh.AmbientDim = 3;
+  mesh.SimplexDim = maxDim;
+  mesh.Points.assign(3 * count, 0.0);
+  auto tuple = [&pointToTuple](vtkIdType p)
+  { return pointToTuple.empty() ? static_cast<std::int32_t>(p) : pointToTuple[p]; };
+  for (vtkIdType p = 0; p < input->GetNumberOfPoints(); ++p)
+  {
+    const std::int32_t t = tuple(p);
+    if (t >= 0)
+      input->GetPoint(p, mesh.Points.data() + 3 * static_cast<std::size_t>(t));
+  }
+  vtkNew<vtkIdList> ids;
+  vtkNew<vtkPoints> points;
+  for (vtkIdType c = 0; c < numCells; ++c)
+  {
+    input->GetCell(c, cell);
+    if (cell->GetCellDimension() != maxDim || !cell->Triangulate(0, ids, points))
+      continue;
+    for (vtkIdType k = 0; k < ids->GetNumberOfIds(); ++k)
+      mesh.Cells.push_back(tuple(ids->GetId(k)));
+  }
+  mesh.Cells.resize(mesh.Cells.size() - mesh.Cells.size() % (maxDim + 1));
+  return true;
+}
+
+/// Point array `name` of 6-component tuples (`used` maps tuples to points, as WriteOutput).
+void AddPointTensors(vtkDataSet* output,
+  const char* name,
+  const std::vector<double>& values,
+  const std::vector<vtkIdType>& used,
+  int dimension)
+{
+  const vtkIdType numPoints = output->GetNumberOfPoints();
+  vtkNew<vtkDoubleArray> array;
+  array->SetName(name);
+  array->SetNumberOfComponents(6);
+  array->SetNumberOfTuples(numPoints);
+  const double identity[6] = { 1, 1, dimension == 2 ? 0.0 : 1.0, 0, 0, 0 };
+  if (used.empty())
+  {
+    std::copy(values.begin(), values.end(), array->GetPointer(0));
+  }
+  else
+  {
+    for (vtkIdType p = 0; p < numPoints; ++p)
+      array->SetTypedTuple(p, identity);
+    for (std::size_t k = 0; k < used.size(); ++k)
+      array->SetTypedTuple(used[k], values.data() + 6 * k);
+  }
+  output->GetPointData()->AddArray(array);
 }
 
 }
@@ -307,7 +387,7 @@ int vtkAnisoTensorToMetric::RequestData(vtkInformation*,
   this->UsedDimension = options.Dimension;
 
   std::vector<std::int32_t> edges;
-  if (this->SmoothingIterations > 0)
+  if (this->SmoothingIterations > 0 || (this->PreparationRequested() && this->Gradation))
   {
     edges = ExtractEdges(input);
     if (!tuples.PointToTuple.empty())
@@ -315,13 +395,16 @@ int vtkAnisoTensorToMetric::RequestData(vtkInformation*,
       for (auto& e : edges)
         e = tuples.PointToTuple[e]; // edges come from cells, so every end point has a tuple
     }
-    if (edges.empty())
+    if (edges.empty() && options.SmoothingIterations > 0)
     {
       vtkWarningMacro("the input has no cell edges: smoothing skipped");
       options.SmoothingIterations = 0;
     }
   }
   this->UpdateProgress(0.3);
+  // With a normalization the output is in cell units; the embedding scales it for itself.
+  if (this->PreparationRequested() && this->NumberOfSites > 0)
+    options.ApplyGlobalScale = false;
 
   av::TensorToMetricResult result;
   if (!vtkAnisoFilterUtilities::RunKernel(this,
@@ -352,9 +435,86 @@ int vtkAnisoTensorToMetric::RequestData(vtkInformation*,
                                      << result.MaxAsymmetry
                                      << "); its symmetric part (T + T^T) / 2 was used");
   }
+  this->MedianChange = this->Percentile95Change = this->ChangedFraction = 0.0;
+  this->ImpliedSites = 0.0;
+  this->NumberOfGradedPoints = 0;
+  std::vector<double> rawMetric;
+  if (this->PreparationRequested() &&
+    !this->Prepare(input, tuples.PointToTuple, edges, options.Dimension, result, rawMetric))
+  {
+    return 0;
+  }
   this->WriteOutput(result, tuples.Used, cellTensors, options.Dimension, output);
+  if (!rawMetric.empty())
+    AddPointTensors(output, "RawMetric", rawMetric, tuples.Used, options.Dimension);
   this->UpdateProgress(1.0);
   return 1;
+}
+
+bool vtkAnisoTensorToMetric::PreparationRequested() const
+{
+  return this->Gradation || this->NumberOfSites > 0 || this->SizeMode != SIZE_FROM_TENSOR ||
+    this->HMin > 0.0 || this->HMax > 0.0;
+}
+
+/// Runs av::PrepareMetric on the converted field: `result` gets the prepared metric, its
+/// stretch and ranges, `rawMetric` the converted field at the same complexity; field figures
+/// go to the members (WriteOutput adds them). False after vtkErrorMacro.
+bool vtkAnisoTensorToMetric::Prepare(vtkDataSet* input,
+  const std::vector<std::int32_t>& pointToTuple,
+  const std::vector<std::int32_t>& edges,
+  int dimension,
+  av::TensorToMetricResult& result,
+  std::vector<double>& rawMetric)
+{
+  av::SimplexMesh mesh;
+  std::string error;
+  if (!BuildSimplices(input, pointToTuple, result.Metric.NumPoints(), mesh, error))
+  {
+    vtkErrorMacro(<< error);
+    return false;
+  }
+  av::MetricPreparationOptions o;
+  o.SizeMode = this->SizeMode == SIZE_UNIFORM ? av::MetricSizeMode::Uniform
+    : this->SizeMode == SIZE_BLEND            ? av::MetricSizeMode::Blend
+                                              : av::MetricSizeMode::Tensor;
+  o.SizeBlend = this->SizeBlend;
+  o.TargetSites = this->NumberOfSites;
+  o.HMin = this->HMin;
+  o.HMax = this->HMax;
+  o.Gradation = this->Gradation;
+  o.GradationFactor = this->GradationFactor;
+  o.Dimension = dimension;
+  av::MetricPreparationResult prep;
+  if (!vtkAnisoFilterUtilities::RunKernel(
+        this, "metric preparation", [&] { prep = av::PrepareMetric(mesh, result.Metric, o, edges); }))
+  {
+    return false;
+  }
+  // The raw field at the prepared one's complexity: the same number of cells.
+  const double t = prep.RawComplexity > 0.0
+    ? std::pow(prep.Complexity / prep.RawComplexity, 2.0 / mesh.SimplexDim)
+    : 1.0;
+  rawMetric = result.Metric.Values;
+  for (double& v : rawMetric)
+    v *= t;
+  result.Metric = std::move(prep.Metric);
+  result.StretchRatio = std::move(prep.StretchRatio);
+  result.GlobalScale *= prep.Scale;
+  av::EigenvalueRange(result.Metric, dimension == 2, result.MinEigenvalue, result.MaxEigenvalue);
+  const auto range = std::minmax_element(result.StretchRatio.begin(), result.StretchRatio.end());
+  result.MinStretch = *range.first;
+  result.MaxStretch = *range.second;
+  this->MedianChange = prep.Deviation.Median;
+  this->Percentile95Change = prep.Deviation.Percentile95;
+  this->ChangedFraction = prep.Deviation.ChangedFraction;
+  this->ImpliedSites = prep.ImpliedSites;
+  this->NumberOfGradedPoints = static_cast<vtkIdType>(prep.NumGraded);
+  const double figures[5] = { prep.Deviation.Maximum, prep.Complexity,
+    static_cast<double>(prep.NumHMinClamped), static_cast<double>(prep.NumHMaxClamped),
+    static_cast<double>(prep.GradationSweeps) };
+  std::copy(figures, figures + 5, this->PreparationFigures);
+  return true;
 }
 
 /// The Metric and Stretch point arrays and the field data of the conversion.
@@ -419,6 +579,19 @@ void vtkAnisoTensorToMetric::WriteOutput(const av::TensorToMetricResult& result,
   AddFieldValue(fd, "NumCapped", static_cast<double>(result.NumCapped));
   AddFieldValue(fd, "StretchMin", result.MinStretch);
   AddFieldValue(fd, "StretchMax", result.MaxStretch);
+  if (this->PreparationRequested())
+  {
+    AddFieldValue(fd, "MetricPrepMedianChange", this->MedianChange);
+    AddFieldValue(fd, "MetricPrepP95Change", this->Percentile95Change);
+    AddFieldValue(fd, "MetricPrepMaxChange", this->PreparationFigures[0]);
+    AddFieldValue(fd, "MetricPrepChangedFraction", this->ChangedFraction);
+    AddFieldValue(fd, "MetricComplexity", this->PreparationFigures[1]);
+    AddFieldValue(fd, "ImpliedSites", this->ImpliedSites);
+    AddFieldValue(fd, "NumGraded", static_cast<double>(this->NumberOfGradedPoints));
+    AddFieldValue(fd, "NumHMinClamped", this->PreparationFigures[2]);
+    AddFieldValue(fd, "NumHMaxClamped", this->PreparationFigures[3]);
+    AddFieldValue(fd, "GradationSweeps", this->PreparationFigures[4]);
+  }
 }
 
 void vtkAnisoTensorToMetric::PrintSelf(ostream& os, vtkIndent indent)
@@ -438,4 +611,12 @@ void vtkAnisoTensorToMetric::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ApplyGlobalScale: " << this->ApplyGlobalScale << "\n";
   os << indent << "MetricArrayName: " << (this->MetricArrayName ? this->MetricArrayName : "")
      << "\n";
+  const char* sizeModes[] = { "Tensor", "Uniform", "Blend" };
+  os << indent << "SizeMode: " << sizeModes[this->SizeMode] << "\n";
+  os << indent << "SizeBlend: " << this->SizeBlend << "\n";
+  os << indent << "NumberOfSites: " << this->NumberOfSites << "\n";
+  os << indent << "HMin: " << this->HMin << "\n";
+  os << indent << "HMax: " << this->HMax << "\n";
+  os << indent << "Gradation: " << this->Gradation << "\n";
+  os << indent << "GradationFactor: " << this->GradationFactor << "\n";
 }

@@ -22,6 +22,20 @@
  * and, with ApplyGlobalScale, multiplied by c = 1 / (smallest eigenvalue) so that every
  * eigenvalue is >= 1 (paper §6).
  *
+ * Metric preparation (MMG's -hmin/-hmax/-hgrad, Alauzet 2010; see av::PrepareMetric and the
+ * Metric README), on by default: SizeMode (TENSOR sizes from the tensor; UNIFORM unit
+ * determinant, shape only; BLEND det^SizeBlend), normalization to NumberOfSites output cells
+ * (unit metric length = one output cell; 0 keeps the tensor's scale), size limits HMin / HMax
+ * (input length units, 0 = off) and Gradation (growth per unit metric length bounded by
+ * GradationFactor, MMG's hgrad). With NumberOfSites > 0 the output metric is in those cell
+ * units and ApplyGlobalScale is not applied (the embedding scales it for itself). Cells of the
+ * highest dimension are split into simplices for the complexity integral; the gradation runs on
+ * the cell edges. Adds the point array "RawMetric" (the unprepared metric scaled to the same
+ * complexity, for the embedding's L_avg against it) and field data "MetricPrepMedianChange",
+ * "MetricPrepP95Change", "MetricPrepMaxChange", "MetricPrepChangedFraction" (relative change of
+ * length along the raw eigenvectors, see av::MetricDeviation), "MetricComplexity",
+ * "ImpliedSites", "NumGraded", "NumHMinClamped", "NumHMaxClamped".
+ *
  * Output: the input (shallow copy) plus point arrays
  * - "Metric" (MetricArrayName): 6 components, set as the active tensors; for a 2D problem
  *   (Dimension 2) only XX, YY, XY are non-zero;
@@ -39,6 +53,7 @@
 #include "AnisoVoronoiFiltersMetricModule.h" // export macro
 #include <vtkDataSetAlgorithm.h>
 
+#include <cstdint> // private helpers
 #include <string> // private helpers
 #include <vector> // private helpers
 
@@ -130,6 +145,53 @@ public:
   vtkBooleanMacro(ApplyGlobalScale, bool);
   ///@}
 
+  enum SizeModes
+  {
+    SIZE_FROM_TENSOR = 0, ///< sizes and shapes from the tensor
+    SIZE_UNIFORM = 1,     ///< unit determinant: equal-size cells whose shape shows the tensor
+    SIZE_BLEND = 2        ///< det M = det(M_tensor)^SizeBlend
+  };
+
+  ///@{
+  /// Where the sizes come from (default SIZE_FROM_TENSOR).
+  vtkSetClampMacro(SizeMode, int, SIZE_FROM_TENSOR, SIZE_BLEND);
+  vtkGetMacro(SizeMode, int);
+  void SetSizeModeToTensor() { this->SetSizeMode(SIZE_FROM_TENSOR); }
+  void SetSizeModeToUniform() { this->SetSizeMode(SIZE_UNIFORM); }
+  void SetSizeModeToBlend() { this->SetSizeMode(SIZE_BLEND); }
+  ///@}
+
+  ///@{
+  /// SIZE_BLEND: exponent in [0, 1] of det(M_tensor) kept by the sizes (default 0.5).
+  vtkSetClampMacro(SizeBlend, double, 0.0, 1.0);
+  vtkGetMacro(SizeBlend, double);
+  ///@}
+
+  ///@{
+  /// Output cells the metric is prepared for: normalized so that its complexity holds that many
+  /// unit vertices (default 2000, the composite filters' default); 0 = keep the tensor's scale.
+  vtkSetClampMacro(NumberOfSites, int, 0, VTK_INT_MAX);
+  vtkGetMacro(NumberOfSites, int);
+  ///@}
+
+  ///@{
+  /// Smallest / largest size in the input's length units (default 0 = no limit).
+  vtkSetClampMacro(HMin, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(HMin, double);
+  vtkSetClampMacro(HMax, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(HMax, double);
+  ///@}
+
+  ///@{
+  /// Bounded size growth per unit metric length (default on) with factor GradationFactor
+  /// (MMG's hgrad, > 1, default 1.3).
+  vtkSetMacro(Gradation, bool);
+  vtkGetMacro(Gradation, bool);
+  vtkBooleanMacro(Gradation, bool);
+  vtkSetClampMacro(GradationFactor, double, 1.0001, 1000.0);
+  vtkGetMacro(GradationFactor, double);
+  ///@}
+
   ///@{
   /// Name of the output metric array (default "Metric").
   vtkSetStringMacro(MetricArrayName);
@@ -145,6 +207,14 @@ public:
   vtkGetMacro(NumberOfCappedTuples, vtkIdType);
   vtkGetMacro(StretchMin, double);
   vtkGetMacro(StretchMax, double);
+  /// Metric preparation of the last run (0 when it did not run): median / 95th percentile of
+  /// the relative length change against the raw metric, fraction of points changed by more
+  /// than 5 %, sites the prepared metric asks for, points the gradation changed.
+  vtkGetMacro(MedianChange, double);
+  vtkGetMacro(Percentile95Change, double);
+  vtkGetMacro(ChangedFraction, double);
+  vtkGetMacro(ImpliedSites, double);
+  vtkGetMacro(NumberOfGradedPoints, vtkIdType);
   /// The dimension used by the last run (2 or 3).
   vtkGetMacro(UsedDimension, int);
   ///@}
@@ -162,6 +232,13 @@ protected:
   int Dimension = DIMENSION_AUTO;
   bool ApplyGlobalScale = true;
   char* MetricArrayName = nullptr;
+  int SizeMode = SIZE_FROM_TENSOR;
+  double SizeBlend = 0.5;
+  int NumberOfSites = 2000;
+  double HMin = 0.0;
+  double HMax = 0.0;
+  bool Gradation = true;
+  double GradationFactor = 1.3;
 
   double MetricScale = 1.0;
   double MaxAsymmetry = 0.0;
@@ -171,6 +248,12 @@ protected:
   double StretchMin = 0.0;
   double StretchMax = 0.0;
   int UsedDimension = 3;
+  double MedianChange = 0.0;
+  double Percentile95Change = 0.0;
+  double ChangedFraction = 0.0;
+  double ImpliedSites = 0.0;
+  vtkIdType NumberOfGradedPoints = 0;
+  double PreparationFigures[5] = { 0, 0, 0, 0, 0 }; ///< max change, complexity, clamps, sweeps
 
 private:
 #ifndef __VTK_WRAP__
@@ -179,6 +262,10 @@ private:
   bool BuildOptions(vtkDataSet* input, av::TensorToMetricOptions& options, std::string& error);
   void WriteOutput(const av::TensorToMetricResult& result, const std::vector<vtkIdType>& used,
     bool cellTensors, int dimension, vtkDataSet* output);
+  bool PreparationRequested() const;
+  bool Prepare(vtkDataSet* input, const std::vector<std::int32_t>& pointToTuple,
+    const std::vector<std::int32_t>& edges, int dimension, av::TensorToMetricResult& result,
+    std::vector<double>& rawMetric);
 #endif
   vtkAnisoTensorToMetric(const vtkAnisoTensorToMetric&) = delete;
   void operator=(const vtkAnisoTensorToMetric&) = delete;

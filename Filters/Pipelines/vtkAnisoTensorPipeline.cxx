@@ -27,6 +27,7 @@
 #include <vtkTable.h>
 #include <vtkUnstructuredGrid.h>
 
+#include <algorithm>
 #include <sstream>
 #include <vector>
 
@@ -147,6 +148,11 @@ void vtkAnisoTensorPipeline::AddFrontFieldData(vtkFieldData* fd) const
   AddFieldValue(fd, "L_avg", this->AverageEdgeLengthError);
   AddFieldValue(fd, "L_max", this->MaximumEdgeLengthError);
   AddFieldValue(fd, "MetricScale", this->MetricScale);
+  const char* names[6] = { "L_avg_raw", "L_max_raw", "MetricPrepMedianChange",
+    "MetricPrepP95Change", "MetricPrepChangedFraction", "ImpliedSites" };
+  for (int k = 0; k < 6; ++k)
+    if (this->FrontFigures[k] >= 0.0)
+      AddFieldValue(fd, names[k], this->FrontFigures[k]);
   vtkNew<vtkStringArray> mode;
   mode->SetName("FieldMode");
   mode->InsertNextValue((this->FieldModeUsed == METRIC_FIELD ? std::string("Metric Field")
@@ -261,6 +267,13 @@ vtkSmartPointer<vtkDataSet> vtkAnisoTensorPipeline::RunMetricStages(vtkDataSet* 
     tensorToMetric->SetMinimumEigenvalue(this->MinimumEigenvalue);
     tensorToMetric->SetMaximumAnisotropy(this->MaximumAnisotropy);
     tensorToMetric->SetSmoothingIterations(this->SmoothingIterations);
+    tensorToMetric->SetNumberOfSites(this->NumberOfCells);
+    tensorToMetric->SetSizeMode(this->SizeMode);
+    tensorToMetric->SetSizeBlend(this->SizeBlend);
+    tensorToMetric->SetHMin(this->HMin);
+    tensorToMetric->SetHMax(this->HMax);
+    tensorToMetric->SetGradation(this->Gradation);
+    tensorToMetric->SetGradationFactor(this->GradationFactor);
     tensorToMetric->SetMetricArrayName("Metric");
     if (!this->RunStage(tensorToMetric, "tensor to metric", 0.02, 0.05, error))
     {
@@ -299,6 +312,7 @@ int vtkAnisoTensorPipeline::RequestData(vtkInformation*,
     return 1; // empty in, empty out
   }
   this->AverageEdgeLengthError = this->MaximumEdgeLengthError = 0.0;
+  std::fill(this->FrontFigures, this->FrontFigures + 6, -1.0);
   this->MetricScale = 1.0;
   vtkSmartPointer<vtkDataSet> copy;
   std::string arrayName, metricName;
@@ -342,6 +356,13 @@ int vtkAnisoTensorPipeline::RequestData(vtkInformation*,
   this->AverageEdgeLengthError = embedding->GetAverageEdgeLengthError();
   this->MaximumEdgeLengthError = embedding->GetMaximumEdgeLengthError();
   this->MetricScale = tensorScale * embedding->GetMetricScale();
+  const char* figureNames[6] = { "L_avg_raw", "L_max_raw", "MetricPrepMedianChange",
+    "MetricPrepP95Change", "MetricPrepChangedFraction", "ImpliedSites" };
+  for (int k = 0; k < 6; ++k)
+  {
+    vtkDataArray* a = embedded->GetFieldData()->GetArray(figureNames[k]);
+    this->FrontFigures[k] = a && a->GetNumberOfTuples() > 0 ? a->GetTuple1(0) : -1.0;
+  }
 
   vtkNew<vtkAnisoParticleSampler> sampler;
   sampler->SetInputData(embedded);
@@ -387,5 +408,11 @@ void vtkAnisoTensorPipeline::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaximumAnisotropy: " << this->MaximumAnisotropy << "\n";
   os << indent << "MinimumEigenvalue: " << this->MinimumEigenvalue << "\n";
   os << indent << "SmoothingIterations: " << this->SmoothingIterations << "\n";
+  os << indent << "SizeMode: " << this->SizeMode << "\n";
+  os << indent << "SizeBlend: " << this->SizeBlend << "\n";
+  os << indent << "HMin: " << this->HMin << "\n";
+  os << indent << "HMax: " << this->HMax << "\n";
+  os << indent << "Gradation: " << (this->Gradation ? "on" : "off") << "\n";
+  os << indent << "GradationFactor: " << this->GradationFactor << "\n";
   os << indent << "Seed: " << this->Seed << "\n";
 }

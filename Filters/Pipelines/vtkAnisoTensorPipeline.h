@@ -10,6 +10,8 @@
  * - FieldMode TENSOR_FIELD (default): a point or cell physical tensor (stress, strain, ...)
  *   turned into a metric by vtkAnisoTensorToMetric (paper Eq. 20) with MinimumEigenvalue,
  *   MaximumAnisotropy and SmoothingIterations;
+ *   and the metric preparation of vtkAnisoTensorToMetric for NumberOfCells output cells
+ *   (SizeMode, SizeBlend, HMin, HMax, Gradation, GradationFactor; gradation on by default);
  * - FieldMode METRIC_FIELD: the point array already is an SPD metric (e.g. "Metric" of
  *   vtkAnisoAnalyticMetric) and is used as is (those three knobs are ignored);
  * - FieldMode AUTOMATIC: METRIC_FIELD when the array is a point array named "Metric" (the
@@ -126,6 +128,25 @@ public:
   ///@}
 
   ///@{
+  /// TENSOR_FIELD: metric preparation (see vtkAnisoTensorToMetric): size mode (0 tensor,
+  /// 1 uniform, 2 blend; default 0), blend exponent (0.5), size limits in the input's length
+  /// units (0 = none), gradation (on) and its factor (MMG's hgrad, 1.3).
+  vtkSetClampMacro(SizeMode, int, 0, 2);
+  vtkGetMacro(SizeMode, int);
+  vtkSetClampMacro(SizeBlend, double, 0.0, 1.0);
+  vtkGetMacro(SizeBlend, double);
+  vtkSetClampMacro(HMin, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(HMin, double);
+  vtkSetClampMacro(HMax, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(HMax, double);
+  vtkSetMacro(Gradation, bool);
+  vtkGetMacro(Gradation, bool);
+  vtkBooleanMacro(Gradation, bool);
+  vtkSetClampMacro(GradationFactor, double, 1.0001, 1000.0);
+  vtkGetMacro(GradationFactor, double);
+  ///@}
+
+  ///@{
   /// Seed of the embedding's initial field and of the sampling (default 1).
   vtkSetMacro(Seed, int);
   vtkGetMacro(Seed, int);
@@ -170,7 +191,9 @@ protected:
   /// sets FieldModeReason.
   int ResolveFieldMode(vtkDataArray* chosen, int association, vtkDataSet* input);
 
-  /// Adds the front's figures (L_avg, L_max, MetricScale, the FieldMode string) to a field data.
+  /// Adds the front's figures (L_avg, L_max, MetricScale, the FieldMode string, and against the
+  /// raw metric L_avg_raw, L_max_raw with the preparation's deviation figures when it ran) to a
+  /// field data.
   void AddFrontFieldData(vtkFieldData* fd) const;
 
   /// The name users see (the ParaView label): messages of the inner stages are re-issued
@@ -190,11 +213,18 @@ protected:
   double MaximumAnisotropy = 10.0;
   double MinimumEigenvalue = 0.1;
   int SmoothingIterations = 10;
+  int SizeMode = 0;
+  double SizeBlend = 0.5;
+  double HMin = 0.0;
+  double HMax = 0.0;
+  bool Gradation = true;
+  double GradationFactor = 1.3;
   int Seed = 1;
 
   double AverageEdgeLengthError = 0.0;
   double MaximumEdgeLengthError = 0.0;
   double MetricScale = 1.0;
+  double FrontFigures[6] = { -1, -1, -1, -1, -1, -1 }; ///< raw L_avg/L_max, deviation; -1 = none
 
 private:
   vtkAnisoTensorPipeline(const vtkAnisoTensorPipeline&) = delete;

@@ -42,7 +42,8 @@ check(energy.GetNumberOfRows() == 6, "energy table rows: %d" % energy.GetNumberO
 # Tensor To Metric on the analytic metric used as a tensor: Cube1 is diag(S^2, 1, 1), S in
 # [1, 10]; Eigenvalues As Stretch squares it (stretch S^2 up to 100), capped at 25.
 an = AnisoAnalyticMetric(Input=Wavelet(WholeExtent=[0, 4, 0, 4, 0, 4]), Preset="Cube1")
-t2m = AnisoTensorToMetric(Input=an, MaximumAnisotropy=25.0, MetricArrayName="M2")
+t2m = AnisoTensorToMetric(Input=an, MaximumAnisotropy=25.0, MetricArrayName="M2",
+                          Gradation=0, NumberOfSites=0)  # the conversion alone
 t2m.Tensors = ["POINTS", "Metric"]
 t2m.UpdatePipeline()
 out = servermanager.Fetch(t2m)

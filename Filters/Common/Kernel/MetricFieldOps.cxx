@@ -47,22 +47,37 @@ Eigen::Matrix3d LogEuclideanMean(const double* const* metrics, const double* wei
 
 namespace
 {
+/// a ∩ b; with relTol >= 0, `changed` tells whether b exceeds a by more than relTol (when not,
+/// a is returned as it is).
 template <int D>
-Eigen::Matrix<double, D, D> Intersect(
-  const Eigen::Matrix<double, D, D>& a, const Eigen::Matrix<double, D, D>& b)
+Eigen::Matrix<double, D, D> Intersect(const Eigen::Matrix<double, D, D>& a,
+  const Eigen::Matrix<double, D, D>& b,
+  double relTol,
+  bool& changed)
 {
   using Mat = Eigen::Matrix<double, D, D>;
   // Generalized eigenvectors P of (b, a): P^T a P = I, P^T b P = diag(mu). In that basis the
   // intersection is diag(max(1, mu)); back: P^-T diag P^-1.
   Eigen::GeneralizedSelfAdjointEigenSolver<Mat> ges(b, a);
+  const auto mu = ges.eigenvalues();
+  changed = mu.maxCoeff() > 1.0 + relTol;
+  if (relTol >= 0.0 && !changed)
+    return a;
   const Mat p = ges.eigenvectors();
   const Mat pinv = p.inverse();
-  const auto mu = ges.eigenvalues();
   Eigen::Matrix<double, D, 1> d;
   for (int k = 0; k < D; ++k)
     d[k] = std::max(1.0, mu[k]);
   const Mat m = pinv.transpose() * d.asDiagonal() * pinv;
   return 0.5 * (m + m.transpose());
+}
+
+template <int D>
+Eigen::Matrix<double, D, D> Intersect(
+  const Eigen::Matrix<double, D, D>& a, const Eigen::Matrix<double, D, D>& b)
+{
+  bool changed = false;
+  return Intersect<D>(a, b, -1.0, changed);
 }
 } // namespace
 
@@ -74,6 +89,24 @@ Eigen::Matrix3d IntersectMetrics(const Eigen::Matrix3d& a, const Eigen::Matrix3d
 Eigen::Matrix2d IntersectMetrics(const Eigen::Matrix2d& a, const Eigen::Matrix2d& b)
 {
   return Intersect<2>(a, b);
+}
+
+bool IntersectInto(Eigen::Matrix3d& a, const Eigen::Matrix3d& b, double relTol)
+{
+  bool changed = false;
+  const Eigen::Matrix3d m = Intersect<3>(a, b, relTol, changed);
+  if (changed)
+    a = m;
+  return changed;
+}
+
+bool IntersectInto(Eigen::Matrix2d& a, const Eigen::Matrix2d& b, double relTol)
+{
+  bool changed = false;
+  const Eigen::Matrix2d m = Intersect<2>(a, b, relTol, changed);
+  if (changed)
+    a = m;
+  return changed;
 }
 
 double MetricEdgeLength(

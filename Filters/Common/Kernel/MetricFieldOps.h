@@ -30,6 +30,14 @@ Eigen::Matrix3d LogEuclideanMean(const double* const* metrics, const double* wei
 Eigen::Matrix3d IntersectMetrics(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b);
 Eigen::Matrix2d IntersectMetrics(const Eigen::Matrix2d& a, const Eigen::Matrix2d& b);
 
+/**
+ * a <- a ∩ b only when b asks for more than a somewhere: its largest generalized eigenvalue
+ * against a exceeds 1 + relTol. Returns whether `a` changed. The gradation's inner step: most
+ * propagated metrics are already contained, and this tells so with one reduction.
+ */
+bool IntersectInto(Eigen::Matrix3d& a, const Eigen::Matrix3d& b, double relTol);
+bool IntersectInto(Eigen::Matrix2d& a, const Eigen::Matrix2d& b, double relTol);
+
 /// Metric length of the segment a -> b (AmbientDim values each) as paper §5.1 measures it:
 /// |Q (b - a)| with Q = (M_a^{1/2} + M_b^{1/2}) / 2.
 double MetricEdgeLength(

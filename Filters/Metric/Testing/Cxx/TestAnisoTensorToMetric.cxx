@@ -18,8 +18,10 @@
 #include <vtkSmartPointer.h>
 
 #include <cmath>
+#include <algorithm>
 #include <cstdio>
 #include <string>
+#include <utility>
 
 namespace
 {
@@ -72,6 +74,13 @@ vtkSmartPointer<vtkImageData> MakeGrid(int nx, int ny, int nz)
   grid->SetDimensions(nx, ny, nz);
   grid->SetSpacing(0.5, 0.5, 0.5);
   return grid;
+}
+
+/// The conversion alone: no gradation, no normalization (the tests of the conversion).
+void NoPreparation(vtkAnisoTensorToMetric* filter)
+{
+  filter->GradationOff();
+  filter->SetNumberOfSites(0);
 }
 
 vtkSmartPointer<vtkDoubleArray> MakeTensors(const char* name, vtkIdType n, int comps)
@@ -133,6 +142,7 @@ void TestRotatedTensor(EventCounter* events)
   const double before = tensors->GetComponent(7, 3);
 
   vtkNew<vtkAnisoTensorToMetric> filter;
+  NoPreparation(filter); // these tests check the conversion itself
   Watch(filter, events);
   events->Reset();
   filter->SetInputData(grid);
@@ -194,6 +204,7 @@ void TestNegativeEigenvalues(EventCounter* events)
   grid->GetPointData()->SetTensors(tensors);
 
   vtkNew<vtkAnisoTensorToMetric> filter;
+  NoPreparation(filter); // these tests check the conversion itself
   Watch(filter, events);
   events->Reset();
   filter->SetInputData(grid);
@@ -259,6 +270,7 @@ void TestNonSymmetric(EventCounter* events)
   grid->GetPointData()->AddArray(full);
 
   vtkNew<vtkAnisoTensorToMetric> filter;
+  NoPreparation(filter); // these tests check the conversion itself
   Watch(filter, events);
   filter->SetInputData(grid);
   filter->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "Sym");
@@ -299,6 +311,7 @@ void TestCellTensors(EventCounter* events)
   grid->GetCellData()->SetTensors(tensors); // no point tensors: cell tensors are the default
 
   vtkNew<vtkAnisoTensorToMetric> filter;
+  NoPreparation(filter); // these tests check the conversion itself
   Watch(filter, events);
   events->Reset();
   filter->SetInputData(grid);
@@ -335,6 +348,7 @@ void TestSmoothingEdges(EventCounter* events)
   grid->GetPointData()->SetTensors(tensors);
 
   vtkNew<vtkAnisoTensorToMetric> filter;
+  NoPreparation(filter); // these tests check the conversion itself
   Watch(filter, events);
   events->Reset();
   filter->SetInputData(grid);
@@ -366,6 +380,7 @@ void TestFlat(EventCounter* events)
     tensors->SetTypedTuple(i, t);
   grid->GetPointData()->SetTensors(tensors);
   vtkNew<vtkAnisoTensorToMetric> filter;
+  NoPreparation(filter); // these tests check the conversion itself
   Watch(filter, events);
   events->Reset();
   filter->SetInputData(grid);
@@ -389,6 +404,7 @@ void TestErrors(EventCounter* events)
   auto grid = MakeGrid(3, 3, 3);
   const vtkIdType n = grid->GetNumberOfPoints();
   vtkNew<vtkAnisoTensorToMetric> filter;
+  NoPreparation(filter); // these tests check the conversion itself
   Watch(filter, events);
   filter->SetInputData(grid);
 
@@ -426,6 +442,81 @@ void TestErrors(EventCounter* events)
 }
 }
 
+// Metric preparation through the filter, on an isotropic stress whose size jumps 1000x across
+// x = 2.5 (voxels of side 0.5): normalized to the sites, graded along every grid edge (for
+// isotropic metrics the bound reads lambda_q >= lambda_p / (1 + |e| sqrt(lambda_p) ln beta)^2),
+// the figures and RawMetric reported; uniform mode equalizes the sizes; hmax holds.
+void TestPreparation(EventCounter* events)
+{
+  const int nx = 11;
+  auto grid = MakeGrid(nx, nx, nx);
+  const vtkIdType n = grid->GetNumberOfPoints();
+  auto tensors = MakeTensors("Stress", n, 6);
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    const double v = grid->GetPoint(i)[0] < 2.5 ? 1000.0 : 1.0;
+    const double t[6] = { v, v, v, 0, 0, 0 };
+    tensors->SetTypedTuple(i, t);
+  }
+  grid->GetPointData()->SetTensors(tensors);
+  vtkNew<vtkAnisoTensorToMetric> filter;
+  Watch(filter, events);
+  events->Reset();
+  filter->SetInputData(grid);
+  filter->SetMinimumEigenvalue(1e-4);
+  filter->SetNumberOfSites(500);
+  AV_CHECK(filter->GetExecutive()->Update() == 1);
+  AV_CHECK(events->Errors == 0);
+  vtkDataSet* out = vtkDataSet::SafeDownCast(filter->GetOutputDataObject(0));
+  vtkDataArray* metric = out->GetPointData()->GetArray("Metric");
+  AV_CHECK(out->GetPointData()->GetArray("RawMetric") != nullptr);
+  AV_CHECK_NEAR(FieldValue(out, "ImpliedSites"), 500.0, 500.0 * 2.5e-3);
+  AV_CHECK_NEAR(filter->GetImpliedSites(), 500.0, 500.0 * 2.5e-3);
+  AV_CHECK(FieldValue(out, "NumGraded") > 0 && filter->GetNumberOfGradedPoints() > 0);
+  AV_CHECK(filter->GetPercentile95Change() > 0.5); // a 1000x jump is not kept as it is
+  AV_CHECK(FieldValue(out, "MetricPrepP95Change") == filter->GetPercentile95Change());
+  const double lnBeta = std::log(filter->GetGradationFactor());
+  double worst = 0.0;
+  for (int k = 0; k < nx; ++k)
+    for (int j = 0; j < nx; ++j)
+      for (int i = 0; i < nx; ++i)
+      {
+        const vtkIdType p = (k * nx + j) * nx + i;
+        const vtkIdType neighbors[3] = { i + 1 < nx ? p + 1 : -1, j + 1 < nx ? p + nx : -1,
+          k + 1 < nx ? p + nx * nx : -1 };
+        for (vtkIdType q : neighbors)
+        {
+          if (q < 0)
+            continue;
+          const double lp = metric->GetComponent(p, 0), lq = metric->GetComponent(q, 0);
+          for (const auto& [a, b] : { std::pair<double, double>(lp, lq), { lq, lp } })
+          {
+            const double grow = 1.0 + 0.5 * std::sqrt(a) * lnBeta;
+            worst = std::max(worst, a / (grow * grow) / b);
+          }
+        }
+      }
+  AV_CHECK_MSG(worst <= 1.0 + 1e-5, "gradation bound along the grid edges: " << worst);
+  // The input kept its tensors and gained nothing.
+  AV_CHECK(grid->GetPointData()->GetNumberOfArrays() == 1);
+
+  filter->SetSizeModeToUniform();
+  filter->GradationOff();
+  AV_CHECK(filter->GetExecutive()->Update() == 1);
+  metric = vtkDataSet::SafeDownCast(filter->GetOutputDataObject(0))->GetPointData()->GetArray("Metric");
+  for (vtkIdType i = 1; i < n; ++i)
+    AV_CHECK_NEAR(metric->GetComponent(i, 0) / metric->GetComponent(0, 0), 1.0, 1e-9);
+
+  filter->SetSizeModeToTensor();
+  filter->GradationOn();
+  filter->SetHMax(0.3);
+  AV_CHECK(filter->GetExecutive()->Update() == 1);
+  metric = vtkDataSet::SafeDownCast(filter->GetOutputDataObject(0))->GetPointData()->GetArray("Metric");
+  for (vtkIdType i = 0; i < n; ++i)
+    AV_CHECK(metric->GetComponent(i, 0) >= (1.0 - 1e-9) / (0.3 * 0.3));
+  AV_CHECK(events->Errors == 0);
+}
+
 int TestAnisoTensorToMetric(int, char*[])
 {
   vtkNew<EventCounter> events;
@@ -436,5 +527,6 @@ int TestAnisoTensorToMetric(int, char*[])
   TestSmoothingEdges(events);
   TestFlat(events);
   TestErrors(events);
+  TestPreparation(events);
   return AV_TEST_RESULT();
 }

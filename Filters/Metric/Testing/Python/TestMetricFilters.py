@@ -104,6 +104,8 @@ t2m = vtkAnisoTensorToMetric()
 t2m.SetInputData(data)
 t2m.SetInputArrayToProcess(0, 0, 0, 0, "Stress")
 t2m.SetMaximumAnisotropy(0)
+t2m.GradationOff()  # the conversion alone: no metric preparation
+t2m.SetNumberOfSites(0)
 msgs = Messages(t2m)
 check(t2m.GetExecutive().Update() == 1, "tensor to metric ran")
 out = t2m.GetOutputDataObject(0)
