@@ -53,8 +53,8 @@ std::string AtomicOutput::TemporaryPath(const std::string& path)
     .string();
 }
 
-void AtomicOutput::Write(
-  const std::string& path, const std::function<bool(const std::string&)>& write) const
+void AtomicOutput::Write(const std::string& path,
+  const std::function<bool(const std::string&)>& write) const
 {
   this->RefuseInput(path);
   const std::string temporary = TemporaryPath(path);

@@ -15,9 +15,9 @@ namespace av
 /// What limits the memory of this process now (bytes; SIZE_MAX when a limit is absent).
 struct MemoryLimits
 {
-  std::size_t MemAvailable;  ///< /proc/meminfo MemAvailable
-  std::size_t AddressSpace;  ///< RLIMIT_AS (ulimit -v) minus the current virtual size
-  std::size_t Cgroup;        ///< cgroup v2 memory.max (or v1 limit) minus the current usage
+  std::size_t MemAvailable;      ///< /proc/meminfo MemAvailable
+  std::size_t AddressSpace;      ///< RLIMIT_AS (ulimit -v) minus the current virtual size
+  std::size_t Cgroup;            ///< cgroup v2 memory.max (or v1 limit) minus the current usage
   std::size_t Available() const; ///< the smallest of the three
   std::string Describe() const;  ///< "1.2 GB available (ulimit -v)" or similar
 };

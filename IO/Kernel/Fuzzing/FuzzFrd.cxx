@@ -30,7 +30,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   for (std::size_t e = 0; e < elements; ++e)
   {
     const std::int64_t n = frd.Offsets[e + 1] - frd.Offsets[e];
-    if (n != av::FrdNodesPerElement(frd.ElementTypes[e]) || av::FrdToVTKNodeOrder(frd.ElementTypes[e]) == nullptr)
+    if (n != av::FrdNodesPerElement(frd.ElementTypes[e]) ||
+      av::FrdToVTKNodeOrder(frd.ElementTypes[e]) == nullptr)
     {
       __builtin_trap();
     }
