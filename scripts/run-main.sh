@@ -23,8 +23,11 @@ fi
 "$BUILD_DIR/bin/anisovoronoi" "$FRD" --metric tensor:STRESS --min-eigenvalue 0.1 \
   --max-anisotropy 10 --smooth 10 --sites 3000 --dim 8 \
   --iterations 50 --shrink 0.7 --repair-nonmanifold --output-dir "$OUT" "$@"
+# On the X server of the caller when there is one (the test suite's), else a private Xvfb.
+X=(xvfb-run -a)
+[[ -n ${DISPLAY:-} ]] && X=()
 PYTHONPATH="$(cd "$BUILD_DIR" && pwd)/lib/python3/dist-packages:/usr/lib/python3/dist-packages" \
-  xvfb-run -a /usr/bin/python3 Examples/render_voronoi.py "$OUT" "$OUT/voronoi.png"
+  "${X[@]}" /usr/bin/python3 Examples/render_voronoi.py "$OUT" "$OUT/voronoi.png"
 echo
 echo "Main job done. Outputs in $OUT:"
 ls -1 "$OUT" | sed 's/^/  /'

@@ -2,6 +2,7 @@
 #include "MeditOutput.h"
 
 #include "CommandLine.h"
+#include "AtomicOutput.h"
 #include "vtkAnisoMeditWriter.h"
 
 #include <vtkDataSet.h>
@@ -20,20 +21,26 @@ std::string SolPathFor(const std::string& meshPath)
     (binary ? ".solb" : ".sol");
 }
 
-void WriteMeditOutput(vtkDataObject* mesh, const std::string& meshPath)
+void WriteMeditOutput(const AtomicOutput& output, vtkDataObject* mesh, const std::string& meshPath)
 {
   vtkDataSet* ds = vtkDataSet::SafeDownCast(mesh);
   if (!ds || ds->GetNumberOfCells() == 0)
     Fail("no mesh to write to " + meshPath);
   if (!ds->GetPointData()->GetArray("Metric"))
     Fail("the mesh has no \"Metric\" point array to write to " + SolPathFor(meshPath));
-  vtkNew<vtkAnisoMeditWriter> writer;
-  writer->SetInputData(ds);
-  writer->SetFileName(meshPath.c_str());
-  writer->SetSolFileName(SolPathFor(meshPath).c_str());
-  writer->SetMetricArrayName("Metric");
-  if (!writer->Write())
-    Fail("cannot write " + meshPath + " / " + SolPathFor(meshPath));
+  const std::string solPath = SolPathFor(meshPath);
+  // The writer makes both files at once: the .sol is renamed first, then the mesh.
+  output.Write(meshPath, [&](const std::string& meshTemporary) {
+    output.Write(solPath, [&](const std::string& solTemporary) {
+      vtkNew<vtkAnisoMeditWriter> writer;
+      writer->SetInputData(ds);
+      writer->SetFileName(meshTemporary.c_str());
+      writer->SetSolFileName(solTemporary.c_str());
+      writer->SetMetricArrayName("Metric");
+      return writer->Write() != 0;
+    });
+    return true;
+  });
 }
 
 } // namespace avcli

@@ -10,13 +10,15 @@ class vtkDataObject;
 
 namespace avcli
 {
+class AtomicOutput;
 
 /// The metric file next to a mesh file: out.mesh -> out.sol, out.meshb -> out.solb.
 std::string SolPathFor(const std::string& meshPath);
 
 /// Writes `mesh` (triangles / tetrahedra with the point array "Metric") to `meshPath` and its
-/// metric to SolPathFor(meshPath), ASCII or binary by extension; Fail()s with the reason.
-void WriteMeditOutput(vtkDataObject* mesh, const std::string& meshPath);
+/// metric to SolPathFor(meshPath), ASCII or binary by extension, both through `output` (temporary
+/// names, renamed once complete); Fail()s with the reason.
+void WriteMeditOutput(const AtomicOutput& output, vtkDataObject* mesh, const std::string& meshPath);
 
 } // namespace avcli
 

@@ -6,6 +6,7 @@
 // main: parse (CommandLine), build and run the VTK pipeline stage by stage (StageRunner),
 // then write the files and report.json.
 
+#include "AtomicOutput.h"
 #include "CapturingOutputWindow.h"
 #include "CommandLine.h"
 #include "InputReaders.h"
@@ -109,18 +110,21 @@ std::string JsonNumber(double v)
   return os.str();
 }
 
-void WriteXML(vtkDataObject* data, const std::string& path)
+void WriteXML(const avcli::AtomicOutput& output, vtkDataObject* data, const std::string& path)
 {
-  vtkSmartPointer<vtkXMLWriter> writer;
-  if (vtkPolyData::SafeDownCast(data))
-    writer = vtkSmartPointer<vtkXMLPolyDataWriter>::New();
-  else
-    writer = vtkSmartPointer<vtkXMLUnstructuredGridWriter>::New();
-  writer->SetInputData(data);
-  writer->SetFileName(path.c_str());
-  writer->SetDataModeToBinary(); // appended mode does not read back with this VTK/expat
-  if (!writer->Write())
-    Fail("cannot write " + path);
+  output.Write(path,
+    [data](const std::string& temporary)
+    {
+      vtkSmartPointer<vtkXMLWriter> writer;
+      if (vtkPolyData::SafeDownCast(data))
+        writer = vtkSmartPointer<vtkXMLPolyDataWriter>::New();
+      else
+        writer = vtkSmartPointer<vtkXMLUnstructuredGridWriter>::New();
+      writer->SetInputData(data);
+      writer->SetFileName(temporary.c_str());
+      writer->SetDataModeToBinary(); // appended mode does not read back with this VTK/expat
+      return writer->Write() != 0;
+    });
 }
 
 /// 1. The input mesh: read, or the preset's own mesh.
@@ -389,22 +393,28 @@ void RunMeshingStages(const Options& o,
 }
 
 /// 7. The data files and energy.csv.
-void WriteFiles(const std::string& dir, MeshingStages& s)
+void WriteFiles(const avcli::AtomicOutput& output, const std::string& dir, MeshingStages& s)
 {
-  WriteXML(s.Embedding->GetOutputDataObject(0), dir + "embedded.vtu");
-  WriteXML(s.Sampler->GetOutputDataObject(0), dir + "sites.vtp");
-  WriteXML(s.Voronoi->GetOutputDataObject(0), dir + "voronoi.vtu");
-  WriteXML(s.Voronoi->GetOutputDataObject(1), dir + "voronoi_faces.vtp");
-  WriteXML(s.Quality->GetOutputDataObject(0), dir + "mesh.vtu");
+  WriteXML(output, s.Embedding->GetOutputDataObject(0), dir + "embedded.vtu");
+  WriteXML(output, s.Sampler->GetOutputDataObject(0), dir + "sites.vtp");
+  WriteXML(output, s.Voronoi->GetOutputDataObject(0), dir + "voronoi.vtu");
+  WriteXML(output, s.Voronoi->GetOutputDataObject(1), dir + "voronoi_faces.vtp");
+  WriteXML(output, s.Quality->GetOutputDataObject(0), dir + "mesh.vtu");
   if (auto* energy = vtkTable::SafeDownCast(s.Embedding->GetOutputDataObject(1)))
   {
-    std::ofstream csv(dir + "energy.csv");
-    csv << "iteration,E_em,E_reg,E_total\n";
-    csv.precision(12);
-    for (vtkIdType r = 0; r < energy->GetNumberOfRows(); ++r)
-      csv << r << "," << energy->GetValueByName(r, "E_em").ToDouble() << ","
-          << energy->GetValueByName(r, "E_reg").ToDouble() << ","
-          << energy->GetValueByName(r, "E_total").ToDouble() << "\n";
+    output.Write(dir + "energy.csv",
+      [energy](const std::string& temporary)
+      {
+        std::ofstream csv(temporary);
+        csv << "iteration,E_em,E_reg,E_total\n";
+        csv.precision(12);
+        for (vtkIdType r = 0; r < energy->GetNumberOfRows(); ++r)
+          csv << r << "," << energy->GetValueByName(r, "E_em").ToDouble() << ","
+              << energy->GetValueByName(r, "E_reg").ToDouble() << ","
+              << energy->GetValueByName(r, "E_total").ToDouble() << "\n";
+        csv.close();
+        return !csv.fail();
+      });
   }
 }
 
@@ -491,21 +501,30 @@ std::vector<std::pair<std::string, std::string>> ReportEntries(const Options& o,
 }
 
 /// 7. report.json.
-void WriteReport(const std::string& dir,
+void WriteReport(const avcli::AtomicOutput& output,
+  const std::string& dir,
   const Options& o,
   MeshingStages& s,
   const StageRunner& runner)
 {
   const std::vector<std::pair<std::string, std::string>> report = ReportEntries(o, s, runner);
-  std::ofstream json(dir + "report.json");
-  json << "{\n";
-  for (std::size_t k = 0; k < report.size(); ++k)
-    json << "  \"" << report[k].first << "\": " << report[k].second
-         << (k + 1 < report.size() ? ",\n" : "\n");
-  json << "}\n";
-  if (!json)
-    Fail("cannot write " + dir + "report.json");
+  output.Write(dir + "report.json",
+    [&report](const std::string& temporary)
+    {
+      std::ofstream json(temporary);
+      json << "{\n";
+      for (std::size_t k = 0; k < report.size(); ++k)
+        json << "  \"" << report[k].first << "\": " << report[k].second
+             << (k + 1 < report.size() ? ",\n" : "\n");
+      json << "}\n";
+      json.close();
+      return !json.fail();
+    });
 }
+
+// The files a run writes into --output-dir (checked against the inputs before the run).
+const char* const OutputNames[] = { "embedded.vtu", "sites.vtp", "voronoi.vtu",
+  "voronoi_faces.vtp", "mesh.vtu", "energy.csv", "report.json" };
 } // namespace
 
 int main(int argc, char* argv[])
@@ -519,24 +538,34 @@ int main(int argc, char* argv[])
   window->ShowWarnings = !o.Quiet;
   if (!o.OutputDir.empty() && !vtksys::SystemTools::MakeDirectory(o.OutputDir))
     Fail("cannot create the output directory '" + o.OutputDir + "'");
+  const std::string dir = o.OutputDir + "/";
+  const avcli::AtomicOutput output({ o.Input, o.Sol });
+  // Before minutes of work, not after.
+  if (!o.OutputDir.empty())
+    for (const char* name : OutputNames)
+      output.RefuseInput(dir + name);
+  if (!o.MeditOutput.empty())
+  {
+    output.RefuseInput(o.MeditOutput);
+    output.RefuseInput(avcli::SolPathFor(o.MeditOutput));
+  }
   StageRunner runner(o.Quiet);
   MeshingStages stages;
   const std::string metricName = RunInputStages(o, stages, runner);
   RunMeshingStages(o, metricName, stages, runner);
   if (!o.MeditOutput.empty())
   {
-    avcli::WriteMeditOutput(stages.Quality->GetOutputDataObject(0), o.MeditOutput);
+    avcli::WriteMeditOutput(output, stages.Quality->GetOutputDataObject(0), o.MeditOutput);
     if (!o.Quiet)
       std::cerr << "[anisovoronoi] wrote " << o.MeditOutput << " and "
                 << avcli::SolPathFor(o.MeditOutput) << std::endl;
   }
   if (o.OutputDir.empty())
     return 0;
-  const std::string dir = o.OutputDir + "/";
-  WriteFiles(dir, stages);
-  WriteReport(dir, o, stages, runner);
+  WriteFiles(output, dir, stages);
+  WriteReport(output, dir, o, stages, runner);
   if (o.FormatMedit)
-    avcli::WriteMeditOutput(stages.Quality->GetOutputDataObject(0), dir + "mesh.mesh");
+    avcli::WriteMeditOutput(output, stages.Quality->GetOutputDataObject(0), dir + "mesh.mesh");
   if (!o.Quiet)
     std::cerr << "[anisovoronoi] wrote embedded.vtu sites.vtp voronoi.vtu voronoi_faces.vtp "
                  "mesh.vtu energy.csv report.json"

@@ -411,6 +411,17 @@ void SkipNonSimplices(Tokenizer& tok, std::string_view kw, MeditMesh& out)
   out.IgnoredKeywords.push_back(name);
 }
 
+/// A section read before 'Vertices' has its ids checked at the end (from its first line); a
+/// later repeat of the section must not cancel that check (found by FuzzMeditMesh: a second
+/// 'Tetrahedra' after 'Vertices' let ids of the first one through unchecked).
+void DeferIdCheck(bool haveVertices, std::size_t keywordLine, std::size_t& checkLine)
+{
+  if (!haveVertices && checkLine == 0)
+  {
+    checkLine = keywordLine;
+  }
+}
+
 /// Checks the ids read before the vertices, and makes tetrahedra (with triangles as boundary
 /// faces) or triangles the cells of the mesh.
 void FinishMeditMesh(MeditMeshSections& m, const std::string& sourceName, MeditMesh& out)
@@ -479,17 +490,17 @@ MeditMesh ParseMeditMesh(const std::string& text, const std::string& sourceName)
     }
     else if (IEquals(kw, "Triangles"))
     {
-      m.TriLine = m.HaveVertices ? 0 : kwLine;
+      DeferIdCheck(m.HaveVertices, kwLine, m.TriLine);
       ReadSimplices(tok, "Triangles", 3, nv, m.Tris, m.TriRefs);
     }
     else if (IEquals(kw, "Tetrahedra"))
     {
-      m.TetLine = m.HaveVertices ? 0 : kwLine;
+      DeferIdCheck(m.HaveVertices, kwLine, m.TetLine);
       ReadSimplices(tok, "Tetrahedra", 4, nv, m.Tets, m.TetRefs);
     }
     else if (IEquals(kw, "Edges"))
     {
-      m.EdgeLine = m.HaveVertices ? 0 : kwLine;
+      DeferIdCheck(m.HaveVertices, kwLine, m.EdgeLine);
       ReadSimplices(tok, "Edges", 2, nv, out.Edges, out.EdgeRefs);
     }
     else if (IEquals(kw, "Quadrilaterals") || IEquals(kw, "Hexahedra") || IEquals(kw, "Prisms"))

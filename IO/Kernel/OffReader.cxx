@@ -88,8 +88,9 @@ SimplexMesh ParseOff(const std::string& text, const std::string& sourceName)
   const long long nf = tokens.Integer("the number of faces");
   tokens.Integer("the number of edges");
   const std::size_t left = tokens.Items.size() - tokens.Next;
-  if (nv < 3 || nf < 1 || static_cast<unsigned long long>(nv) * 3 > left ||
-    static_cast<unsigned long long>(nf) * 4 > left)
+  // Divide rather than multiply: a count near 2^63 / 3 must not wrap around to a small product.
+  if (nv < 3 || nf < 1 || static_cast<unsigned long long>(nv) > left / 3 ||
+    static_cast<unsigned long long>(nf) > left / 4)
     tokens.Fail(tokens.Line(), "the counts (" + std::to_string(nv) + " vertices, " +
         std::to_string(nf) + " faces) do not fit in the file (truncated?)");
 

@@ -75,7 +75,10 @@ EdgeLengthErrorResult EdgeLengthErrorEvaluator::Evaluate(
   const int dim = emb.Dim;
   std::vector<double> err(ne);
   using Acc = std::pair<double, double>;
-  const Acc total = tbb::parallel_reduce(
+  // Deterministic reduce: the range splits into the same 4096-edge chunks, summed in the same
+  // order, whatever the thread count and scheduling (a plain parallel_reduce made L_avg differ
+  // in the last bits between identical runs).
+  const Acc total = tbb::parallel_deterministic_reduce(
     tbb::blocked_range<std::size_t>(0, ne, 4096), Acc(0.0, 0.0),
     [&](const tbb::blocked_range<std::size_t>& r, Acc acc) {
       for (std::size_t e = r.begin(); e != r.end(); ++e)

@@ -2,6 +2,7 @@
 // EmbeddingSolver assembly: the global matrix K = Σ w_j G_j G_jᵀ + μ LᵀL (lower triangle), its
 // Cholesky factorization and the per-iteration right-hand sides.
 #include "EmbeddingSolverInternals.h"
+#include "MemoryBudget.h"
 
 #include "Stopwatch.h"
 
@@ -9,6 +10,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <string>
 
 namespace av
 {
@@ -187,24 +189,79 @@ void EmbeddingSolver::Internals::AssembleLower(
   });
 }
 
+namespace
+{
+/// CHOLMOD's status code in words (cholmod_core.h), for the error messages.
+std::string CholmodStatusText(int status)
+{
+  switch (status)
+  {
+    case CHOLMOD_NOT_INSTALLED: return "method not installed";
+    case CHOLMOD_OUT_OF_MEMORY: return "out of memory";
+    case CHOLMOD_TOO_LARGE: return "problem too large for CHOLMOD's 32-bit integer interface";
+    case CHOLMOD_INVALID: return "invalid input";
+    case CHOLMOD_GPU_PROBLEM: return "GPU problem";
+    case CHOLMOD_NOT_POSDEF: return "matrix not positive definite";
+    case CHOLMOD_DSMALL: return "tiny diagonal entry";
+    default: return "status " + std::to_string(status);
+  }
+}
+} // namespace
+
+void EmbeddingSolver::Internals::RequireAnalysis(const Eigen::SparseMatrix<double>& kmat)
+{
+  if (this->Chol.Factor())
+  {
+    return;
+  }
+  // Eigen's factorize() dereferences the factor: a failed analysis must stop here (a 1M-vertex
+  // cube1 once segfaulted on "problem too large").
+  const int status = this->Chol.cholmod().status;
+  const double entries = this->Chol.cholmod().lnz;
+  std::string estimate;
+  if (entries > 0.0)
+  {
+    estimate = " (the factor would hold about " + std::to_string(static_cast<long long>(entries)) +
+      " entries, " + FormatBytes(8.0 * entries) + ")";
+  }
+  throw InputError("embedding: the symbolic analysis of the " + std::to_string(kmat.rows()) +
+    "-unknown linear system failed: " + CholmodStatusText(status) + estimate +
+    "; use a coarser input mesh");
+}
+
+void EmbeddingSolver::Internals::FactorOnce(const Eigen::SparseMatrix<double>& kmat)
+{
+  this->RequireAnalysis(kmat);
+  // The numeric factor fills the supernodal storage sized by the analysis (xsize doubles), and
+  // the single-precision solve copies it into floats: refuse early when that cannot fit.
+  const double reals = static_cast<double>(this->Chol.FactorSize());
+  const double bytes = reals * (this->Options.SinglePrecisionSolve ? 12.0 : 8.0);
+  RequireMemory(bytes, "embedding: the Cholesky factor of the " + std::to_string(kmat.rows()) +
+      "-unknown linear system (" + std::to_string(static_cast<long long>(reals)) + " entries)");
+  this->Chol.factorize(kmat);
+  const int status = this->Chol.cholmod().status;
+  if (status < CHOLMOD_OK)
+  {
+    throw InputError("embedding: the Cholesky factorization failed: " + CholmodStatusText(status));
+  }
+}
+
 void EmbeddingSolver::Internals::Factor(
   Eigen::SparseMatrix<double>& kmat, const std::vector<double>& vals, double analyseSeconds)
 {
   const Stopwatch clock;
   std::copy(vals.begin(), vals.end(), kmat.valuePtr());
-  if (this->Chol.Factor())
+  if (!this->Chol.Factor() && this->Chol.cholmod().status != CHOLMOD_TOO_LARGE)
   {
-    this->Chol.factorize(kmat);
+    this->Chol.analyzePattern(kmat); // the analysis failed: one more try
   }
-  else
-  {
-    this->Chol.compute(kmat); // the analysis failed: one more try inside compute
-  }
+  this->FactorOnce(kmat);
   if (this->Chol.info() != Eigen::Success)
   {
     // Retry with CHOLMOD's default ordering choice before giving up.
     this->Chol.cholmod().nmethods = 0;
-    this->Chol.compute(kmat);
+    this->Chol.analyzePattern(kmat);
+    this->FactorOnce(kmat);
   }
   if (this->Chol.info() != Eigen::Success)
   {

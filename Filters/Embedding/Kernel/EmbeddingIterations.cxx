@@ -9,10 +9,21 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <string>
 #include <utility>
 
 namespace av
 {
+
+void EmbeddingSolver::Internals::RequireSolved()
+{
+  // A failed cholmod_solve (out of memory) leaves Eigen's result unwritten: never use it.
+  if (this->Chol.info() != Eigen::Success)
+  {
+    throw InputError("embedding: the CHOLMOD solve failed (status " +
+      std::to_string(this->Chol.cholmod().status) + ", -2 is out of memory)");
+  }
+}
 
 Eigen::MatrixXd EmbeddingSolver::Internals::GlobalStep()
 {
@@ -28,6 +39,7 @@ Eigen::MatrixXd EmbeddingSolver::Internals::GlobalStep()
   else
   {
     sol = this->Chol.solve(rhs);
+    this->RequireSolved();
   }
   this->SolveSeconds += clock.Seconds();
   return sol;
@@ -37,6 +49,7 @@ Eigen::MatrixXd EmbeddingSolver::Internals::RedoGlobalStepInDouble()
 {
   const Stopwatch clock;
   Eigen::MatrixXd sol = this->Chol.solve(this->LastRhs);
+  this->RequireSolved();
   this->SolveSeconds += clock.Seconds();
   return sol;
 }

@@ -78,9 +78,15 @@ struct EmbeddingSolver::Internals
   void AssembleLower(bool values, Eigen::SparseMatrix<double>& kmat, std::vector<double>* vals);
   void AddElementEntries(std::size_t c, bool values, ColumnScatter& scatter) const;
   void AddRegularizerEntries(std::size_t c, ColumnScatter& scatter) const;
+  /// Throws a clear InputError when the symbolic analysis left no factor (CHOLMOD's status).
+  void RequireAnalysis(const Eigen::SparseMatrix<double>& kmat);
+  /// The numeric factorization after the checks: analysis present, memory for the factor.
+  void FactorOnce(const Eigen::SparseMatrix<double>& kmat);
   /// Numeric factorization (after the symbolic analysis, which took analyseSeconds of waiting).
   void Factor(
     Eigen::SparseMatrix<double>& kmat, const std::vector<double>& vals, double analyseSeconds);
+  /// Throws when the last double-precision CHOLMOD solve failed.
+  void RequireSolved();
   /// LastRhs = the per-vertex sums of the element contributions C of the last local step.
   void GatherRightHandSides();
 

@@ -13,17 +13,33 @@
 #include "RestrictedVoronoiBlocks.h"
 #include "RestrictedVoronoiChunk.h"
 #include "RestrictedVoronoiValidation.h"
+#include "MemoryBudget.h"
 
+#include <string>
 #include <vector>
 
 namespace av
 {
+
+void RequireRestrictedVoronoiMemory(
+  const SimplexMesh& mesh, const Embedding& embedding, std::size_t numSites)
+{
+  // A lower bound, so that only a problem that cannot fit is refused: every element and every
+  // site's cell is at least one piece of K+1 vertices in both spaces, each piece held twice
+  // (the per-block chunks, then the concatenated diagram), plus its records.
+  const double pieces = static_cast<double>(mesh.NumCells() + numSites);
+  const double perPiece = (mesh.SimplexDim + 1) * (mesh.AmbientDim + embedding.Dim) * 8.0 + 64.0;
+  RequireMemory(2.0 * pieces * perPiece,
+    "the restricted Voronoi diagram of " + std::to_string(numSites) + " sites on " +
+      std::to_string(mesh.NumCells()) + " elements");
+}
 
 RestrictedVoronoiDiagram ComputeRestrictedVoronoi(const SimplexMesh& mesh,
   const Embedding& embedding, const SiteSet& sites, const RestrictedVoronoiOptions& options)
 {
   ValidateRestrictedVoronoiInput(mesh, embedding, sites);
   const std::size_t nc = mesh.NumCells();
+  RequireRestrictedVoronoiMemory(mesh, embedding, sites.NumSites());
   rvd::CheckDegenerateElements(mesh, embedding, nullptr, nc);
   std::vector<std::int32_t> ownAdjacency;
   const std::vector<std::int32_t>& adj = rvd::ElementAdjacencyFor(mesh, options, ownAdjacency);

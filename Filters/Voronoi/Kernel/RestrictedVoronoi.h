@@ -140,6 +140,11 @@ struct RestrictedVoronoiDiagram
 void ValidateRestrictedVoronoiInput(const SimplexMesh& mesh, const Embedding& embedding,
   const SiteSet& sites);
 
+/// Throws InputError when even a lower bound of the diagram's memory (one piece per element
+/// and per site) exceeds what the process may allocate (MemoryBudget.h).
+void RequireRestrictedVoronoiMemory(
+  const SimplexMesh& mesh, const Embedding& embedding, std::size_t numSites);
+
 /**
  * Computes the restricted Voronoi diagram of `sites` on the embedded mesh. Exact up to
  * floating-point round-off; every decision about a vertex is made from its symbolic

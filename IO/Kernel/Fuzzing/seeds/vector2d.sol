@@ -1,0 +1,10 @@
+MeshVersionFormatted 2
+Dimension 2
+SolAtVertices
+3
+1 2
+1 0
+0.5 0.25
+2 1
+-1 0
+End
