@@ -61,6 +61,14 @@ public:
   vtkGetMacro(OdtIterations, int);
   ///@}
 
+  ///@{
+  /// Flips and vertex smoothing of the final mesh in the metric (default on; off = the
+  /// paper's dual), as vtkAnisoRestrictedDelaunay::ImproveMesh.
+  vtkSetMacro(ImproveMesh, bool);
+  vtkGetMacro(ImproveMesh, bool);
+  vtkBooleanMacro(ImproveMesh, bool);
+  ///@}
+
 protected:
   vtkAnisoAnisotropicMesh();
   ~vtkAnisoAnisotropicMesh() override;
@@ -73,6 +81,7 @@ protected:
   int MaxRepairRounds = 10;
   int ImprovementRounds = 1;
   int OdtIterations = 3;
+  bool ImproveMesh = true;
 
 private:
   vtkAnisoAnisotropicMesh(const vtkAnisoAnisotropicMesh&) = delete;

@@ -13,6 +13,9 @@ namespace av
 namespace
 {
 constexpr double Pi = 3.14159265358979323846;
+// No operation may leave an element below this quality (sine of 0.00006 degrees): a flat
+// element's sign is round-off.
+constexpr double kMinQuality = 1e-6;
 
 // Index orders that put vertex m last by an even permutation: the face opposite m, in this
 // order, is counterclockwise seen from m in a positive tet.
@@ -140,7 +143,7 @@ double TetMeshImprover::StarWorst(std::int32_t v) const
 // The acceptance rule: the worst quality touched must rise, and nothing may be inverted.
 bool TetMeshImprover::Accepts(double after, double before) const
 {
-  if (after <= 0.0)
+  if (after <= kMinQuality)
     return false;
   if (Options.AcceptWorsening)
     return true;
@@ -361,7 +364,7 @@ bool TetMeshImprover::TrySmooth(std::int32_t v)
       break;
     }
   }
-  const bool accept = Options.AcceptWorsening ? current > 0.0 && P[v] != start
+  const bool accept = Options.AcceptWorsening ? current > kMinQuality && P[v] != start
                                               : Accepts(current, before);
   if (!accept || (Options.AcceptMove && !Options.AcceptMove(v, P[v].data())))
   {

@@ -13,6 +13,9 @@ namespace av
 namespace
 {
 constexpr double Pi = 3.14159265358979323846;
+// No operation may leave an element below this quality (sine of 0.00006 degrees): a flat
+// element's sign is round-off.
+constexpr double kMinQuality = 1e-6;
 
 int IndexIn(const std::array<std::int32_t, 3>& t, std::int32_t v)
 {
@@ -81,7 +84,7 @@ double TriangleMeshImprover::StarWorst(std::int32_t v) const
 
 bool TriangleMeshImprover::Accepts(double after, double before) const
 {
-  if (after <= 0.0)
+  if (after <= kMinQuality)
     return false;
   if (Options.AcceptWorsening)
     return true;

@@ -127,7 +127,7 @@ void TestFlips()
   // 3-2 flip and edge removal: n tall tets around a long edge become 2(n-2).
   for (int n = 3; n <= 5; ++n)
   {
-    av::SimplexMesh m = RingConfiguration(n, 1.5, true);
+    av::SimplexMesh m = RingConfiguration(n, 3.0, true);
     const double before = WorstQuality(m);
     const double volume = Volume(m);
     const av::MeshImprovementResult r =
