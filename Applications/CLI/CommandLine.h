@@ -19,7 +19,7 @@ struct Options
   bool Features = true;
   double Mu = 100.0, Shrink = 0.8, MinEigenvalue = 1e-3, MaxAnisotropy = 25.0;
   bool TensorAsMetric = false, Clamp = false, Quiet = false, Repair = true;
-  bool RepairNonManifold = false, DoubleSolve = false;
+  bool RepairNonManifold = false, DoubleSolve = false, ImproveMesh = true;
 };
 
 /// Prints "anisovoronoi: error: <message>" on stderr and exits with `code` (2: bad command line).
