@@ -25,6 +25,11 @@ struct MeshImprovementOptions
   bool Flips = true;      ///< tets: 2-3 flips and edge removal (3-2 flips included); triangles: 2-2
   bool Smoothing = true;  ///< interior vertex moves that raise the worst incident element
   int MaxEdgeRemovalRing = 7; ///< edge removal on edges of at most this many tets (3 = 3-2 only)
+  /// Tets: an operation may not add edges whose metric length, divided by the median of the
+  /// input's, leaves [1/sqrt2, sqrt2] (the UGAWG range of the §5.2 evaluation): a flip's new
+  /// edges must not be more often out of range than the edges it removes, a move may not raise
+  /// the count among the vertex's edges.
+  bool KeepEdgeLengths = true;
   /// Test hook: accept operations that do not raise the worst quality they touch (only those
   /// that keep every element positive). Always false in use.
   bool AcceptWorsening = false;

@@ -62,6 +62,49 @@ TetMeshImprover::TetMeshImprover(SimplexMesh& mesh, std::vector<Eigen::Matrix3d>
     AddTet({ v[0], v[1], v[2], v[3] });
   }
   MarkBoundaryAndNonManifold();
+  if (Options.KeepEdgeLengths)
+    ComputeMedianEdgeLength();
+}
+
+void TetMeshImprover::ComputeMedianEdgeLength()
+{
+  std::vector<std::pair<std::int32_t, std::int32_t>> edges;
+  edges.reserve(Tets.size() * 6);
+  for (const Tet& t : Tets)
+    for (int i = 0; i < 4; ++i)
+      for (int j = i + 1; j < 4; ++j)
+        edges.emplace_back(std::min(t[i], t[j]), std::max(t[i], t[j]));
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  std::vector<double> lengths(edges.size());
+  for (std::size_t e = 0; e < edges.size(); ++e)
+  {
+    const auto [a, b] = edges[e];
+    lengths[e] = (0.5 * (S[a] + S[b]) * (P[b] - P[a])).norm();
+  }
+  if (lengths.empty())
+    return;
+  std::nth_element(lengths.begin(), lengths.begin() + lengths.size() / 2, lengths.end());
+  MedianEdge = lengths[lengths.size() / 2];
+}
+
+// The §5.1 edge length (Q_ab = (S_a + S_b) / 2) against the UGAWG range around the median.
+bool TetMeshImprover::OutOfRange(std::int32_t a, std::int32_t b) const
+{
+  if (!(MedianEdge > 0.0))
+    return false;
+  const double l = (0.5 * (S[a] + S[b]) * (P[b] - P[a])).norm() / MedianEdge;
+  return l < std::sqrt(0.5) || l > std::sqrt(2.0);
+}
+
+int TetMeshImprover::OutOfRangeAround(std::int32_t v) const
+{
+  int n = 0;
+  for (std::int32_t t : Star[v])
+    for (std::int32_t w : Tets[t])
+      if (w != v)
+        n += OutOfRange(v, w) ? 1 : 0;
+  return n;
 }
 
 double TetMeshImprover::Quality(const Tet& t) const
@@ -256,6 +299,19 @@ bool TetMeshImprover::TryEdgeRemoval(std::int32_t a, std::int32_t b)
       if (!ringEdge && HasEdge(Ring[u], Ring[w]))
         return false;
     }
+  if (Options.KeepEdgeLengths && !Options.AcceptWorsening)
+  {
+    int outNew = 0; // each diagonal is counted twice (it is on two triangles)
+    for (const auto& t : tris)
+      for (int e = 0; e < 3; ++e)
+      {
+        const int u = t[e], w = t[(e + 1) % 3];
+        const bool ringEdge = std::abs(u - w) == 1 || std::abs(u - w) == n - 1;
+        outNew += !ringEdge && OutOfRange(Ring[u], Ring[w]) ? 1 : 0;
+      }
+    if (outNew / 2 > (OutOfRange(a, b) ? 1 : 0))
+      return false;
+  }
   const std::vector<std::int32_t> old = EdgeTets;
   for (std::int32_t t : old)
     KillTet(t);
@@ -289,6 +345,8 @@ bool TetMeshImprover::TryFlip23(std::int32_t tet, int apexIndex, double worst)
       e = v;
   if (e < 0 || e == d || HasEdge(d, e))
     return false;
+  if (Options.KeepEdgeLengths && !Options.AcceptWorsening && OutOfRange(d, e))
+    return false;
   const double before = std::min(worst, Quality(t2));
   const Tet n0 = { e, d, x, y }, n1 = { e, d, y, z }, n2 = { e, d, z, x };
   const double after = std::min(std::min(Quality(n0), Quality(n1)), Quality(n2));
@@ -317,6 +375,8 @@ bool TetMeshImprover::TrySmooth(std::int32_t v)
         scale = std::min(scale, (P[w] - start).norm());
   const double before = StarWorst(v);
   double current = before;
+  const bool keepLengths = Options.KeepEdgeLengths && !Options.AcceptWorsening;
+  const int outBefore = keepLengths ? OutOfRangeAround(v) : 0;
   for (int iter = 0; iter < 8; ++iter)
   {
     std::int32_t worstTet = -1;
@@ -351,7 +411,7 @@ bool TetMeshImprover::TrySmooth(std::int32_t v)
     {
       P[v] = here + (alpha / gn) * g;
       const double q = StarWorst(v);
-      if (q > current + 1e-12)
+      if (q > current + 1e-12 && (!keepLengths || OutOfRangeAround(v) <= outBefore))
       {
         current = q;
         stepped = true;

@@ -40,6 +40,9 @@ private:
   bool TrySmooth(std::int32_t v);
   double StarWorst(std::int32_t v) const;
   bool Accepts(double after, double before) const;
+  bool OutOfRange(std::int32_t a, std::int32_t b) const; // metric length vs the median
+  int OutOfRangeAround(std::int32_t v) const;            // among v's edges (with repeats)
+  void ComputeMedianEdgeLength();
 
   SimplexMesh& Mesh;
   std::vector<Eigen::Vector3d> P;
@@ -55,6 +58,7 @@ private:
   std::vector<double> Best;
   std::vector<int> Choice;
   std::size_t Flips23 = 0, EdgeRemovals = 0, Smoothed = 0;
+  double MedianEdge = 0.0; // median metric edge length of the input mesh
 };
 
 } // namespace av

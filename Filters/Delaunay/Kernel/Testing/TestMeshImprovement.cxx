@@ -115,6 +115,7 @@ void TestFlips()
 {
   av::MeshImprovementOptions flipsOnly;
   flipsOnly.Smoothing = false;
+  flipsOnly.KeepEdgeLengths = false; // the configurations' edges are far from unit length
   { // 2-3: two flat tets (apexes at +-0.2) become three around the apex edge
     av::SimplexMesh m = RingConfiguration(3, 0.2, false);
     const double before = WorstQuality(m);
@@ -142,6 +143,13 @@ void TestFlips()
       hasEdge = hasEdge ||
         (std::count(m.Cell(c), m.Cell(c) + 4, n) && std::count(m.Cell(c), m.Cell(c) + 4, n + 1));
     AV_CHECK(!hasEdge);
+  }
+  { // Keeping edge lengths: the 2-3 flip's new edge (0.4 against a median of 1) is refused.
+    av::SimplexMesh m = RingConfiguration(3, 0.2, false);
+    av::MeshImprovementOptions keep = flipsOnly;
+    keep.KeepEdgeLengths = true;
+    AV_CHECK(av::ImproveMesh(m, IsotropicMetric(5), nullptr, keep).NumFlips23 == 0);
+    AV_CHECK(m.NumCells() == 2);
   }
   { // With flips off nothing changes.
     av::SimplexMesh m = RingConfiguration(3, 1.5, true);
@@ -183,6 +191,7 @@ void TestSmoothing()
   const double volume = Volume(m);
   av::MeshImprovementOptions smoothOnly;
   smoothOnly.Flips = false;
+  smoothOnly.KeepEdgeLengths = false;
   av::SimplexMesh moved = m;
   const av::MeshImprovementResult r = av::ImproveMesh(moved, IsotropicMetric(7), nullptr, smoothOnly);
   AV_CHECK(r.NumSmoothed >= 1 && r.Moved[c] == 1);
