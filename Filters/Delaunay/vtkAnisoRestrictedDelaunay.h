@@ -41,7 +41,8 @@
 #include "AnisoVoronoiFiltersDelaunayModule.h" // export macro
 #include <vtkUnstructuredGridAlgorithm.h>
 
-class ANISOVORONOIFILTERSDELAUNAY_EXPORT vtkAnisoRestrictedDelaunay : public vtkUnstructuredGridAlgorithm
+class ANISOVORONOIFILTERSDELAUNAY_EXPORT vtkAnisoRestrictedDelaunay
+  : public vtkUnstructuredGridAlgorithm
 {
 public:
   static vtkAnisoRestrictedDelaunay* New();

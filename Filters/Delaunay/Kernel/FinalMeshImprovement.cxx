@@ -39,8 +39,11 @@ void Barycentric(const SimplexMesh& mesh, std::size_t c, const double* x, double
 
 /// Walks from `cell` towards x across the facet of the most negative coordinate. False when the
 /// walk leaves the domain or takes too long.
-bool Locate(const SimplexMesh& mesh, const std::vector<std::int32_t>& adjacency,
-  std::int32_t& cell, const double* x, double* lambda)
+bool Locate(const SimplexMesh& mesh,
+  const std::vector<std::int32_t>& adjacency,
+  std::int32_t& cell,
+  const double* x,
+  double* lambda)
 {
   const int nv = mesh.SimplexDim + 1;
   for (int step = 0; step < 512; ++step)

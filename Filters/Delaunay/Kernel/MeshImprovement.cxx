@@ -13,8 +13,9 @@
 namespace av
 {
 
-double MetricSimplexQuality(
-  int simplexDim, const double* const* points, const double* const* sqrtMetrics)
+double MetricSimplexQuality(int simplexDim,
+  const double* const* points,
+  const double* const* sqrtMetrics)
 {
   if (simplexDim == 3)
   {
@@ -43,7 +44,8 @@ double MetricSimplexQuality(
 
 namespace
 {
-void ValidateImprovementInput(const SimplexMesh& mesh, const MetricField& metric,
+void ValidateImprovementInput(const SimplexMesh& mesh,
+  const MetricField& metric,
   const std::vector<std::uint8_t>* fixedPoints)
 {
   const char* who = "ImproveMesh";
@@ -64,8 +66,10 @@ void ValidateImprovementInput(const SimplexMesh& mesh, const MetricField& metric
 }
 } // namespace
 
-MeshImprovementResult ImproveMesh(SimplexMesh& mesh, const MetricField& metric,
-  const std::vector<std::uint8_t>* fixedPoints, const MeshImprovementOptions& options)
+MeshImprovementResult ImproveMesh(SimplexMesh& mesh,
+  const MetricField& metric,
+  const std::vector<std::uint8_t>* fixedPoints,
+  const MeshImprovementOptions& options)
 {
   ValidateImprovementInput(mesh, metric, fixedPoints);
   MeshImprovementResult result;

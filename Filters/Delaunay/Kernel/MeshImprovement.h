@@ -22,8 +22,8 @@ struct MeshImprovementOptions
   /// Elements whose quality (smallest metric angle, see MetricSimplexQuality) is below this
   /// angle, in degrees, are worked on; the others are only touched by their neighbors' moves.
   double TargetAngle = 35.0;
-  bool Flips = true;      ///< tets: 2-3 flips and edge removal (3-2 flips included); triangles: 2-2
-  bool Smoothing = true;  ///< interior vertex moves that raise the worst incident element
+  bool Flips = true;     ///< tets: 2-3 flips and edge removal (3-2 flips included); triangles: 2-2
+  bool Smoothing = true; ///< interior vertex moves that raise the worst incident element
   int MaxEdgeRemovalRing = 7; ///< edge removal on edges of at most this many tets (3 = 3-2 only)
   /// Tets: an operation may not add edges whose metric length, divided by the median of the
   /// input's, leaves [1/sqrt2, sqrt2] (the UGAWG range of the §5.2 evaluation): a flip's new
@@ -42,13 +42,13 @@ struct MeshImprovementOptions
 /// Counts of ImproveMesh.
 struct MeshImprovementResult
 {
-  bool Supported = true; ///< false for triangles on a surface (AmbientDim 3): left unchanged
-  double WorstBefore = 0.0; ///< smallest element quality angle before, degrees (< 0: inverted)
-  double WorstAfter = 0.0;  ///< the same after
-  std::size_t NumFlips23 = 0;       ///< tets: 2-3 flips
-  std::size_t NumEdgeRemovals = 0;  ///< tets: edge removals (3-2 flips included)
-  std::size_t NumFlips22 = 0;       ///< triangles: edge flips
-  std::size_t NumSmoothed = 0;      ///< accepted vertex moves
+  bool Supported = true;      ///< false for triangles on a surface (AmbientDim 3): left unchanged
+  double WorstBefore = 0.0;   ///< smallest element quality angle before, degrees (< 0: inverted)
+  double WorstAfter = 0.0;    ///< the same after
+  std::size_t NumFlips23 = 0; ///< tets: 2-3 flips
+  std::size_t NumEdgeRemovals = 0; ///< tets: edge removals (3-2 flips included)
+  std::size_t NumFlips22 = 0;      ///< triangles: edge flips
+  std::size_t NumSmoothed = 0;     ///< accepted vertex moves
   int Passes = 0;
   std::vector<std::uint8_t> Moved; ///< per point, 1 where the position changed
 };
@@ -61,7 +61,9 @@ struct MeshImprovementResult
  * near 0 for a sliver, a needle or a cap, negative when inverted. `sqrtMetrics` holds k+1
  * row-major dim x dim matrices.
  */
-double MetricSimplexQuality(int simplexDim, const double* const* points, const double* const* sqrtMetrics);
+double MetricSimplexQuality(int simplexDim,
+  const double* const* points,
+  const double* const* sqrtMetrics);
 
 /**
  * Improves `mesh` (tets in 3D, triangles in 2D) in place against `metric` (one per point, the

@@ -13,9 +13,14 @@ namespace av
 
 /// Tet (a, b, c, d) mapped by (Sa + Sb + Sc + Sd) / 4: smallest sine of its six dihedral
 /// angles, sin_ij = 6V l_ij / (|n_k| |n_l|) (n = doubled face area vectors), with the sign of V.
-inline double TetMetricQuality(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-  const Eigen::Vector3d& c, const Eigen::Vector3d& d, const Eigen::Matrix3d& sa,
-  const Eigen::Matrix3d& sb, const Eigen::Matrix3d& sc, const Eigen::Matrix3d& sd)
+inline double TetMetricQuality(const Eigen::Vector3d& a,
+  const Eigen::Vector3d& b,
+  const Eigen::Vector3d& c,
+  const Eigen::Vector3d& d,
+  const Eigen::Matrix3d& sa,
+  const Eigen::Matrix3d& sb,
+  const Eigen::Matrix3d& sc,
+  const Eigen::Matrix3d& sd)
 {
   const Eigen::Matrix3d m = 0.25 * (sa + sb + sc + sd);
   const Eigen::Vector3d ab = m * (b - a), ac = m * (c - a), ad = m * (d - a);
@@ -28,16 +33,20 @@ inline double TetMetricQuality(const Eigen::Vector3d& a, const Eigen::Vector3d& 
   if (f0 * f1 * f2 * f3 <= denomMin)
     return v6 > 0.0 ? 0.0 : -1.0;
   // Edge ij lies on the two faces opposite the other two vertices.
-  const double s01 = ab.norm() / (f2 * f3), s02 = ac.norm() / (f1 * f3), s03 = ad.norm() / (f1 * f2),
-               s12 = bc.norm() / (f0 * f3), s13 = bd.norm() / (f0 * f2), s23 = cd.norm() / (f0 * f1);
+  const double s01 = ab.norm() / (f2 * f3), s02 = ac.norm() / (f1 * f3),
+               s03 = ad.norm() / (f1 * f2), s12 = bc.norm() / (f0 * f3),
+               s13 = bd.norm() / (f0 * f2), s23 = cd.norm() / (f0 * f1);
   const double s = std::min(std::min(std::min(s01, s02), std::min(s03, s12)), std::min(s13, s23));
   return v6 * s;
 }
 
 /// Triangle (a, b, c) in 2D mapped by (Sa + Sb + Sc) / 3: smallest sine of its angles with the
 /// sign of its area.
-inline double TriangleMetricQuality(const Eigen::Vector2d& a, const Eigen::Vector2d& b,
-  const Eigen::Vector2d& c, const Eigen::Matrix2d& sa, const Eigen::Matrix2d& sb,
+inline double TriangleMetricQuality(const Eigen::Vector2d& a,
+  const Eigen::Vector2d& b,
+  const Eigen::Vector2d& c,
+  const Eigen::Matrix2d& sa,
+  const Eigen::Matrix2d& sb,
   const Eigen::Matrix2d& sc)
 {
   const Eigen::Matrix2d m = (sa + sb + sc) / 3.0;

@@ -39,8 +39,10 @@ int IndexIn(const std::array<std::int32_t, 4>& t, std::int32_t v)
 }
 } // namespace
 
-TetMeshImprover::TetMeshImprover(SimplexMesh& mesh, std::vector<Eigen::Matrix3d> sqrtMetrics,
-  const std::vector<std::uint8_t>* fixed, const MeshImprovementOptions& options)
+TetMeshImprover::TetMeshImprover(SimplexMesh& mesh,
+  std::vector<Eigen::Matrix3d> sqrtMetrics,
+  const std::vector<std::uint8_t>* fixed,
+  const MeshImprovementOptions& options)
   : Mesh(mesh)
   , S(std::move(sqrtMetrics))
   , Options(options)
@@ -148,8 +150,9 @@ void TetMeshImprover::MarkBoundaryAndNonManifold()
   for (const Tet& t : Tets)
     for (int m = 0; m < 4; ++m)
     {
-      std::array<std::int32_t, 3> f = { t[FaceOpposite[m][0]], t[FaceOpposite[m][1]],
-        t[FaceOpposite[m][2]] };
+      std::array<std::int32_t, 3> f = {
+        t[FaceOpposite[m][0]], t[FaceOpposite[m][1]], t[FaceOpposite[m][2]]
+      };
       std::sort(f.begin(), f.end());
       faces.push_back(f);
     }
@@ -264,8 +267,8 @@ bool TetMeshImprover::TryEdgeRemoval(std::int32_t a, std::int32_t b)
       for (int k = i + 1; k < j; ++k)
       {
         const double q = std::min(std::min(Best[i * n + k], Best[k * n + j]),
-          std::min(Quality({ a, Ring[i], Ring[k], Ring[j] }),
-            Quality({ b, Ring[j], Ring[k], Ring[i] })));
+          std::min(
+            Quality({ a, Ring[i], Ring[k], Ring[j] }), Quality({ b, Ring[j], Ring[k], Ring[i] })));
         if (q > best)
         {
           best = q;
@@ -424,8 +427,8 @@ bool TetMeshImprover::TrySmooth(std::int32_t v)
       break;
     }
   }
-  const bool accept = Options.AcceptWorsening ? current > kMinQuality && P[v] != start
-                                              : Accepts(current, before);
+  const bool accept =
+    Options.AcceptWorsening ? current > kMinQuality && P[v] != start : Accepts(current, before);
   if (!accept || (Options.AcceptMove && !Options.AcceptMove(v, P[v].data())))
   {
     P[v] = start;

@@ -18,8 +18,10 @@ class TetMeshImprover
 {
 public:
   /// `sqrtMetrics`: one symmetric square root per point; `fixed`: per point, nonzero = never moves.
-  TetMeshImprover(SimplexMesh& mesh, std::vector<Eigen::Matrix3d> sqrtMetrics,
-    const std::vector<std::uint8_t>* fixed, const MeshImprovementOptions& options);
+  TetMeshImprover(SimplexMesh& mesh,
+    std::vector<Eigen::Matrix3d> sqrtMetrics,
+    const std::vector<std::uint8_t>* fixed,
+    const MeshImprovementOptions& options);
 
   /// Runs the passes, writes the tets and points back into the mesh, fills the counts.
   void Run(MeshImprovementResult& result);

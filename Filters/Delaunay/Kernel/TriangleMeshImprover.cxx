@@ -34,7 +34,8 @@ void Replace(std::vector<std::int32_t>& s, std::int32_t from, std::int32_t to)
 } // namespace
 
 TriangleMeshImprover::TriangleMeshImprover(SimplexMesh& mesh,
-  std::vector<Eigen::Matrix2d> sqrtMetrics, const std::vector<std::uint8_t>* fixed,
+  std::vector<Eigen::Matrix2d> sqrtMetrics,
+  const std::vector<std::uint8_t>* fixed,
   const MeshImprovementOptions& options)
   : Mesh(mesh)
   , S(std::move(sqrtMetrics))
@@ -98,8 +99,7 @@ void TriangleMeshImprover::MarkBoundaryAndNonManifold()
   edges.reserve(Tris.size() * 3);
   for (const Tri& t : Tris)
     for (int e = 0; e < 3; ++e)
-      edges.emplace_back(
-        std::min(t[e], t[(e + 1) % 3]), std::max(t[e], t[(e + 1) % 3]));
+      edges.emplace_back(std::min(t[e], t[(e + 1) % 3]), std::max(t[e], t[(e + 1) % 3]));
   std::sort(edges.begin(), edges.end());
   for (std::size_t i = 0; i < edges.size();)
   {
@@ -137,7 +137,8 @@ bool TriangleMeshImprover::TryFlip(std::int32_t tri, int edge)
   if (count != 1)
     return false; // boundary or non-manifold edge
   const Tri& t2 = Tris[other];
-  const std::int32_t d = t2[0] != a && t2[0] != b ? t2[0] : (t2[1] != a && t2[1] != b ? t2[1] : t2[2]);
+  const std::int32_t d =
+    t2[0] != a && t2[0] != b ? t2[0] : (t2[1] != a && t2[1] != b ? t2[1] : t2[2]);
   if (d == c || HasEdge(c, d))
     return false;
   const Tri n1 = { c, a, d }, n2 = { d, b, c };

@@ -18,8 +18,10 @@ class TriangleMeshImprover
 {
 public:
   /// `sqrtMetrics`: one symmetric square root per point; `fixed`: per point, nonzero = never moves.
-  TriangleMeshImprover(SimplexMesh& mesh, std::vector<Eigen::Matrix2d> sqrtMetrics,
-    const std::vector<std::uint8_t>* fixed, const MeshImprovementOptions& options);
+  TriangleMeshImprover(SimplexMesh& mesh,
+    std::vector<Eigen::Matrix2d> sqrtMetrics,
+    const std::vector<std::uint8_t>* fixed,
+    const MeshImprovementOptions& options);
 
   /// Runs the passes, writes the triangles and points back into the mesh, fills the counts.
   void Run(MeshImprovementResult& result);

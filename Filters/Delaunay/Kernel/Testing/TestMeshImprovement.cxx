@@ -4,10 +4,10 @@
 // smoothing); on perturbed grids nothing inverts, the volume and the boundary are kept exactly,
 // every interior face stays shared by two tets, fixed vertices stay, the worst quality never
 // drops; and the mutation hook that accepts worsening operations is caught by those checks.
+#include "AnisoTestChecks.h"
 #include "MeshImprovement.h"
 #include "MeshTopology.h"
 #include "StructuredMeshes.h"
-#include "AnisoTestChecks.h"
 
 #include <algorithm>
 #include <array>
@@ -134,7 +134,8 @@ void TestFlips()
     const av::MeshImprovementResult r =
       av::ImproveMesh(m, IsotropicMetric(n + 2), nullptr, flipsOnly);
     AV_CHECK_MSG(r.NumEdgeRemovals >= 1, "ring " << n);
-    AV_CHECK_MSG(WorstQuality(m) > before, "ring " << n << ": " << before << " -> " << WorstQuality(m));
+    AV_CHECK_MSG(
+      WorstQuality(m) > before, "ring " << n << ": " << before << " -> " << WorstQuality(m));
     AV_CHECK_NEAR(Volume(m), volume, 1e-14);
     AV_CHECK(NumInverted(m) == 0);
     // The apex edge is gone.
@@ -193,7 +194,8 @@ void TestSmoothing()
   smoothOnly.Flips = false;
   smoothOnly.KeepEdgeLengths = false;
   av::SimplexMesh moved = m;
-  const av::MeshImprovementResult r = av::ImproveMesh(moved, IsotropicMetric(7), nullptr, smoothOnly);
+  const av::MeshImprovementResult r =
+    av::ImproveMesh(moved, IsotropicMetric(7), nullptr, smoothOnly);
   AV_CHECK(r.NumSmoothed >= 1 && r.Moved[c] == 1);
   AV_CHECK_MSG(WorstQuality(moved) > before + 0.2, before << " -> " << WorstQuality(moved));
   AV_CHECK_NEAR(Volume(moved), volume, 1e-14);
@@ -286,7 +288,8 @@ struct Checks
 
 // The properties every run must keep; returns them instead of failing, so the mutation test
 // can show they catch a worsening run.
-Checks CheckRun(const av::SimplexMesh& before, const av::SimplexMesh& after,
+Checks CheckRun(const av::SimplexMesh& before,
+  const av::SimplexMesh& after,
   const std::vector<std::uint8_t>& fixed,
   const av::MeshImprovementResult& r)
 {
@@ -301,7 +304,8 @@ Checks CheckRun(const av::SimplexMesh& before, const av::SimplexMesh& after,
   for (std::size_t i = 0; i < before.NumPoints(); ++i)
     if (boundary[i] || fixed[i])
       for (int d = 0; d < before.AmbientDim; ++d)
-        c.Expect(after.Points[i * before.AmbientDim + d] == before.Points[i * before.AmbientDim + d],
+        c.Expect(
+          after.Points[i * before.AmbientDim + d] == before.Points[i * before.AmbientDim + d],
           "boundary and fixed points stay");
   c.Expect(r.WorstAfter >= r.WorstBefore, "the worst quality never drops");
   return c;
@@ -328,7 +332,8 @@ void TestGrids()
   std::vector<std::uint8_t> fixed(start.NumPoints(), 0);
   fixed[start.NumPoints() / 2] = 1; // an interior "feature" vertex
   av::SimplexMesh m = start;
-  const av::MeshImprovementResult r = av::ImproveMesh(m, metric, &fixed, av::MeshImprovementOptions());
+  const av::MeshImprovementResult r =
+    av::ImproveMesh(m, metric, &fixed, av::MeshImprovementOptions());
   const Checks c = CheckRun(start, m, fixed, r);
   AV_CHECK(c.Ok);
   AV_CHECK_MSG(r.WorstAfter > r.WorstBefore + 1.0, r.WorstBefore << " -> " << r.WorstAfter);
@@ -348,7 +353,8 @@ void TestGrids()
   av::SimplexMesh t = t0;
   const av::MetricField tm = StretchedMetric(t0.NumPoints(), 2);
   const std::vector<std::uint8_t> none(t0.NumPoints(), 0);
-  const av::MeshImprovementResult tr = av::ImproveMesh(t, tm, nullptr, av::MeshImprovementOptions());
+  const av::MeshImprovementResult tr =
+    av::ImproveMesh(t, tm, nullptr, av::MeshImprovementOptions());
   AV_CHECK(CheckRun(t0, t, none, tr).Ok);
   AV_CHECK_MSG(tr.WorstAfter > tr.WorstBefore + 1.0, tr.WorstBefore << " -> " << tr.WorstAfter);
 
@@ -358,7 +364,8 @@ void TestGrids()
   worsening.TargetAngle = 80.0;
   av::SimplexMesh w = start;
   const av::MeshImprovementResult wr = av::ImproveMesh(w, metric, &fixed, worsening);
-  std::cerr << "(expected) worsening run: " << wr.WorstBefore << " -> " << wr.WorstAfter << std::endl;
+  std::cerr << "(expected) worsening run: " << wr.WorstBefore << " -> " << wr.WorstAfter
+            << std::endl;
   AV_CHECK_MSG(!CheckRun(start, w, fixed, wr).Ok, "the checks miss a worsening run");
 }
 
