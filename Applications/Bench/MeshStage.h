@@ -29,7 +29,7 @@ struct MeshStageOptions
 {
   std::size_t Sites = 1000;
   int SampleIterations = 150;
-  int WarmupIterations = 100; ///< sampler warm-up iterations (ParticleSamplerOptions)
+  int WarmupIterations = 100;     ///< sampler warm-up iterations (ParticleSamplerOptions)
   std::uint64_t Seed = 1;
   double KernelWidthFactor = 0.3; ///< sampler's sigma factor
   int LloydIterations = 0;        ///< Lloyd (CVT) steps after sampling (av::RelaxSitesLloyd)
@@ -41,8 +41,7 @@ struct MeshStageOptions
   int ImproveRounds = 1;
   int OdtIterations = 3;      ///< ODT steps per round (0: sliver pushes only)
   bool PerturbSlivers = true; ///< sliver pushes in each round
-  bool ImproveMesh =
-    true; ///< flips and smoothing of the final dual in the metric (MeshImprovement)
+  bool ImproveMesh = true; ///< flips and smoothing of the final dual in the metric (MeshImprovement)
   bool PreserveSharpFeatures = true; ///< corner / feature-line particles (ParticleSamplerOptions)
   double FeatureAngle = 30.0;        ///< degrees
 };
@@ -55,28 +54,28 @@ struct MeshStageResult
   double DualVolumeRatio = 0.0; ///< dual mesh volume / domain volume (tets; 1 = covered)
   double SampleSeconds = 0.0, LloydSeconds = 0.0;
   double RvdSeconds = 0.0, RdtSeconds = 0.0; ///< the first RVD (with the adjacency) and RDT
-  double ImproveSeconds = 0.0;               ///< site improvement rounds (their RVD + RDT included)
-  std::size_t OdtMovedSites = 0;             ///< sites moved by the first round's ODT steps
-  std::size_t SliversPerturbed = 0;    ///< slivers (embedded dihedral < 15 deg) of the first round
-  double RepairSeconds = 0.0;          ///< repair rounds after the first RVD + RDT
+  double ImproveSeconds = 0.0; ///< site improvement rounds (their RVD + RDT included)
+  std::size_t OdtMovedSites = 0;    ///< sites moved by the first round's ODT steps
+  std::size_t SliversPerturbed = 0; ///< slivers (embedded dihedral < 15 deg) of the first round
+  double RepairSeconds = 0.0; ///< repair rounds after the first RVD + RDT
   double MeshImprovementSeconds = 0.0; ///< flips and smoothing of the final dual
   std::size_t ImprovementFlips = 0;    ///< 2-3 flips + edge removals (tets), 2-2 flips (triangles)
   std::size_t ImprovementSmoothed = 0; ///< accepted vertex moves
   std::size_t InvertedBeforeImprovement = 0; ///< dual's inverted (or flat) cells before it
-  double MeshSeconds = 0.0;                  ///< wall of sampling + RVD + RDT + repair
-  std::size_t Cells = 0;                     ///< restricted Delaunay cells
-  std::size_t InsertedSites = 0;             ///< by the repair (Sites counts the sampled ones only)
+  double MeshSeconds = 0.0; ///< wall of sampling + RVD + RDT + repair
+  std::size_t Cells = 0;    ///< restricted Delaunay cells
+  std::size_t InsertedSites = 0; ///< by the repair (Sites counts the sampled ones only)
   int RepairRounds = 0;
   std::vector<std::size_t> InvertedPerRound; ///< bad dual elements before each repair round
-  bool RepairStalled = false;                ///< the repair kept an earlier, better state
+  bool RepairStalled = false; ///< the repair kept an earlier, better state
   std::size_t RdtInvertedBeforeRepair = 0;
   std::size_t NonManifoldFacesBeforeRepair = 0;
   double GMin = 0.0, GAvg = 0.0, ThetaMin = 0.0, ThetaAvg = 0.0, PercentBad = 0.0;
   /// G_avg of the same dual cells measured with the sites' embedded coordinates (no metric):
   /// GAvgEmbedded - GAvg is what the embedding's departure from the metric costs.
   double GAvgEmbedded = 0.0;
-  std::size_t Inverted = 0;    ///< by the quality evaluator (input-space signed measure)
-  std::size_t RdtInverted = 0; ///< by ComputeRestrictedDelaunay (back-projection), after repair
+  std::size_t Inverted = 0;          ///< by the quality evaluator (input-space signed measure)
+  std::size_t RdtInverted = 0;       ///< by ComputeRestrictedDelaunay (back-projection), after repair
   std::size_t NonManifoldFaces = 0;
   std::size_t UnusedSites = 0;
   double PercentEdgesInUnitRange = 0.0;
@@ -90,10 +89,8 @@ struct MeshStageResult
  * (options.Repair), and evaluates the dual against `metric` interpolated at the final sites.
  * Throws what the kernels throw.
  */
-MeshStageResult RunMeshStage(const av::SimplexMesh& mesh,
-  const av::MetricField& metric,
-  const av::Embedding& embedding,
-  const MeshStageOptions& options);
+MeshStageResult RunMeshStage(const av::SimplexMesh& mesh, const av::MetricField& metric,
+  const av::Embedding& embedding, const MeshStageOptions& options);
 
 } // namespace avbench
 

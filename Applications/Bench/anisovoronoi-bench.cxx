@@ -54,20 +54,20 @@ struct Args
   std::string Init = "smooth";
   bool Weighted = false;
   bool TrackError = true;
-  std::size_t Sites = 0;      // 0: case default (paper Tab. 5 / Tab. 3)
+  std::size_t Sites = 0;     // 0: case default (paper Tab. 5 / Tab. 3)
   int SampleIterations = 150; // sampler L-BFGS iterations
   int WarmupIterations = 100; // sampler warm-up iterations
-  double KernelWidth = 0.3;   // sampler sigma factor
-  int Lloyd = 0;              // Lloyd (CVT) steps after sampling
-  bool Repair = true;         // repair inverted dual elements by site insertion
+  double KernelWidth = 0.3;  // sampler sigma factor
+  int Lloyd = 0;             // Lloyd (CVT) steps after sampling
+  bool Repair = true;        // repair inverted dual elements by site insertion
   int RepairRounds = 10;
   bool RepairNonManifold = false;
-  int ImproveRounds = 1; // site improvement rounds before the repair (0 = paper)
-  int OdtIterations = 3; // ODT steps per improvement round
+  int ImproveRounds = 1;     // site improvement rounds before the repair (0 = paper)
+  int OdtIterations = 3;     // ODT steps per improvement round
   bool PerturbSlivers = true;
-  bool ImproveMesh = true; // flips and smoothing of the final mesh in the metric
-  bool Features = true;    // corner / feature-line particles
-  bool Reference = false;  // closed-form isometric embedding instead of the solver
+  bool ImproveMesh = true;   // flips and smoothing of the final mesh in the metric
+  bool Features = true;      // corner / feature-line particles
+  bool Reference = false;    // closed-form isometric embedding instead of the solver
   double FeatureAngle = 30.0;
 };
 
@@ -131,8 +131,7 @@ Case BuildCase(const Args& a)
     else if (a.Resolution > 0)
     {
       // N vertices across the diameter ~ (pi / 6) N^3 vertices in the ball.
-      target =
-        static_cast<std::size_t>(std::lround(3.14159265358979 / 6.0 * std::pow(a.Resolution, 3)));
+      target = static_cast<std::size_t>(std::lround(3.14159265358979 / 6.0 * std::pow(a.Resolution, 3)));
     }
     c.Mesh = av::TetrahedralizeSphere(d.Radius, target);
     c.MeshDescription = "tetgen-ball-" + std::to_string(target);
@@ -154,8 +153,7 @@ Case BuildCase(const Args& a)
       n[1] = n[2] = a.Resolution;
     }
     c.Mesh = av::MakeKuhnTetGrid(n[0], n[1], n[2], d.Lo, d.Hi);
-    c.MeshDescription =
-      "kuhn-" + std::to_string(n[0]) + "x" + std::to_string(n[1]) + "x" + std::to_string(n[2]);
+    c.MeshDescription = "kuhn-" + std::to_string(n[0]) + "x" + std::to_string(n[1]) + "x" + std::to_string(n[2]);
   }
   c.Metric = av::EvaluateAnalyticMetric(c.Preset, c.Mesh);
   c.MeshSeconds = watch.Seconds();
@@ -205,28 +203,21 @@ av::EmbeddingOptions EmbeddingOptionsFor(const Args& a, const Case& c, int dim)
 {
   av::EmbeddingOptions o;
   o.TargetDim = dim;
-  o.Iterations =
-    a.Iterations >= 0 ? a.Iterations : (c.Preset == av::AnalyticPreset::Gaussian2D ? 20 : 50);
+  o.Iterations = a.Iterations >= 0 ? a.Iterations : (c.Preset == av::AnalyticPreset::Gaussian2D ? 20 : 50);
   o.Mu = a.Mu;
   o.Seed = a.Seed;
   o.AndersonWindow = a.Anderson;
   o.SinglePrecisionSolve = !a.DoubleSolve;
   o.ElementMeasureWeighting = a.Weighted;
-  o.Initialization =
-    a.Init == "random" ? av::EmbeddingInitialization::Random : av::EmbeddingInitialization::Smooth;
+  o.Initialization = a.Init == "random" ? av::EmbeddingInitialization::Random : av::EmbeddingInitialization::Smooth;
   return o;
 }
 
 /// The keys of the "embed" report of a solver run (`reached`: first iteration at the paper's
 /// L_avg, -1 if none).
-void ReportEmbedding(const Args& a,
-  const Case& c,
-  const av::EmbeddingOptions& o,
-  const av::EmbeddingResult& r,
-  const av::EdgeLengthErrorResult& e,
-  double embedSeconds,
-  int reached,
-  JsonLine& out)
+void ReportEmbedding(const Args& a, const Case& c, const av::EmbeddingOptions& o,
+  const av::EmbeddingResult& r, const av::EdgeLengthErrorResult& e, double embedSeconds,
+  int reached, JsonLine& out)
 {
   out.Set("embedding", "solver");
   out.Set("dim", o.TargetDim);
@@ -280,8 +271,7 @@ void StageEmbed(const Args& a, const Case& c, JsonLine& out, av::Embedding* keep
   if (evaluator && std::isfinite(c.Paper.LAvg))
   {
     // Error per iteration; its cost is measured and left out of embed_seconds.
-    o.Progress = [&](const av::EmbeddingProgress& p)
-    {
+    o.Progress = [&](const av::EmbeddingProgress& p) {
       const av::Stopwatch trackWatch;
       if (reached < 0 &&
         evaluator->Evaluate(p.Solver->CurrentEmbedding()).AveragePercent <= c.Paper.LAvg)
@@ -295,9 +285,8 @@ void StageEmbed(const Args& a, const Case& c, JsonLine& out, av::Embedding* keep
   const av::Stopwatch watch;
   av::EmbeddingResult r = av::ComputeEmbedding(c.Mesh, c.Metric, o);
   const double embedSeconds = watch.Seconds() - trackSeconds;
-  const av::EdgeLengthErrorResult e = evaluator
-    ? evaluator->Evaluate(r.Embedded)
-    : av::ComputeEdgeLengthError(c.Mesh, c.Metric, r.Embedded);
+  const av::EdgeLengthErrorResult e = evaluator ? evaluator->Evaluate(r.Embedded)
+                                                : av::ComputeEdgeLengthError(c.Mesh, c.Metric, r.Embedded);
   ReportEmbedding(a, c, o, r, e, embedSeconds, reached, out);
   if (keep)
   {
@@ -348,10 +337,8 @@ avbench::MeshStageOptions MeshStageOptionsFor(const Args& a, const Case& c)
 }
 
 /// The keys of the "mesh" report.
-void ReportMesh(const Case& c,
-  const avbench::MeshStageOptions& o,
-  const avbench::MeshStageResult& r,
-  JsonLine& out)
+void ReportMesh(const Case& c, const avbench::MeshStageOptions& o,
+  const avbench::MeshStageResult& r, JsonLine& out)
 {
   const avbench::PaperMeshValues p = avbench::PaperMeshValuesFor(c.Preset);
   out.Set("sites", r.Sites);
@@ -430,57 +417,53 @@ const std::map<std::string, StageFn>& Stages()
 {
   static const std::map<std::string, StageFn> stages = {
     { "embed", [](const Args& a, const Case& c, JsonLine& o) { StageEmbed(a, c, o); } },
-    { "mesh", StageMesh },
-    { "all", StageMesh }
-  };
+    { "mesh", StageMesh }, { "all", StageMesh } };
   return stages;
 }
 
 void Usage(std::ostream& os)
 {
-  os
-    << "usage: anisovoronoi-bench CASE [options]\n"
-       "  CASE: gaussian2d | cube1 | cube2 | cube3 | sphere-cyl | sphere-cos | all\n"
-       "  --stage S         embed | mesh (embedding, then sampling + RVD + RDT + quality) | all\n"
-       "                    (both reports); default embed\n"
-       "  --dim D           target dimension (default 3 for gaussian2d, else 8)\n"
-       "  --iterations N    solver iterations (default 20 for gaussian2d as Fig. 4, else 50)\n"
-       "  --resolution N    N vertices per side (cube2/3 keep 5:1:1, spheres ~pi/6 N^3 vertices);\n"
-       "                    default: gaussian2d 101^2, cube1 21^3, cube2/3 101x21x21, spheres "
-       "50,000\n"
-       "  --vertices V      target vertex count of the sphere meshes (TetGen)\n"
-       "  --threads T       limit TBB threads (default: all cores)\n"
-       "  --seed S          random seed of the initial field (default 1)\n"
-       "  --mu M            regularizer weight (default 100)\n"
-       "  --anderson W      Anderson window, 0 = plain local/global (default 5)\n"
-       "  --double-solve    global steps with CHOLMOD's double solve (default: float factor copy)\n"
-       "  --init smooth|random  initial free coordinates (default smooth)\n"
-       "  --weighted        element-measure weighted energy (default: paper's unweighted)\n"
-       "  --no-track        do not evaluate L_avg per iteration (iterations_to_paper_error)\n"
-       "  --sites N         sites for mesh (default: cube1 2000, cube2 5000, cube3 5600,\n"
-       "                    sphere-cyl 5000, sphere-cos 1000, gaussian2d 4000)\n"
-       "  --sample-iterations N  sampler iterations (default 150; the paper: 50)\n"
-       "  --warmup-iterations N  sampler warm-up iterations at sigma factor 0.25 (default 100)\n"
-       "  --kernel-width F  sampler sigma factor (default 0.3)\n"
-       "  --lloyd N         Lloyd (CVT) steps after sampling (default 0)\n"
-       "  --no-repair       mesh: keep inverted dual elements (default: insert sites at their\n"
-       "                    Voronoi vertices until none is left)\n"
-       "  --repair-rounds N mesh: insertion rounds at most (default 10)\n"
-       "  --repair-nonmanifold  mesh: also repair non-manifold faces of the dual\n"
-       "  --improve-rounds N  mesh: site improvement rounds before the repair: ODT steps\n"
-       "                    and sliver pushes, then RVD + RDT again (default 1, 0 = the\n"
-       "                    paper's pipeline)\n"
-       "  --odt-iterations N  mesh: ODT steps per improvement round (default 3, 0 = none)\n"
-       "  --no-sliver-push  mesh: no sliver pushes in the improvement rounds\n"
-       "  --no-mesh-improvement  mesh: keep the repaired dual as it is (default: flips and\n"
-       "                    vertex smoothing raise its worst element in the metric)\n"
-       "  --no-features     mesh: no corner / feature-line particles (paper §4.1 sharp features)\n"
-       "  --feature-angle A mesh: dihedral angle in degrees above which a boundary edge is a\n"
-       "                    feature line (default 30)\n"
-       "  --reference-embedding  the preset's exact isometric embedding (x, y, z, H) instead\n"
-       "                    of the solver (all presets but sphere-cos): separates the\n"
-       "                    embedding's share of a quality loss from the rest\n"
-       "Prints one JSON object per case on stdout.\n";
+  os << "usage: anisovoronoi-bench CASE [options]\n"
+        "  CASE: gaussian2d | cube1 | cube2 | cube3 | sphere-cyl | sphere-cos | all\n"
+        "  --stage S         embed | mesh (embedding, then sampling + RVD + RDT + quality) | all\n"
+        "                    (both reports); default embed\n"
+        "  --dim D           target dimension (default 3 for gaussian2d, else 8)\n"
+        "  --iterations N    solver iterations (default 20 for gaussian2d as Fig. 4, else 50)\n"
+        "  --resolution N    N vertices per side (cube2/3 keep 5:1:1, spheres ~pi/6 N^3 vertices);\n"
+        "                    default: gaussian2d 101^2, cube1 21^3, cube2/3 101x21x21, spheres 50,000\n"
+        "  --vertices V      target vertex count of the sphere meshes (TetGen)\n"
+        "  --threads T       limit TBB threads (default: all cores)\n"
+        "  --seed S          random seed of the initial field (default 1)\n"
+        "  --mu M            regularizer weight (default 100)\n"
+        "  --anderson W      Anderson window, 0 = plain local/global (default 5)\n"
+        "  --double-solve    global steps with CHOLMOD's double solve (default: float factor copy)\n"
+        "  --init smooth|random  initial free coordinates (default smooth)\n"
+        "  --weighted        element-measure weighted energy (default: paper's unweighted)\n"
+        "  --no-track        do not evaluate L_avg per iteration (iterations_to_paper_error)\n"
+        "  --sites N         sites for mesh (default: cube1 2000, cube2 5000, cube3 5600,\n"
+        "                    sphere-cyl 5000, sphere-cos 1000, gaussian2d 4000)\n"
+        "  --sample-iterations N  sampler iterations (default 150; the paper: 50)\n"
+        "  --warmup-iterations N  sampler warm-up iterations at sigma factor 0.25 (default 100)\n"
+        "  --kernel-width F  sampler sigma factor (default 0.3)\n"
+        "  --lloyd N         Lloyd (CVT) steps after sampling (default 0)\n"
+        "  --no-repair       mesh: keep inverted dual elements (default: insert sites at their\n"
+        "                    Voronoi vertices until none is left)\n"
+        "  --repair-rounds N mesh: insertion rounds at most (default 10)\n"
+        "  --repair-nonmanifold  mesh: also repair non-manifold faces of the dual\n"
+        "  --improve-rounds N  mesh: site improvement rounds before the repair: ODT steps\n"
+        "                    and sliver pushes, then RVD + RDT again (default 1, 0 = the\n"
+        "                    paper's pipeline)\n"
+        "  --odt-iterations N  mesh: ODT steps per improvement round (default 3, 0 = none)\n"
+        "  --no-sliver-push  mesh: no sliver pushes in the improvement rounds\n"
+        "  --no-mesh-improvement  mesh: keep the repaired dual as it is (default: flips and\n"
+        "                    vertex smoothing raise its worst element in the metric)\n"
+        "  --no-features     mesh: no corner / feature-line particles (paper §4.1 sharp features)\n"
+        "  --feature-angle A mesh: dihedral angle in degrees above which a boundary edge is a\n"
+        "                    feature line (default 30)\n"
+        "  --reference-embedding  the preset's exact isometric embedding (x, y, z, H) instead\n"
+        "                    of the solver (all presets but sphere-cos): separates the\n"
+        "                    embedding's share of a quality loss from the rest\n"
+        "Prints one JSON object per case on stdout.\n";
 }
 
 /// Throws std::runtime_error for option values out of range.
@@ -517,8 +500,7 @@ bool Parse(int argc, char** argv, Args& a)
   for (int i = 1; i < argc; ++i)
   {
     const std::string k = argv[i];
-    auto next = [&]() -> std::string
-    {
+    auto next = [&]() -> std::string {
       if (i + 1 >= argc)
       {
         throw std::runtime_error("missing value after " + k);
@@ -652,8 +634,7 @@ int main(int argc, char** argv)
     return 2;
   }
   const int threads = args.Threads > 0 ? args.Threads : tbb::info::default_concurrency();
-  tbb::global_control limit(
-    tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
+  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
 
   std::vector<std::string> cases;
   if (args.CaseName == "all")

@@ -212,10 +212,9 @@ void AddRunFieldData(const av::MeshingPipelineResult& result, double seconds, vt
   AddFieldValue(fd, "NumOdtMovedSites", static_cast<double>(result.NumOdtMovedSites));
   AddFieldValue(fd, "DelaunaySeconds", seconds);
   const av::MeshImprovementResult& im = result.Improvement;
-  AddFieldValue(
-    fd, "NumInvertedBeforeMeshImprovement", static_cast<double>(result.InvertedBeforeImprovement));
-  AddFieldValue(fd,
-    "NumImprovementFlips",
+  AddFieldValue(fd, "NumInvertedBeforeMeshImprovement",
+    static_cast<double>(result.InvertedBeforeImprovement));
+  AddFieldValue(fd, "NumImprovementFlips",
     static_cast<double>(im.NumFlips23 + im.NumEdgeRemovals + im.NumFlips22));
   AddFieldValue(fd, "NumImprovementMoves", static_cast<double>(im.NumSmoothed));
   AddFieldValue(fd, "MeshImprovementSeconds", result.MeshImprovementSeconds);
@@ -348,7 +347,8 @@ int vtkAnisoRestrictedDelaunay::RequestData(vtkInformation* request,
       vtkWarningMacro(<< "ImproveMesh: the embedded mesh has no metric point array (input array "
                          "1, default \"Metric\"); the mesh is not improved");
     }
-    else if (!vtkAnisoDataConversion::ToMetricField(metricArray, mesh.NumPoints(), metric, error))
+    else if (!vtkAnisoDataConversion::ToMetricField(
+               metricArray, mesh.NumPoints(), metric, error))
     {
       vtkErrorMacro(<< error);
       return 0;

@@ -41,8 +41,7 @@
 #include "AnisoVoronoiFiltersDelaunayModule.h" // export macro
 #include <vtkUnstructuredGridAlgorithm.h>
 
-class ANISOVORONOIFILTERSDELAUNAY_EXPORT vtkAnisoRestrictedDelaunay
-  : public vtkUnstructuredGridAlgorithm
+class ANISOVORONOIFILTERSDELAUNAY_EXPORT vtkAnisoRestrictedDelaunay : public vtkUnstructuredGridAlgorithm
 {
 public:
   static vtkAnisoRestrictedDelaunay* New();

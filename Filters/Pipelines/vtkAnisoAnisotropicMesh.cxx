@@ -29,10 +29,8 @@ int vtkAnisoAnisotropicMesh::FillOutputPortInformation(int port, vtkInformation*
   return 1;
 }
 
-int vtkAnisoAnisotropicMesh::RequestBackEnd(vtkUnstructuredGrid* embedded,
-  vtkPolyData* sites,
-  vtkTable*,
-  vtkInformationVector* outputVector)
+int vtkAnisoAnisotropicMesh::RequestBackEnd(
+  vtkUnstructuredGrid* embedded, vtkPolyData* sites, vtkTable*, vtkInformationVector* outputVector)
 {
   std::string error;
   vtkNew<vtkAnisoRestrictedDelaunay> delaunay;

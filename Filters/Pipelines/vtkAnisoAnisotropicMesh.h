@@ -73,9 +73,7 @@ protected:
   vtkAnisoAnisotropicMesh();
   ~vtkAnisoAnisotropicMesh() override;
   int FillOutputPortInformation(int port, vtkInformation* info) override;
-  int RequestBackEnd(vtkUnstructuredGrid* embedded,
-    vtkPolyData* sites,
-    vtkTable* energy,
+  int RequestBackEnd(vtkUnstructuredGrid* embedded, vtkPolyData* sites, vtkTable* energy,
     vtkInformationVector* outputVector) override;
 
   bool RepairInverted = true;

@@ -17,9 +17,8 @@ namespace av
 {
 namespace
 {
-void ValidateOptions(const MeshingPipelineOptions& options,
-  std::size_t numSites,
-  std::size_t numPoints)
+void ValidateOptions(
+  const MeshingPipelineOptions& options, std::size_t numSites, std::size_t numPoints)
 {
   auto fail = [](const std::string& m) { throw InputError("RunMeshingPipeline: " + m); };
   if (options.ImproveRounds < 0 || options.OdtIterations < 0 || options.MaxRepairRounds < 0)
@@ -140,14 +139,8 @@ MeshingPipelineResult RunMeshingPipeline(const SimplexMesh& mesh,
   if (options.ImproveMesh && options.Metric)
   {
     watch.Restart();
-    result.Improvement = ImproveFinalMesh(mesh,
-      embedding,
-      adjacency,
-      *options.Metric,
-      options.FixedSites,
-      options.Improvement,
-      result.Repaired,
-      result.Moved);
+    result.Improvement = ImproveFinalMesh(mesh, embedding, adjacency, *options.Metric,
+      options.FixedSites, options.Improvement, result.Repaired, result.Moved);
     result.NumMovedSites =
       static_cast<std::size_t>(std::count(result.Moved.begin(), result.Moved.end(), 1));
     result.MeshImprovementSeconds = watch.Seconds();

@@ -83,9 +83,8 @@ struct MeshingPipelineResult
  * DelaunayRepairOptions default) and its dual (ComputeRestrictedDelaunay); then up to
  * ImproveRounds rounds of ImproveSites, each followed by a new RVD + RDT; then
  * RepairRestrictedDelaunay starting from the last RVD + RDT; then, with ImproveMesh and Metric,
- * ImproveFinalMesh on the repaired dual. The element adjacency is computed once for all of them.
- * Deterministic. Throws InputError on bad input (inconsistent mesh, embedding or sites, FixedSites
- * not one per site, negative counts).
+ * ImproveFinalMesh on the repaired dual. The element adjacency is computed once for all of them. Deterministic. Throws InputError on bad input (inconsistent mesh,
+ * embedding or sites, FixedSites not one per site, negative counts).
  */
 MeshingPipelineResult RunMeshingPipeline(const SimplexMesh& mesh,
   const Embedding& embedding,

@@ -166,11 +166,8 @@ private:
 class CellAssembler
 {
 public:
-  CellAssembler(const SimplexMesh& mesh,
-    const RestrictedVoronoiDiagram& rvd,
-    const std::vector<unsigned char>& flip,
-    RestrictedVoronoiCells& out,
-    double shrink)
+  CellAssembler(const SimplexMesh& mesh, const RestrictedVoronoiDiagram& rvd,
+    const std::vector<unsigned char>& flip, RestrictedVoronoiCells& out, double shrink)
     : Mesh(mesh)
     , Rvd(rvd)
     , Flip(flip)
@@ -200,11 +197,9 @@ public:
         ids.push_back(Rvd.FaceVertices[i] - v0);
       if (f)
         std::reverse(ids.begin(), ids.end());
-      Builder.AddFace(
-        ids.data(), static_cast<int>(ids.size()), Rvd.FaceKind[fc], Rvd.FaceNeighbor[fc]);
+      Builder.AddFace(ids.data(), static_cast<int>(ids.size()), Rvd.FaceKind[fc], Rvd.FaceNeighbor[fc]);
     }
-    Builder.End(
-      Rvd.PieceSite[p], Rvd.PieceElement[p], Rvd.PieceMeasure[p], Rvd.PieceEmbeddedMeasure[p]);
+    Builder.End(Rvd.PieceSite[p], Rvd.PieceElement[p], Rvd.PieceMeasure[p], Rvd.PieceEmbeddedMeasure[p]);
   }
 
   /// Emits the pieces p0..p1-1 of one site as one cell (or, in 2D when they do not form one
@@ -289,8 +284,7 @@ private:
           continue; // collapsed (degenerate) face
         if (f)
           std::reverse(ids.begin(), ids.end());
-        Builder.AddFace(
-          ids.data(), static_cast<int>(ids.size()), Rvd.FaceKind[fc], Rvd.FaceNeighbor[fc]);
+        Builder.AddFace(ids.data(), static_cast<int>(ids.size()), Rvd.FaceKind[fc], Rvd.FaceNeighbor[fc]);
       }
     }
   }
@@ -346,8 +340,7 @@ std::vector<unsigned char> ElementFlips(const SimplexMesh& mesh, double& domain)
 } // namespace
 
 RestrictedVoronoiCells BuildRestrictedVoronoiCells(const SimplexMesh& mesh,
-  const RestrictedVoronoiDiagram& rvd,
-  const RestrictedVoronoiCellOptions& options)
+  const RestrictedVoronoiDiagram& rvd, const RestrictedVoronoiCellOptions& options)
 {
   RestrictedVoronoiCells out;
   out.SimplexDim = mesh.SimplexDim;

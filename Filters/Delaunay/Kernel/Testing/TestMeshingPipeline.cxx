@@ -165,8 +165,8 @@ void CheckMeshImprovement(const FoldedCase& c, const char* what)
     }
   }
   AV_CHECK(moved == r.Improvement.NumSmoothed || moved <= r.Improvement.NumSmoothed);
-  AV_CHECK(
-    r.NumMovedSites == static_cast<std::size_t>(std::count(r.Moved.begin(), r.Moved.end(), 1)));
+  AV_CHECK(r.NumMovedSites ==
+    static_cast<std::size_t>(std::count(r.Moved.begin(), r.Moved.end(), 1)));
 
   // With the repair (the defaults): valid before, valid after, and the worst element better.
   o.Repair = true;

@@ -2,8 +2,8 @@
 // RVD cells (BuildRestrictedVoronoiCells): merged cells are closed, outward surfaces whose
 // vertices are glued across elements, their measures partition the domain, pieces add up to
 // the merged cells, face kinds and neighbors, shrink, mirrored meshes, 2D loops, abort.
-#include "AnisoTestChecks.h"
 #include "RestrictedVoronoiCells.h"
+#include "AnisoTestChecks.h"
 #include "VoronoiTestMeshes.h"
 
 #include <algorithm>
@@ -81,8 +81,7 @@ int CoincidentPoints(const av::RestrictedVoronoiCells& cells, std::size_t c)
   int n = 0;
   for (std::size_t i = 1; i < pts.size(); ++i)
     n += std::abs(pts[i][0] - pts[i - 1][0]) + std::abs(pts[i][1] - pts[i - 1][1]) +
-        std::abs(pts[i][2] - pts[i - 1][2]) <
-      1e-12;
+        std::abs(pts[i][2] - pts[i - 1][2]) < 1e-12;
   return n;
 }
 
@@ -166,10 +165,8 @@ av::RestrictedVoronoiDiagram Diagram(const VolumeCase& v, bool merge)
   return av::ComputeRestrictedVoronoi(v.Mesh, v.Emb, v.Sites, o);
 }
 
-av::RestrictedVoronoiCells Cells(const av::SimplexMesh& m,
-  const av::RestrictedVoronoiDiagram& r,
-  bool merge,
-  double shrink = 1.0)
+av::RestrictedVoronoiCells Cells(const av::SimplexMesh& m, const av::RestrictedVoronoiDiagram& r,
+  bool merge, double shrink = 1.0)
 {
   av::RestrictedVoronoiCellOptions o;
   o.MergeBySite = merge;
@@ -222,8 +219,7 @@ void TestPiecePolyhedra()
   bool same = c.NumCells() == r.NumPieces();
   for (std::size_t p = 0; same && p < r.NumPieces(); ++p)
     same = c.CellSite[p] == r.PieceSite[p] && c.CellElement[p] == r.PieceElement[p] &&
-      c.CellMeasure[p] == r.PieceMeasure[p] &&
-      c.CellEmbeddedMeasure[p] == r.PieceEmbeddedMeasure[p];
+      c.CellMeasure[p] == r.PieceMeasure[p] && c.CellEmbeddedMeasure[p] == r.PieceEmbeddedMeasure[p];
   AV_CHECK(same);
   PolyhedraCheck k = CheckPolyhedra(c);
   AV_CHECK(k.Open == 0 && k.Coincident == 0);
@@ -305,8 +301,7 @@ void CheckLoops(const av::RestrictedVoronoiCells& c, const char* name)
     bad += !chained || std::abs(area - c.CellMeasure[i]) > 1e-9 * (1.0 + c.CellMeasure[i]);
     total += c.CellMeasure[i];
   }
-  AV_CHECK_MSG(
-    bad == 0, name << ": " << bad << " cells are not a loop of their edges with its area");
+  AV_CHECK_MSG(bad == 0, name << ": " << bad << " cells are not a loop of their edges with its area");
   AV_CHECK_NEAR(total, 1.0, 1e-9);
   AV_CHECK_NEAR(c.DomainMeasure, 1.0, 1e-12);
   AV_CHECK_NEAR(FaceMeasure(c, av::RVDFaceKind::DomainBoundary), 4.0, 1e-9);
