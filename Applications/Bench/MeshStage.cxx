@@ -86,7 +86,8 @@ av::SiteSet SampleSites(const av::SimplexMesh& mesh,
 
 /// The meshing options of the stage.
 av::MeshingPipelineOptions PipelineOptions(const MeshStageOptions& options,
-  const std::vector<std::uint8_t>* fixed)
+  const std::vector<std::uint8_t>* fixed,
+  const av::MetricField* metric)
 {
   av::MeshingPipelineOptions po;
   po.ImproveRounds = options.ImproveRounds;
@@ -96,6 +97,8 @@ av::MeshingPipelineOptions PipelineOptions(const MeshStageOptions& options,
   po.Repair = options.Repair;
   po.MaxRepairRounds = options.MaxRepairRounds;
   po.RepairNonManifold = options.RepairNonManifold;
+  po.ImproveMesh = options.ImproveMesh;
+  po.Metric = metric;
   return po;
 }
 
@@ -106,6 +109,11 @@ void CopyMeshingCounts(const av::MeshingPipelineResult& m, MeshStageResult& r)
   r.RdtSeconds = m.DelaunaySeconds;
   r.ImproveSeconds = m.ImproveSeconds;
   r.RepairSeconds = m.RepairSeconds;
+  r.MeshImprovementSeconds = m.MeshImprovementSeconds;
+  r.ImprovementFlips =
+    m.Improvement.NumFlips23 + m.Improvement.NumEdgeRemovals + m.Improvement.NumFlips22;
+  r.ImprovementSmoothed = m.Improvement.NumSmoothed;
+  r.InvertedBeforeImprovement = m.InvertedBeforeImprovement;
   r.SliversPerturbed = m.NumSlivers;
   r.OdtMovedSites = m.NumOdtMovedSites;
   const av::DelaunayRepairResult& repaired = m.Repaired;
@@ -225,7 +233,7 @@ MeshStageResult RunMeshStage(const av::SimplexMesh& mesh,
   std::vector<std::uint8_t> fixedSites;
   const av::SiteSet sites = SampleSites(mesh, embedding, options, fixedSites, r);
   const av::MeshingPipelineResult meshed =
-    av::RunMeshingPipeline(mesh, embedding, sites, PipelineOptions(options, &fixedSites));
+    av::RunMeshingPipeline(mesh, embedding, sites, PipelineOptions(options, &fixedSites, &metric));
   r.MeshSeconds = meshWatch.Seconds();
   CopyMeshingCounts(meshed, r);
   MeasureDualMesh(mesh, metric, meshed.Repaired, r);

@@ -41,6 +41,7 @@ struct MeshStageOptions
   int ImproveRounds = 1;
   int OdtIterations = 3;      ///< ODT steps per round (0: sliver pushes only)
   bool PerturbSlivers = true; ///< sliver pushes in each round
+  bool ImproveMesh = true; ///< flips and smoothing of the final dual in the metric (MeshImprovement)
   bool PreserveSharpFeatures = true; ///< corner / feature-line particles (ParticleSamplerOptions)
   double FeatureAngle = 30.0;        ///< degrees
 };
@@ -57,6 +58,10 @@ struct MeshStageResult
   std::size_t OdtMovedSites = 0;    ///< sites moved by the first round's ODT steps
   std::size_t SliversPerturbed = 0; ///< slivers (embedded dihedral < 15 deg) of the first round
   double RepairSeconds = 0.0; ///< repair rounds after the first RVD + RDT
+  double MeshImprovementSeconds = 0.0; ///< flips and smoothing of the final dual
+  std::size_t ImprovementFlips = 0;    ///< 2-3 flips + edge removals (tets), 2-2 flips (triangles)
+  std::size_t ImprovementSmoothed = 0; ///< accepted vertex moves
+  std::size_t InvertedBeforeImprovement = 0; ///< dual's inverted (or flat) cells before it
   double MeshSeconds = 0.0; ///< wall of sampling + RVD + RDT + repair
   std::size_t Cells = 0;    ///< restricted Delaunay cells
   std::size_t InsertedSites = 0; ///< by the repair (Sites counts the sampled ones only)

@@ -67,6 +67,7 @@ struct Args
   int ImproveRounds = 1;     // site improvement rounds before the repair (0 = paper)
   int OdtIterations = 3;     // ODT steps per improvement round
   bool PerturbSlivers = true;
+  bool ImproveMesh = true;   // flips and smoothing of the final mesh in the metric
   bool Features = true;      // corner / feature-line particles
   bool Reference = false;    // closed-form isometric embedding instead of the solver
   double FeatureAngle = 30.0;
@@ -410,6 +411,7 @@ avbench::MeshStageOptions MeshStageOptionsFor(const Args& a, const Case& c)
   o.ImproveRounds = a.ImproveRounds;
   o.OdtIterations = a.OdtIterations;
   o.PerturbSlivers = a.PerturbSlivers;
+  o.ImproveMesh = a.ImproveMesh;
   o.PreserveSharpFeatures = a.Features;
   o.FeatureAngle = a.FeatureAngle;
   return o;
@@ -443,6 +445,11 @@ void ReportMesh(const Case& c, const avbench::MeshStageOptions& o,
   out.Set("repair", o.Repair);
   out.Set("repair_nonmanifold", o.RepairNonManifold);
   out.Set("repair_seconds", r.RepairSeconds);
+  out.Set("mesh_improvement", o.ImproveMesh);
+  out.Set("mesh_improvement_seconds", r.MeshImprovementSeconds);
+  out.Set("mesh_improvement_flips", r.ImprovementFlips);
+  out.Set("mesh_improvement_smoothed", r.ImprovementSmoothed);
+  out.Set("inverted_before_mesh_improvement", r.InvertedBeforeImprovement);
   out.Set("repair_rounds", r.RepairRounds);
   out.Set("inverted_per_round", r.InvertedPerRound);
   out.Set("repair_stalled", r.RepairStalled);
@@ -538,6 +545,8 @@ void Usage(std::ostream& os)
         "                    paper's pipeline)\n"
         "  --odt-iterations N  mesh: ODT steps per improvement round (default 3, 0 = none)\n"
         "  --no-sliver-push  mesh: no sliver pushes in the improvement rounds\n"
+        "  --no-mesh-improvement  mesh: keep the repaired dual as it is (default: flips and\n"
+        "                    vertex smoothing raise its worst element in the metric)\n"
         "  --no-features     mesh: no corner / feature-line particles (paper §4.1 sharp features)\n"
         "  --feature-angle A mesh: dihedral angle in degrees above which a boundary edge is a\n"
         "                    feature line (default 30)\n"
@@ -635,6 +644,8 @@ bool Parse(int argc, char** argv, Args& a)
       a.Lloyd = std::stoi(next());
     else if (k == "--no-repair")
       a.Repair = false;
+    else if (k == "--no-mesh-improvement")
+      a.ImproveMesh = false;
     else if (k == "--repair-rounds")
       a.RepairRounds = std::stoi(next());
     else if (k == "--repair-nonmanifold")

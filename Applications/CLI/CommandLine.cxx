@@ -68,6 +68,8 @@ unit length is one of the --sites output cells):
                            Voronoi vertices until none is left, paper §4.2)
   --repair-rounds N        insertion rounds at most (default 10)
   --repair-nonmanifold     also repair faces shared by more than two mesh elements
+  --no-mesh-improvement    keep the dual mesh as it is (default: flips and vertex smoothing
+                           raise its worst element, measured in the metric)
   --improve-rounds N       site improvement rounds before the repair (default 1; 0 = the
                            paper's pipeline): ODT steps and sliver pushes, diagram redone
   --odt-iterations N       ODT steps per improvement round (default 3; 0 = sliver pushes only)
@@ -266,6 +268,8 @@ Options ParseCommandLine(int argc, char* argv[])
       o.OdtIterations = ParseInt(a, next());
     else if (a == "--repair-nonmanifold")
       o.RepairNonManifold = true;
+    else if (a == "--no-mesh-improvement")
+      o.ImproveMesh = false;
     else if (!a.empty() && a[0] == '-')
       Fail("unknown option " + a + " (see --help)", 2);
     else if (o.Input.empty())

@@ -21,7 +21,7 @@ struct Options
   bool Features = true;
   double Mu = 100.0, Shrink = 0.8, MinEigenvalue = 1e-3, MaxAnisotropy = 25.0;
   bool TensorAsMetric = false, Clamp = false, Quiet = false, Repair = true;
-  bool RepairNonManifold = false, DoubleSolve = false;
+  bool RepairNonManifold = false, DoubleSolve = false, ImproveMesh = true;
   /// Metric preparation (on for tensor:ARRAY; metric, preset and .sol inputs only when a
   /// preparation option is given, PrepareAsked). SitesGiven: --sites was on the command line.
   double HMin = 0.0, HMax = 0.0, HGrad = 1.3, SizeBlend = 0.5;

@@ -383,6 +383,7 @@ void RunMeshingStages(const Options& o,
   s.Delaunay->SetImprovementRounds(o.ImproveRounds);
   s.Delaunay->SetOdtIterations(o.OdtIterations);
   s.Delaunay->SetRepairNonManifold(o.RepairNonManifold);
+  s.Delaunay->SetImproveMesh(o.ImproveMesh);
   runner.Run(s.Delaunay, DelaunayStage);
   s.Voronoi->SetInputConnection(0, s.Embedding->GetOutputPort(0));
   s.Voronoi->SetInputConnection(1, s.Delaunay->GetOutputPort(0));
@@ -482,6 +483,12 @@ std::vector<std::pair<std::string, std::string>> ReportEntries(const Options& o,
     { "odt_moved_sites", JsonNumber(FieldValue(rdtOut, "NumOdtMovedSites")) },
     { "rdt_inverted_before_repair", JsonNumber(FieldValue(rdtOut, "NumInvertedBeforeRepair")) },
     { "rdt_inverted", JsonNumber(FieldValue(rdtOut, "NumInverted")) },
+    { "mesh_improvement", o.ImproveMesh ? "true" : "false" },
+    { "mesh_improvement_seconds", JsonNumber(FieldValue(rdtOut, "MeshImprovementSeconds")) },
+    { "mesh_improvement_flips", JsonNumber(FieldValue(rdtOut, "NumImprovementFlips")) },
+    { "mesh_improvement_moves", JsonNumber(FieldValue(rdtOut, "NumImprovementMoves")) },
+    { "inverted_before_mesh_improvement",
+      JsonNumber(FieldValue(rdtOut, "NumInvertedBeforeMeshImprovement")) },
     { "mesh_seconds", JsonNumber(meshSeconds) },
     { "voronoi_cells", std::to_string(NumberOfCells(rvdOut)) },
     { "rvd_volume_error", JsonNumber(FieldValue(rvdOut, "RelativeVolumeError")) },

@@ -211,6 +211,13 @@ void AddRunFieldData(const av::MeshingPipelineResult& result, double seconds, vt
   AddFieldValue(fd, "NumMovedSites", static_cast<double>(result.NumMovedSites));
   AddFieldValue(fd, "NumOdtMovedSites", static_cast<double>(result.NumOdtMovedSites));
   AddFieldValue(fd, "DelaunaySeconds", seconds);
+  const av::MeshImprovementResult& im = result.Improvement;
+  AddFieldValue(fd, "NumInvertedBeforeMeshImprovement",
+    static_cast<double>(result.InvertedBeforeImprovement));
+  AddFieldValue(fd, "NumImprovementFlips",
+    static_cast<double>(im.NumFlips23 + im.NumEdgeRemovals + im.NumFlips22));
+  AddFieldValue(fd, "NumImprovementMoves", static_cast<double>(im.NumSmoothed));
+  AddFieldValue(fd, "MeshImprovementSeconds", result.MeshImprovementSeconds);
 }
 
 /// The pipeline options of the filter's parameters; progress and abort go through `self`.
@@ -224,6 +231,7 @@ av::MeshingPipelineOptions MeshingOptions(vtkAnisoRestrictedDelaunay* self,
   options.Repair = self->GetRepairInverted();
   options.MaxRepairRounds = self->GetMaxRepairRounds();
   options.RepairNonManifold = self->GetRepairNonManifold();
+  options.ImproveMesh = self->GetImproveMesh();
   options.Progress = [self](av::MeshingStep step)
   {
     if (self->GetAbortExecute())
@@ -277,6 +285,7 @@ vtkAnisoRestrictedDelaunay::vtkAnisoRestrictedDelaunay()
 {
   this->SetNumberOfInputPorts(2);
   this->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "Embedding");
+  this->SetInputArrayToProcess(1, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "Metric");
 }
 
 void vtkAnisoRestrictedDelaunay::SetSourceConnection(vtkAlgorithmOutput* output)
@@ -329,6 +338,22 @@ int vtkAnisoRestrictedDelaunay::RequestData(vtkInformation* request,
     vtkErrorMacro(<< error);
     return 0;
   }
+  av::MetricField metric;
+  if (this->ImproveMesh)
+  {
+    vtkDataArray* metricArray = this->GetInputArrayToProcess(1, inputVector);
+    if (!metricArray)
+    {
+      vtkWarningMacro(<< "ImproveMesh: the embedded mesh has no metric point array (input array "
+                         "1, default \"Metric\"); the mesh is not improved");
+    }
+    else if (!vtkAnisoDataConversion::ToMetricField(
+               metricArray, mesh.NumPoints(), metric, error))
+    {
+      vtkErrorMacro(<< error);
+      return 0;
+    }
+  }
   this->UpdateProgress(0.1);
 
   av::MeshingPipelineResult result;
@@ -336,10 +361,10 @@ int vtkAnisoRestrictedDelaunay::RequestData(vtkInformation* request,
         "restricted Delaunay mesh",
         [&]
         {
-          result = av::RunMeshingPipeline(mesh,
-            embedding,
-            sites,
-            MeshingOptions(this, fixedSites.empty() ? nullptr : &fixedSites));
+          av::MeshingPipelineOptions options =
+            MeshingOptions(this, fixedSites.empty() ? nullptr : &fixedSites);
+          options.Metric = metric.Values.empty() ? nullptr : &metric;
+          result = av::RunMeshingPipeline(mesh, embedding, sites, options);
         }))
   {
     return 0;
@@ -377,6 +402,7 @@ void vtkAnisoRestrictedDelaunay::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "RepairInverted: " << (this->RepairInverted ? "On" : "Off") << "\n";
   os << indent << "RepairNonManifold: " << (this->RepairNonManifold ? "On" : "Off") << "\n";
+  os << indent << "ImproveMesh: " << (this->ImproveMesh ? "On" : "Off") << "\n";
   os << indent << "MaxRepairRounds: " << this->MaxRepairRounds << "\n";
   os << indent << "ImprovementRounds: " << this->ImprovementRounds << "\n";
   os << indent << "OdtIterations: " << this->OdtIterations << "\n";

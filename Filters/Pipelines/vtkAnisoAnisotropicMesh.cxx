@@ -41,6 +41,8 @@ int vtkAnisoAnisotropicMesh::RequestBackEnd(
   delaunay->SetMaxRepairRounds(this->MaxRepairRounds);
   delaunay->SetImprovementRounds(this->ImprovementRounds);
   delaunay->SetOdtIterations(this->OdtIterations);
+  delaunay->SetImproveMesh(this->ImproveMesh);
+  delaunay->SetInputArrayToProcess(1, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "Metric");
   if (!this->RunStage(delaunay, "restricted Delaunay", 0.85, 0.95, error))
   {
     vtkErrorMacro(<< error);
@@ -81,4 +83,5 @@ void vtkAnisoAnisotropicMesh::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaxRepairRounds: " << this->MaxRepairRounds << "\n";
   os << indent << "ImprovementRounds: " << this->ImprovementRounds << "\n";
   os << indent << "OdtIterations: " << this->OdtIterations << "\n";
+  os << indent << "ImproveMesh: " << (this->ImproveMesh ? "On" : "Off") << "\n";
 }

@@ -63,6 +63,14 @@ public:
   vtkGetMacro(OdtIterations, int);
   ///@}
 
+  ///@{
+  /// Flips and vertex smoothing of the final mesh in the metric (default on; off = the
+  /// paper's dual), as vtkAnisoRestrictedDelaunay::ImproveMesh.
+  vtkSetMacro(ImproveMesh, bool);
+  vtkGetMacro(ImproveMesh, bool);
+  vtkBooleanMacro(ImproveMesh, bool);
+  ///@}
+
 protected:
   vtkAnisoAnisotropicMesh();
   ~vtkAnisoAnisotropicMesh() override;
@@ -76,6 +84,7 @@ protected:
   int MaxRepairRounds = 10;
   int ImprovementRounds = 2;
   int OdtIterations = 3;
+  bool ImproveMesh = true;
 
 private:
   vtkAnisoAnisotropicMesh(const vtkAnisoAnisotropicMesh&) = delete;

@@ -2,6 +2,7 @@
 // The meshing sequence RVD -> RDT -> site improvement rounds -> repair (MeshingPipeline.h).
 #include "MeshingPipeline.h"
 
+#include "FinalMeshImprovement.h"
 #include "MeshTopology.h"
 #include "RestrictedDelaunay.h"
 #include "RestrictedVoronoi.h"
@@ -16,13 +17,16 @@ namespace av
 {
 namespace
 {
-void ValidateOptions(const MeshingPipelineOptions& options, std::size_t numSites)
+void ValidateOptions(
+  const MeshingPipelineOptions& options, std::size_t numSites, std::size_t numPoints)
 {
   auto fail = [](const std::string& m) { throw InputError("RunMeshingPipeline: " + m); };
   if (options.ImproveRounds < 0 || options.OdtIterations < 0 || options.MaxRepairRounds < 0)
     fail("ImproveRounds, OdtIterations and MaxRepairRounds must be >= 0");
   if (options.FixedSites && options.FixedSites->size() != numSites)
     fail("FixedSites must have one flag per site");
+  if (options.ImproveMesh && options.Metric && options.Metric->NumPoints() != numPoints)
+    fail("Metric must have 6 values per input mesh vertex");
 }
 
 /// False when the caller asks to abort at `step`.
@@ -94,7 +98,7 @@ MeshingPipelineResult RunMeshingPipeline(const SimplexMesh& mesh,
   const MeshingPipelineOptions& options)
 {
   ValidateRestrictedVoronoiInput(mesh, embedding, sites);
-  ValidateOptions(options, sites.NumSites());
+  ValidateOptions(options, sites.NumSites(), mesh.NumPoints());
   MeshingPipelineResult result;
   result.Moved.assign(sites.NumSites(), 0);
   DelaunayRepairOptions repair; // its Voronoi options: no geometry, the dual needs only records
@@ -130,6 +134,17 @@ MeshingPipelineResult RunMeshingPipeline(const SimplexMesh& mesh,
   result.Repaired =
     RepairRestrictedDelaunay(mesh, embedding, current, std::move(rvd), std::move(rdt), repair);
   result.RepairSeconds = watch.Seconds();
+
+  result.InvertedBeforeImprovement = result.Repaired.Delaunay.NumInverted;
+  if (options.ImproveMesh && options.Metric)
+  {
+    watch.Restart();
+    result.Improvement = ImproveFinalMesh(mesh, embedding, adjacency, *options.Metric,
+      options.FixedSites, options.Improvement, result.Repaired, result.Moved);
+    result.NumMovedSites =
+      static_cast<std::size_t>(std::count(result.Moved.begin(), result.Moved.end(), 1));
+    result.MeshImprovementSeconds = watch.Seconds();
+  }
   return result;
 }
 

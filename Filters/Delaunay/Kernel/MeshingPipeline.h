@@ -4,6 +4,7 @@
 #ifndef av_MeshingPipeline_h
 #define av_MeshingPipeline_h
 
+#include "MeshImprovement.h"
 #include "RestrictedDelaunayRefinement.h"
 #include "SimplexMesh.h"
 
@@ -41,6 +42,13 @@ struct MeshingPipelineOptions
   bool Repair = true;
   int MaxRepairRounds = 10;       ///< insertion rounds at most
   bool RepairNonManifold = false; ///< also repair faces shared by more than two elements
+  /// Mesh improvement of the final dual (ImproveFinalMesh: flips and vertex smoothing in the
+  /// metric); runs when ImproveMesh is true and Metric is given. false: the paper's dual.
+  bool ImproveMesh = true;
+  /// The metric per vertex of the input mesh (MetricField order); nullptr: no mesh improvement.
+  /// Must outlive the call.
+  const MetricField* Metric = nullptr;
+  MeshImprovementOptions Improvement; ///< its options (AcceptMove is the pipeline's own)
   /// Called at each MeshingStep; returning false aborts the run (Aborted in the result).
   std::function<bool(MeshingStep)> Progress;
 };
@@ -63,14 +71,19 @@ struct MeshingPipelineResult
   double DelaunaySeconds = 0.0;     ///< the first restricted Delaunay mesh
   double ImproveSeconds = 0.0;      ///< improvement rounds, their RVD + RDT included
   double RepairSeconds = 0.0;       ///< the repair (its rounds after the last RVD + RDT)
+  /// The mesh improvement's counts (Passes 0 when it did not run); Repaired.Delaunay is then
+  /// the improved mesh (no longer the dual of Repaired.Voronoi) and Moved includes its moves.
+  MeshImprovementResult Improvement;
+  std::size_t InvertedBeforeImprovement = 0; ///< Repaired.Delaunay.NumInverted before it
+  double MeshImprovementSeconds = 0.0;
 };
 
 /**
  * Meshes `sites` on the embedded mesh: the restricted Voronoi diagram (no geometry, the
  * DelaunayRepairOptions default) and its dual (ComputeRestrictedDelaunay); then up to
  * ImproveRounds rounds of ImproveSites, each followed by a new RVD + RDT; then
- * RepairRestrictedDelaunay starting from the last RVD + RDT. The element adjacency is computed
- * once for all of them. Deterministic. Throws InputError on bad input (inconsistent mesh,
+ * RepairRestrictedDelaunay starting from the last RVD + RDT; then, with ImproveMesh and Metric,
+ * ImproveFinalMesh on the repaired dual. The element adjacency is computed once for all of them. Deterministic. Throws InputError on bad input (inconsistent mesh,
  * embedding or sites, FixedSites not one per site, negative counts).
  */
 MeshingPipelineResult RunMeshingPipeline(const SimplexMesh& mesh,

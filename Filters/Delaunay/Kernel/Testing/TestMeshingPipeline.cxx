@@ -100,6 +100,91 @@ void TestFolded()
   CheckFolded(FoldedCube(0.2, 8.0, 150, 3), "folded cube");
 }
 
+// Isotropic metric on the input mesh (the folded embedding then strongly disagrees with it).
+av::MetricField UnitMetric(const av::SimplexMesh& m)
+{
+  av::MetricField metric;
+  metric.Values.assign(6 * m.NumPoints(), 0.0);
+  for (std::size_t i = 0; i < m.NumPoints(); ++i)
+    metric.Values[6 * i] = metric.Values[6 * i + 1] = metric.Values[6 * i + 2] = 1.0;
+  return metric;
+}
+
+// Mesh improvement at the end: on the folded cases without repair the dual has inverted cells;
+// after it there are fewer, each moved site is located where its mesh vertex is (cell,
+// barycentric and embedded coordinates agree with the new position), fixed sites stay, and the
+// cells differ only where the improvement worked.
+void CheckMeshImprovement(const FoldedCase& c, const char* what)
+{
+  const auto& [m, e, s] = c;
+  const av::MetricField metric = UnitMetric(m);
+  av::MeshingPipelineOptions o;
+  o.Repair = false;
+  const av::MeshingPipelineResult plain = av::RunMeshingPipeline(m, e, s, o);
+  o.Metric = &metric;
+  std::vector<std::uint8_t> fixed(s.NumSites(), 0);
+  fixed[0] = fixed[1] = 1;
+  o.FixedSites = &fixed;
+  const av::MeshingPipelineResult r = av::RunMeshingPipeline(m, e, s, o);
+  const av::RestrictedDelaunayMesh& d = r.Repaired.Delaunay;
+  std::cout << what << ": inverted " << r.InvertedBeforeImprovement << " -> " << d.NumInverted
+            << " (negative " << NegativeCells(d) << "), flips "
+            << r.Improvement.NumFlips23 + r.Improvement.NumEdgeRemovals + r.Improvement.NumFlips22
+            << ", moves " << r.Improvement.NumSmoothed << ", worst " << r.Improvement.WorstBefore
+            << " -> " << r.Improvement.WorstAfter << " deg" << std::endl;
+  AV_CHECK(r.Improvement.Passes > 0 && plain.Improvement.Passes == 0);
+  AV_CHECK(r.InvertedBeforeImprovement > 0);
+  AV_CHECK(r.InvertedBeforeImprovement == plain.Repaired.Delaunay.NumInverted);
+  // Inverted cells whose vertices are all on open or non-manifold faces cannot be reached by
+  // local operations: fewer or as many, never more, and the worst never drops.
+  AV_CHECK(d.NumInverted <= r.InvertedBeforeImprovement);
+  AV_CHECK(r.Improvement.WorstAfter >= r.Improvement.WorstBefore);
+  AV_CHECK(d.Inverted.size() == d.NumCells() && d.CellElement.size() == d.NumCells());
+  const int ad = d.AmbientDim, k = d.SimplexDim;
+  std::size_t moved = 0;
+  for (std::size_t i = 0; i < s.NumSites(); ++i)
+  {
+    const av::SiteSet& rs = r.Repaired.Sites;
+    AV_CHECK(!fixed[i] || r.Improvement.Moved[i] == 0);
+    if (!r.Improvement.Moved[i])
+      continue;
+    ++moved;
+    AV_CHECK(r.Moved[i] == 1);
+    // The moved vertex is where its site is: barycentric interpolation in the site's cell.
+    const std::int32_t* v = m.Cell(static_cast<std::size_t>(rs.CellIds[i]));
+    for (int dd = 0; dd < ad; ++dd)
+    {
+      double x = 0.0;
+      for (int a = 0; a <= k; ++a)
+      {
+        AV_CHECK(rs.Bary[4 * i + a] >= 0.0);
+        x += rs.Bary[4 * i + a] * m.Point(v[a])[dd];
+      }
+      AV_CHECK_NEAR(x, d.Points[i * ad + dd], 1e-9);
+      AV_CHECK_NEAR(rs.At(i)[dd], d.Points[i * ad + dd], 1e-9);
+    }
+  }
+  AV_CHECK(moved == r.Improvement.NumSmoothed || moved <= r.Improvement.NumSmoothed);
+  AV_CHECK(r.NumMovedSites ==
+    static_cast<std::size_t>(std::count(r.Moved.begin(), r.Moved.end(), 1)));
+
+  // With the repair (the defaults): valid before, valid after, and the worst element better.
+  o.Repair = true;
+  const av::MeshingPipelineResult rr = av::RunMeshingPipeline(m, e, s, o);
+  std::cout << what << ", repaired and improved: worst " << rr.Improvement.WorstBefore << " -> "
+            << rr.Improvement.WorstAfter << " deg, cells " << rr.Repaired.Delaunay.NumCells()
+            << std::endl;
+  AV_CHECK(rr.InvertedBeforeImprovement == 0 && rr.Repaired.Delaunay.NumInverted == 0);
+  AV_CHECK(NegativeCells(rr.Repaired.Delaunay) == 0);
+  AV_CHECK(rr.Improvement.WorstAfter > rr.Improvement.WorstBefore);
+}
+
+void TestMeshImprovementStep()
+{
+  CheckMeshImprovement(FoldedSquare(0.2, 12.0, 60, 2), "folded square, improved");
+  CheckMeshImprovement(FoldedCube(0.2, 8.0, 150, 3), "folded cube, improved");
+}
+
 // No improvement round: the repair of the input sites; no repair: the first RDT as it is.
 void TestPaperPipeline()
 {
@@ -213,6 +298,7 @@ int TestMeshingPipeline(int, char*[])
 {
   TestFolded();
   TestPaperPipeline();
+  TestMeshImprovementStep();
   TestFixedSites();
   TestAbort();
   TestBadInput();

@@ -1,0 +1,89 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// MeshImprovement: flips and vertex smoothing that raise the worst element of a simplicial mesh,
+// measured in the metric (Klingner & Shewchuk 2007, "Aggressive tetrahedral mesh improvement",
+// without vertex insertion). Runs on the final dual mesh of the meshing pipeline.
+#ifndef av_MeshImprovement_h
+#define av_MeshImprovement_h
+
+#include "SimplexMesh.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+namespace av
+{
+
+/// Options of ImproveMesh.
+struct MeshImprovementOptions
+{
+  int MaxPasses = 4; ///< passes over the bad elements; a pass that changes nothing ends the run
+  /// Elements whose quality (smallest metric angle, see MetricSimplexQuality) is below this
+  /// angle, in degrees, are worked on; the others are only touched by their neighbors' moves.
+  double TargetAngle = 35.0;
+  bool Flips = true;     ///< tets: 2-3 flips and edge removal (3-2 flips included); triangles: 2-2
+  bool Smoothing = true; ///< interior vertex moves that raise the worst incident element
+  int MaxEdgeRemovalRing = 7; ///< edge removal on edges of at most this many tets (3 = 3-2 only)
+  /// Tets: an operation may not add edges whose metric length, divided by the median of the
+  /// input's, leaves [1/sqrt2, sqrt2] (the UGAWG range of the §5.2 evaluation): a flip's new
+  /// edges must not be more often out of range than the edges it removes, a move may not raise
+  /// the count among the vertex's edges.
+  bool KeepEdgeLengths = true;
+  /// Test hook: accept operations that do not raise the worst quality they touch (only those
+  /// that keep every element positive). Always false in use.
+  bool AcceptWorsening = false;
+  /// Optional: called before a vertex move is committed with the vertex and its new position
+  /// (AmbientDim values); false refuses the move. The meshing pipeline locates the moved site
+  /// on the input mesh here.
+  std::function<bool(std::int32_t, const double*)> AcceptMove;
+};
+
+/// Counts of ImproveMesh.
+struct MeshImprovementResult
+{
+  bool Supported = true;      ///< false for triangles on a surface (AmbientDim 3): left unchanged
+  double WorstBefore = 0.0;   ///< smallest element quality angle before, degrees (< 0: inverted)
+  double WorstAfter = 0.0;    ///< the same after
+  std::size_t NumFlips23 = 0; ///< tets: 2-3 flips
+  std::size_t NumEdgeRemovals = 0; ///< tets: edge removals (3-2 flips included)
+  std::size_t NumFlips22 = 0;      ///< triangles: edge flips
+  std::size_t NumSmoothed = 0;     ///< accepted vertex moves
+  int Passes = 0;
+  std::vector<std::uint8_t> Moved; ///< per point, 1 where the position changed
+};
+
+/**
+ * Quality of one simplex in the metric: the vertices (AmbientDim = SimplexDim values each) are
+ * mapped by A = (sum_i S_i) / (k+1), S_i the symmetric square roots of the vertex metrics (as in
+ * the §5.2 evaluation), and the result is the smallest sine of its angles (triangles) or of its
+ * dihedral angles (tets), with the sign of its volume: 1 (triangle) / 0.943 (tet) when regular,
+ * near 0 for a sliver, a needle or a cap, negative when inverted. `sqrtMetrics` holds k+1
+ * row-major dim x dim matrices.
+ */
+double MetricSimplexQuality(int simplexDim,
+  const double* const* points,
+  const double* const* sqrtMetrics);
+
+/**
+ * Improves `mesh` (tets in 3D, triangles in 2D) in place against `metric` (one per point, the
+ * MetricField order): repeatedly, for each element below TargetAngle, the best of edge removal
+ * (n <= MaxEdgeRemovalRing tets around an edge, the optimal triangulation of its ring by dynamic
+ * programming), 2-3 flips (tets), 2-2 flips (triangles) and moves of its interior vertices
+ * (steepest ascent of the worst incident element with a line search) is applied when it raises
+ * the worst quality among the elements it touches. Nothing inverts: an element's quality must
+ * stay positive. The boundary and the domain are preserved exactly: boundary faces (edges) are
+ * never flipped, vertices on them, vertices of faces shared by more than two elements, and those
+ * flagged in `fixedPoints` (nullptr: none) never move. Vertex metrics stay those given (a move
+ * is small against the metric's variation). Unreferenced points are untouched. The cell count
+ * may change; the point count does not. Triangles on a surface are left unchanged (Supported
+ * false). Throws InputError on wrong sizes, bad ids or non-finite values.
+ */
+MeshImprovementResult ImproveMesh(SimplexMesh& mesh,
+  const MetricField& metric,
+  const std::vector<std::uint8_t>* fixedPoints,
+  const MeshImprovementOptions& options = MeshImprovementOptions());
+
+} // namespace av
+
+#endif

@@ -1,0 +1,65 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// MetricSimplexQuality: the signed smallest-sine quality of a triangle or tet mapped by the
+// mean of its vertices' metric square roots (the measure MeshImprovement optimizes).
+#ifndef av_MetricSimplexQuality_h
+#define av_MetricSimplexQuality_h
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+
+namespace av
+{
+
+/// Tet (a, b, c, d) mapped by (Sa + Sb + Sc + Sd) / 4: smallest sine of its six dihedral
+/// angles, sin_ij = 6V l_ij / (|n_k| |n_l|) (n = doubled face area vectors), with the sign of V.
+inline double TetMetricQuality(const Eigen::Vector3d& a,
+  const Eigen::Vector3d& b,
+  const Eigen::Vector3d& c,
+  const Eigen::Vector3d& d,
+  const Eigen::Matrix3d& sa,
+  const Eigen::Matrix3d& sb,
+  const Eigen::Matrix3d& sc,
+  const Eigen::Matrix3d& sd)
+{
+  const Eigen::Matrix3d m = 0.25 * (sa + sb + sc + sd);
+  const Eigen::Vector3d ab = m * (b - a), ac = m * (c - a), ad = m * (d - a);
+  const Eigen::Vector3d bc = ac - ab, bd = ad - ab, cd = ad - ac;
+  const double v6 = ab.dot(ac.cross(ad));
+  // Doubled face areas, face k opposite vertex k.
+  const double f0 = bc.cross(bd).norm(), f1 = ac.cross(ad).norm(), f2 = ab.cross(ad).norm(),
+               f3 = ab.cross(ac).norm();
+  const double denomMin = 1e-300;
+  if (f0 * f1 * f2 * f3 <= denomMin)
+    return v6 > 0.0 ? 0.0 : -1.0;
+  // Edge ij lies on the two faces opposite the other two vertices.
+  const double s01 = ab.norm() / (f2 * f3), s02 = ac.norm() / (f1 * f3),
+               s03 = ad.norm() / (f1 * f2), s12 = bc.norm() / (f0 * f3),
+               s13 = bd.norm() / (f0 * f2), s23 = cd.norm() / (f0 * f1);
+  const double s = std::min(std::min(std::min(s01, s02), std::min(s03, s12)), std::min(s13, s23));
+  return v6 * s;
+}
+
+/// Triangle (a, b, c) in 2D mapped by (Sa + Sb + Sc) / 3: smallest sine of its angles with the
+/// sign of its area.
+inline double TriangleMetricQuality(const Eigen::Vector2d& a,
+  const Eigen::Vector2d& b,
+  const Eigen::Vector2d& c,
+  const Eigen::Matrix2d& sa,
+  const Eigen::Matrix2d& sb,
+  const Eigen::Matrix2d& sc)
+{
+  const Eigen::Matrix2d m = (sa + sb + sc) / 3.0;
+  const Eigen::Vector2d ab = m * (b - a), ac = m * (c - a), bc = ac - ab;
+  const double a2 = ab.x() * ac.y() - ab.y() * ac.x(); // doubled signed area
+  const double lab = ab.norm(), lac = ac.norm(), lbc = bc.norm();
+  const double p = lab * lac * lbc;
+  if (p <= 1e-300)
+    return a2 > 0.0 ? 0.0 : -1.0;
+  // sin(angle at a) = 2S / (lab lac): the smallest is the angle between the two longest edges.
+  return a2 * std::min(std::min(lab, lac), lbc) / p;
+}
+
+} // namespace av
+
+#endif

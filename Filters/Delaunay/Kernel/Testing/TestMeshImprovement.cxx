@@ -1,0 +1,401 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Tests of ImproveMesh: each operation on a hand-made bad configuration raises the worst
+// quality (2-3 flip, 3-2 flip, edge removal of 4 and 5 tets, smoothing, 2-2 flip, triangle
+// smoothing); on perturbed grids nothing inverts, the volume and the boundary are kept exactly,
+// every interior face stays shared by two tets, fixed vertices stay, the worst quality never
+// drops; and the mutation hook that accepts worsening operations is caught by those checks.
+#include "AnisoTestChecks.h"
+#include "MeshImprovement.h"
+#include "MeshTopology.h"
+#include "StructuredMeshes.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <random>
+#include <vector>
+
+namespace
+{
+const double Pi = 3.14159265358979323846;
+const double Identity3[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
+const double Identity2[4] = { 1, 0, 0, 1 };
+
+av::MetricField IsotropicMetric(std::size_t n)
+{
+  av::MetricField m;
+  m.Values.assign(6 * n, 0.0);
+  for (std::size_t i = 0; i < n; ++i)
+    m.Values[6 * i] = m.Values[6 * i + 1] = m.Values[6 * i + 2] = 1.0;
+  return m;
+}
+
+// Worst (smallest) signed quality of the mesh's cells, isotropic metric.
+double WorstQuality(const av::SimplexMesh& m)
+{
+  double worst = 1e300;
+  for (std::size_t c = 0; c < m.NumCells(); ++c)
+  {
+    double p[4][3] = {};
+    const double* pts[4];
+    const double* sq[4];
+    for (int i = 0; i <= m.SimplexDim; ++i)
+    {
+      for (int d = 0; d < m.AmbientDim; ++d)
+        p[i][d] = m.Point(m.Cell(c)[i])[d];
+      pts[i] = p[i];
+      sq[i] = m.SimplexDim == 3 ? Identity3 : Identity2;
+    }
+    worst = std::min(worst, av::MetricSimplexQuality(m.SimplexDim, pts, sq));
+  }
+  return worst;
+}
+
+// Ring of n points on the unit circle (z = 0) and the apexes (0, 0, +-h): the n tets around
+// the edge joining the apexes (edgeStar) or, for n = 3, the two tets on the ring's triangle.
+av::SimplexMesh RingConfiguration(int n, double h, bool edgeStar)
+{
+  av::SimplexMesh m;
+  for (int i = 0; i < n; ++i)
+    m.Points.insert(m.Points.end(), { std::cos(2 * Pi * i / n), std::sin(2 * Pi * i / n), 0.0 });
+  const std::int32_t d = n, e = n + 1;
+  m.Points.insert(m.Points.end(), { 0.0, 0.0, h, 0.0, 0.0, -h });
+  if (edgeStar)
+    for (int i = 0; i < n; ++i)
+      m.Cells.insert(m.Cells.end(), { e, d, i, (i + 1) % n });
+  else
+    m.Cells = { 0, 1, 2, d, 0, 2, 1, e };
+  return m;
+}
+
+double Volume(const av::SimplexMesh& m)
+{
+  double v = 0.0;
+  for (std::size_t c = 0; c < m.NumCells(); ++c)
+    v += av::CellMeasure(m, c);
+  return v;
+}
+
+// Sorted boundary faces (edges) and the multiplicity check of the interior ones.
+std::vector<std::vector<std::int32_t>> BoundaryFaces(const av::SimplexMesh& m, bool& manifold)
+{
+  std::map<std::vector<std::int32_t>, int> count;
+  const int k = m.SimplexDim + 1;
+  for (std::size_t c = 0; c < m.NumCells(); ++c)
+    for (int skip = 0; skip < k; ++skip)
+    {
+      std::vector<std::int32_t> f;
+      for (int i = 0; i < k; ++i)
+        if (i != skip)
+          f.push_back(m.Cell(c)[i]);
+      std::sort(f.begin(), f.end());
+      ++count[f];
+    }
+  manifold = true;
+  std::vector<std::vector<std::int32_t>> boundary;
+  for (const auto& [f, n] : count)
+  {
+    if (n == 1)
+      boundary.push_back(f);
+    manifold = manifold && n <= 2;
+  }
+  return boundary;
+}
+
+std::size_t NumInverted(const av::SimplexMesh& m)
+{
+  std::size_t n = 0;
+  for (std::size_t c = 0; c < m.NumCells(); ++c)
+    n += av::CellMeasure(m, c) <= 0.0 ? 1 : 0;
+  return n;
+}
+
+void TestFlips()
+{
+  av::MeshImprovementOptions flipsOnly;
+  flipsOnly.Smoothing = false;
+  flipsOnly.KeepEdgeLengths = false; // the configurations' edges are far from unit length
+  { // 2-3: two flat tets (apexes at +-0.2) become three around the apex edge
+    av::SimplexMesh m = RingConfiguration(3, 0.2, false);
+    const double before = WorstQuality(m);
+    const av::MeshImprovementResult r = av::ImproveMesh(m, IsotropicMetric(5), nullptr, flipsOnly);
+    AV_CHECK(r.NumFlips23 == 1);
+    AV_CHECK(m.NumCells() == 3);
+    AV_CHECK_MSG(WorstQuality(m) > before + 0.2, before << " -> " << WorstQuality(m));
+    AV_CHECK_NEAR(Volume(m), Volume(RingConfiguration(3, 0.2, false)), 1e-14);
+  }
+  // 3-2 flip and edge removal: n tall tets around a long edge become 2(n-2).
+  for (int n = 3; n <= 5; ++n)
+  {
+    av::SimplexMesh m = RingConfiguration(n, 3.0, true);
+    const double before = WorstQuality(m);
+    const double volume = Volume(m);
+    const av::MeshImprovementResult r =
+      av::ImproveMesh(m, IsotropicMetric(n + 2), nullptr, flipsOnly);
+    AV_CHECK_MSG(r.NumEdgeRemovals >= 1, "ring " << n);
+    AV_CHECK_MSG(
+      WorstQuality(m) > before, "ring " << n << ": " << before << " -> " << WorstQuality(m));
+    AV_CHECK_NEAR(Volume(m), volume, 1e-14);
+    AV_CHECK(NumInverted(m) == 0);
+    // The apex edge is gone.
+    bool hasEdge = false;
+    for (std::size_t c = 0; c < m.NumCells(); ++c)
+      hasEdge = hasEdge ||
+        (std::count(m.Cell(c), m.Cell(c) + 4, n) && std::count(m.Cell(c), m.Cell(c) + 4, n + 1));
+    AV_CHECK(!hasEdge);
+  }
+  { // Keeping edge lengths: the 2-3 flip's new edge (0.4 against a median of 1) is refused.
+    av::SimplexMesh m = RingConfiguration(3, 0.2, false);
+    av::MeshImprovementOptions keep = flipsOnly;
+    keep.KeepEdgeLengths = true;
+    AV_CHECK(av::ImproveMesh(m, IsotropicMetric(5), nullptr, keep).NumFlips23 == 0);
+    AV_CHECK(m.NumCells() == 2);
+  }
+  { // With flips off nothing changes.
+    av::SimplexMesh m = RingConfiguration(3, 1.5, true);
+    av::MeshImprovementOptions none = flipsOnly;
+    none.Flips = false;
+    const av::MeshImprovementResult r = av::ImproveMesh(m, IsotropicMetric(5), nullptr, none);
+    AV_CHECK(r.NumEdgeRemovals == 0 && m.NumCells() == 3);
+  }
+  { // An anisotropic metric decides: stretched 4x along z, the h = 0.2 pair is already good
+    // in the metric (apex height 0.8 there) and stays.
+    av::SimplexMesh m = RingConfiguration(3, 0.2, false);
+    av::MetricField metric = IsotropicMetric(5);
+    for (int i = 0; i < 5; ++i)
+      metric.Values[6 * i + 2] = 16.0;
+    const av::MeshImprovementResult r = av::ImproveMesh(m, metric, nullptr, flipsOnly);
+    AV_CHECK(r.NumFlips23 == 0 && m.NumCells() == 2);
+  }
+}
+
+void TestSmoothing()
+{
+  // Regular octahedron with its center pulled towards a face: the 8 tets around the center.
+  av::SimplexMesh m;
+  m.Points = { 1, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1, 0.35, 0.3, 0.3 };
+  const std::int32_t c = 6;
+  for (int sx = 0; sx < 2; ++sx)
+    for (int sy = 0; sy < 2; ++sy)
+      for (int sz = 0; sz < 2; ++sz)
+      {
+        std::array<std::int32_t, 4> t = { c, sx, 2 + sy, 4 + sz };
+        if ((sx + sy + sz) % 2 == 0)
+          std::swap(t[2], t[3]);
+        m.Cells.insert(m.Cells.end(), t.begin(), t.end());
+      }
+  for (std::size_t k = 0; k < m.NumCells(); ++k)
+    if (av::CellMeasure(m, k) < 0)
+      std::swap(m.Cells[4 * k + 2], m.Cells[4 * k + 3]);
+  const double before = WorstQuality(m);
+  const double volume = Volume(m);
+  av::MeshImprovementOptions smoothOnly;
+  smoothOnly.Flips = false;
+  smoothOnly.KeepEdgeLengths = false;
+  av::SimplexMesh moved = m;
+  const av::MeshImprovementResult r =
+    av::ImproveMesh(moved, IsotropicMetric(7), nullptr, smoothOnly);
+  AV_CHECK(r.NumSmoothed >= 1 && r.Moved[c] == 1);
+  AV_CHECK_MSG(WorstQuality(moved) > before + 0.2, before << " -> " << WorstQuality(moved));
+  AV_CHECK_NEAR(Volume(moved), volume, 1e-14);
+  for (int i = 0; i < 6; ++i) // boundary vertices stay
+    for (int d = 0; d < 3; ++d)
+      AV_CHECK(moved.Points[3 * i + d] == m.Points[3 * i + d]);
+  // Fixed: the center stays.
+  std::vector<std::uint8_t> fixed(7, 0);
+  fixed[c] = 1;
+  av::SimplexMesh kept = m;
+  av::ImproveMesh(kept, IsotropicMetric(7), &fixed, smoothOnly);
+  AV_CHECK(kept.Points == m.Points);
+  // A refusing AcceptMove keeps every point.
+  smoothOnly.AcceptMove = [](std::int32_t, const double*) { return false; };
+  av::SimplexMesh refused = m;
+  AV_CHECK(av::ImproveMesh(refused, IsotropicMetric(7), nullptr, smoothOnly).NumSmoothed == 0);
+  AV_CHECK(refused.Points == m.Points);
+}
+
+void TestTriangles()
+{
+  { // A quad split along its long diagonal: the flip takes the short one.
+    av::SimplexMesh m;
+    m.AmbientDim = m.SimplexDim = 2;
+    m.Points = { 0, 0, 1, 0, 0.5, 0.3, 0.5, -0.3 };
+    m.Cells = { 0, 1, 2, 1, 0, 3 };
+    const double before = WorstQuality(m);
+    av::MeshImprovementOptions o;
+    o.Smoothing = false;
+    const av::MeshImprovementResult r = av::ImproveMesh(m, IsotropicMetric(4), nullptr, o);
+    AV_CHECK(r.NumFlips22 == 1);
+    AV_CHECK(WorstQuality(m) > before + 0.3);
+  }
+  { // Hexagon with its center off: smoothing re-centers it.
+    av::SimplexMesh m;
+    m.AmbientDim = m.SimplexDim = 2;
+    for (int i = 0; i < 6; ++i)
+      m.Points.insert(m.Points.end(), { std::cos(Pi * i / 3), std::sin(Pi * i / 3) });
+    m.Points.insert(m.Points.end(), { 0.6, 0.1 });
+    for (int i = 0; i < 6; ++i)
+      m.Cells.insert(m.Cells.end(), { 6, i, (i + 1) % 6 });
+    const double before = WorstQuality(m);
+    const double area = Volume(m);
+    av::MeshImprovementOptions o;
+    o.Flips = false;
+    av::ImproveMesh(m, IsotropicMetric(7), nullptr, o);
+    AV_CHECK_MSG(WorstQuality(m) > before + 0.3, before << " -> " << WorstQuality(m));
+    AV_CHECK_NEAR(Volume(m), area, 1e-14);
+  }
+}
+
+// A Kuhn grid with its interior vertices jittered (still valid), measured in a metric
+// stretched along x.
+av::SimplexMesh JitteredGrid(int n, unsigned seed)
+{
+  const double lo[3] = { 0, 0, 0 }, hi[3] = { 1, 1, 1 };
+  av::SimplexMesh m = av::MakeKuhnTetGrid(n, n, n, lo, hi);
+  const std::vector<char> boundary = av::BoundaryVertexMask(m);
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-0.3 / n, 0.3 / n);
+  for (std::size_t i = 0; i < m.NumPoints(); ++i)
+    if (!boundary[i])
+      for (int d = 0; d < 3; ++d)
+      {
+        const double old = m.Points[3 * i + d];
+        m.Points[3 * i + d] += u(rng);
+        for (std::size_t c = 0; c < m.NumCells(); ++c) // undo a move that inverts
+          if (std::count(m.Cell(c), m.Cell(c) + 4, static_cast<std::int32_t>(i)) &&
+            av::CellMeasure(m, c) <= 0)
+          {
+            m.Points[3 * i + d] = old;
+            break;
+          }
+      }
+  return m;
+}
+
+struct Checks
+{
+  bool Ok = true;
+  void Expect(bool cond, const char* what)
+  {
+    if (!cond)
+    {
+      Ok = false;
+      std::cerr << "  property broken: " << what << std::endl;
+    }
+  }
+};
+
+// The properties every run must keep; returns them instead of failing, so the mutation test
+// can show they catch a worsening run.
+Checks CheckRun(const av::SimplexMesh& before,
+  const av::SimplexMesh& after,
+  const std::vector<std::uint8_t>& fixed,
+  const av::MeshImprovementResult& r)
+{
+  Checks c;
+  bool manifoldBefore = false, manifoldAfter = false;
+  c.Expect(BoundaryFaces(before, manifoldBefore) == BoundaryFaces(after, manifoldAfter),
+    "same boundary faces");
+  c.Expect(manifoldAfter, "every interior face shared by exactly two cells");
+  c.Expect(NumInverted(after) == 0, "no inverted cell");
+  c.Expect(std::abs(Volume(after) - Volume(before)) < 1e-12, "volume kept");
+  const std::vector<char> boundary = av::BoundaryVertexMask(before);
+  for (std::size_t i = 0; i < before.NumPoints(); ++i)
+    if (boundary[i] || fixed[i])
+      for (int d = 0; d < before.AmbientDim; ++d)
+        c.Expect(
+          after.Points[i * before.AmbientDim + d] == before.Points[i * before.AmbientDim + d],
+          "boundary and fixed points stay");
+  c.Expect(r.WorstAfter >= r.WorstBefore, "the worst quality never drops");
+  return c;
+}
+
+av::MetricField StretchedMetric(std::size_t n, int dim)
+{
+  av::MetricField m;
+  m.Values.assign(6 * n, 0.0);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    m.Values[6 * i] = 9.0;
+    m.Values[6 * i + 1] = 1.0;
+    m.Values[6 * i + 2] = dim == 3 ? 1.0 : 0.0;
+    m.Values[6 * i + 3] = 0.5;
+  }
+  return m;
+}
+
+void TestGrids()
+{
+  const av::SimplexMesh start = JitteredGrid(5, 3);
+  const av::MetricField metric = StretchedMetric(start.NumPoints(), 3);
+  std::vector<std::uint8_t> fixed(start.NumPoints(), 0);
+  fixed[start.NumPoints() / 2] = 1; // an interior "feature" vertex
+  av::SimplexMesh m = start;
+  const av::MeshImprovementResult r =
+    av::ImproveMesh(m, metric, &fixed, av::MeshImprovementOptions());
+  const Checks c = CheckRun(start, m, fixed, r);
+  AV_CHECK(c.Ok);
+  AV_CHECK_MSG(r.WorstAfter > r.WorstBefore + 1.0, r.WorstBefore << " -> " << r.WorstAfter);
+  AV_CHECK(r.NumSmoothed > 0 && r.NumEdgeRemovals + r.NumFlips23 > 0);
+  AV_CHECK(m.NumPoints() == start.NumPoints());
+
+  // Triangles on a jittered grid in the same metric.
+  const double lo[2] = { 0, 0 }, hi[2] = { 1, 1 };
+  av::SimplexMesh t0 = av::MakeTriangleGrid(8, 8, lo, hi);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-0.03, 0.03);
+  const std::vector<char> tb = av::BoundaryVertexMask(t0);
+  for (std::size_t i = 0; i < t0.NumPoints(); ++i)
+    if (!tb[i])
+      for (int d = 0; d < 2; ++d)
+        t0.Points[2 * i + d] += u(rng);
+  av::SimplexMesh t = t0;
+  const av::MetricField tm = StretchedMetric(t0.NumPoints(), 2);
+  const std::vector<std::uint8_t> none(t0.NumPoints(), 0);
+  const av::MeshImprovementResult tr =
+    av::ImproveMesh(t, tm, nullptr, av::MeshImprovementOptions());
+  AV_CHECK(CheckRun(t0, t, none, tr).Ok);
+  AV_CHECK_MSG(tr.WorstAfter > tr.WorstBefore + 1.0, tr.WorstBefore << " -> " << tr.WorstAfter);
+
+  // Mutation: accepting operations that lower the worst quality they touch must be caught.
+  av::MeshImprovementOptions worsening;
+  worsening.AcceptWorsening = true;
+  worsening.TargetAngle = 80.0;
+  av::SimplexMesh w = start;
+  const av::MeshImprovementResult wr = av::ImproveMesh(w, metric, &fixed, worsening);
+  std::cerr << "(expected) worsening run: " << wr.WorstBefore << " -> " << wr.WorstAfter
+            << std::endl;
+  AV_CHECK_MSG(!CheckRun(start, w, fixed, wr).Ok, "the checks miss a worsening run");
+}
+
+void TestBadInput()
+{
+  av::SimplexMesh m = RingConfiguration(3, 1.0, true);
+  AV_CHECK_THROWS(av::ImproveMesh(m, IsotropicMetric(3), nullptr));
+  std::vector<std::uint8_t> fixed(2, 0);
+  AV_CHECK_THROWS(av::ImproveMesh(m, IsotropicMetric(5), &fixed));
+  m.Cells[0] = 99;
+  AV_CHECK_THROWS(av::ImproveMesh(m, IsotropicMetric(5), nullptr));
+  av::SimplexMesh s = RingConfiguration(3, 1.0, true);
+  s.Points[0] = std::nan("");
+  AV_CHECK_THROWS(av::ImproveMesh(s, IsotropicMetric(5), nullptr));
+  // Surface triangles: unsupported, unchanged.
+  av::SimplexMesh surf;
+  surf.SimplexDim = 2;
+  surf.Points = { 0, 0, 0, 1, 0, 0, 0, 1, 0 };
+  surf.Cells = { 0, 1, 2 };
+  const av::MeshImprovementResult r = av::ImproveMesh(surf, IsotropicMetric(3), nullptr);
+  AV_CHECK(!r.Supported && surf.Cells.size() == 3);
+}
+} // namespace
+
+int TestMeshImprovement(int, char*[])
+{
+  TestFlips();
+  TestSmoothing();
+  TestTriangles();
+  TestGrids();
+  TestBadInput();
+  return AV_TEST_RESULT();
+}

@@ -1,0 +1,508 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "TetMeshImprover.h"
+
+#include "MetricSimplexQuality.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <utility>
+
+namespace av
+{
+namespace
+{
+constexpr double Pi = 3.14159265358979323846;
+// No operation may leave an element below this quality (sine of 0.00006 degrees): a flat
+// element's sign is round-off.
+constexpr double kMinQuality = 1e-6;
+
+// Index orders that put vertex m last by an even permutation: the face opposite m, in this
+// order, is counterclockwise seen from m in a positive tet.
+constexpr int FaceOpposite[4][3] = { { 1, 3, 2 }, { 0, 2, 3 }, { 0, 3, 1 }, { 0, 1, 2 } };
+
+bool IsEvenPermutation(const int* idx) // positions of 4 distinct values 0..3
+{
+  int inversions = 0;
+  for (int i = 0; i < 4; ++i)
+    for (int j = i + 1; j < 4; ++j)
+      inversions += idx[i] > idx[j] ? 1 : 0;
+  return inversions % 2 == 0;
+}
+
+int IndexIn(const std::array<std::int32_t, 4>& t, std::int32_t v)
+{
+  for (int i = 0; i < 4; ++i)
+    if (t[i] == v)
+      return i;
+  return -1;
+}
+} // namespace
+
+TetMeshImprover::TetMeshImprover(SimplexMesh& mesh,
+  std::vector<Eigen::Matrix3d> sqrtMetrics,
+  const std::vector<std::uint8_t>* fixed,
+  const MeshImprovementOptions& options)
+  : Mesh(mesh)
+  , S(std::move(sqrtMetrics))
+  , Options(options)
+{
+  const std::size_t np = mesh.NumPoints();
+  P.resize(np);
+  for (std::size_t i = 0; i < np; ++i)
+    P[i] = Eigen::Vector3d(mesh.Point(i)[0], mesh.Point(i)[1], mesh.Point(i)[2]);
+  Star.resize(np);
+  Fixed.assign(np, 0);
+  if (fixed)
+    for (std::size_t i = 0; i < np; ++i)
+      Fixed[i] = (*fixed)[i] ? 1 : 0;
+  Moved.assign(np, 0);
+  Tets.reserve(mesh.NumCells() + mesh.NumCells() / 4);
+  for (std::size_t c = 0; c < mesh.NumCells(); ++c)
+  {
+    const std::int32_t* v = mesh.Cell(c);
+    AddTet({ v[0], v[1], v[2], v[3] });
+  }
+  MarkBoundaryAndNonManifold();
+  if (Options.KeepEdgeLengths)
+    ComputeMedianEdgeLength();
+}
+
+void TetMeshImprover::ComputeMedianEdgeLength()
+{
+  std::vector<std::pair<std::int32_t, std::int32_t>> edges;
+  edges.reserve(Tets.size() * 6);
+  for (const Tet& t : Tets)
+    for (int i = 0; i < 4; ++i)
+      for (int j = i + 1; j < 4; ++j)
+        edges.emplace_back(std::min(t[i], t[j]), std::max(t[i], t[j]));
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  std::vector<double> lengths(edges.size());
+  for (std::size_t e = 0; e < edges.size(); ++e)
+  {
+    const auto [a, b] = edges[e];
+    lengths[e] = (0.5 * (S[a] + S[b]) * (P[b] - P[a])).norm();
+  }
+  if (lengths.empty())
+    return;
+  std::nth_element(lengths.begin(), lengths.begin() + lengths.size() / 2, lengths.end());
+  MedianEdge = lengths[lengths.size() / 2];
+}
+
+// The §5.1 edge length (Q_ab = (S_a + S_b) / 2) against the UGAWG range around the median.
+bool TetMeshImprover::OutOfRange(std::int32_t a, std::int32_t b) const
+{
+  if (!(MedianEdge > 0.0))
+    return false;
+  const double l = (0.5 * (S[a] + S[b]) * (P[b] - P[a])).norm() / MedianEdge;
+  return l < std::sqrt(0.5) || l > std::sqrt(2.0);
+}
+
+int TetMeshImprover::OutOfRangeAround(std::int32_t v) const
+{
+  int n = 0;
+  for (std::int32_t t : Star[v])
+    for (std::int32_t w : Tets[t])
+      if (w != v)
+        n += OutOfRange(v, w) ? 1 : 0;
+  return n;
+}
+
+double TetMeshImprover::Quality(const Tet& t) const
+{
+  return TetMetricQuality(P[t[0]], P[t[1]], P[t[2]], P[t[3]], S[t[0]], S[t[1]], S[t[2]], S[t[3]]);
+}
+
+void TetMeshImprover::AddTet(const Tet& t)
+{
+  const auto id = static_cast<std::int32_t>(Tets.size());
+  Tets.push_back(t);
+  Alive.push_back(1);
+  for (std::int32_t v : t)
+    Star[v].push_back(id);
+}
+
+void TetMeshImprover::KillTet(std::int32_t id)
+{
+  Alive[id] = 0;
+  for (std::int32_t v : Tets[id])
+  {
+    std::vector<std::int32_t>& s = Star[v];
+    s.erase(std::find(s.begin(), s.end(), id));
+  }
+}
+
+bool TetMeshImprover::HasEdge(std::int32_t a, std::int32_t b) const
+{
+  for (std::int32_t t : Star[a])
+    if (IndexIn(Tets[t], b) >= 0)
+      return true;
+  return false;
+}
+
+// Vertices on faces of one tet (the boundary) or of more than two (non-manifold) never move:
+// that keeps the domain and leaves configurations the flips do not understand alone.
+void TetMeshImprover::MarkBoundaryAndNonManifold()
+{
+  std::vector<std::array<std::int32_t, 3>> faces;
+  faces.reserve(Tets.size() * 4);
+  for (const Tet& t : Tets)
+    for (int m = 0; m < 4; ++m)
+    {
+      std::array<std::int32_t, 3> f = {
+        t[FaceOpposite[m][0]], t[FaceOpposite[m][1]], t[FaceOpposite[m][2]]
+      };
+      std::sort(f.begin(), f.end());
+      faces.push_back(f);
+    }
+  std::sort(faces.begin(), faces.end());
+  for (std::size_t i = 0; i < faces.size();)
+  {
+    std::size_t j = i + 1;
+    while (j < faces.size() && faces[j] == faces[i])
+      ++j;
+    if (j - i != 2)
+      for (std::int32_t v : faces[i])
+        Fixed[v] = 1;
+    i = j;
+  }
+}
+
+double TetMeshImprover::WorstQuality() const
+{
+  double worst = std::numeric_limits<double>::infinity();
+  for (std::size_t t = 0; t < Tets.size(); ++t)
+    if (Alive[t])
+      worst = std::min(worst, Quality(Tets[t]));
+  return worst;
+}
+
+double TetMeshImprover::StarWorst(std::int32_t v) const
+{
+  double worst = std::numeric_limits<double>::infinity();
+  for (std::int32_t t : Star[v])
+    worst = std::min(worst, Quality(Tets[t]));
+  return worst;
+}
+
+// The acceptance rule: the worst quality touched must rise, and nothing may be inverted.
+bool TetMeshImprover::Accepts(double after, double before) const
+{
+  if (after <= kMinQuality)
+    return false;
+  if (Options.AcceptWorsening)
+    return true;
+  return after > before + 1e-9;
+}
+
+// Orders the link of edge (a, b) into a ring r0..r(n-1) such that every tet (a, b, ri, ri+1)
+// is an even permutation of a stored tet. False if the edge is on the boundary or the link is
+// not one cycle.
+bool TetMeshImprover::BuildRing(std::int32_t a, std::int32_t b)
+{
+  EdgeTets.clear();
+  for (std::int32_t t : Star[a])
+    if (IndexIn(Tets[t], b) >= 0)
+      EdgeTets.push_back(t);
+  const std::size_t n = EdgeTets.size();
+  if (n < 3 || n > static_cast<std::size_t>(Options.MaxEdgeRemovalRing))
+    return false;
+  // Pairs (c, d) with (a, b, c, d) even.
+  Next.clear();
+  for (std::int32_t t : EdgeTets)
+  {
+    const Tet& q = Tets[t];
+    int idx[4] = { IndexIn(q, a), IndexIn(q, b), -1, -1 };
+    int k = 2;
+    for (int i = 0; i < 4; ++i)
+      if (i != idx[0] && i != idx[1])
+        idx[k++] = i;
+    if (!IsEvenPermutation(idx))
+      std::swap(idx[2], idx[3]);
+    Next.push_back(q[idx[2]]);
+    Next.push_back(q[idx[3]]);
+  }
+  Ring.clear();
+  Ring.push_back(Next[0]);
+  for (std::size_t step = 0; step < n; ++step)
+  {
+    std::int32_t succ = -1;
+    int found = 0;
+    for (std::size_t i = 0; i < n; ++i)
+      if (Next[2 * i] == Ring.back())
+      {
+        succ = Next[2 * i + 1];
+        ++found;
+      }
+    if (found != 1)
+      return false;
+    if (step + 1 == n)
+      return succ == Ring.front();
+    if (std::find(Ring.begin(), Ring.end(), succ) != Ring.end())
+      return false;
+    Ring.push_back(succ);
+  }
+  return false;
+}
+
+// Edge removal (Shewchuk): the n tets around an interior edge are replaced by the 2(n-2) tets
+// joining a and b to the best triangulation of their ring, found by dynamic programming over
+// the ring's sub-polygons, maximizing the worst tet.
+bool TetMeshImprover::TryEdgeRemoval(std::int32_t a, std::int32_t b)
+{
+  if (!BuildRing(a, b))
+    return false;
+  const int n = static_cast<int>(Ring.size());
+  double before = std::numeric_limits<double>::infinity();
+  for (std::int32_t t : EdgeTets)
+    before = std::min(before, Quality(Tets[t]));
+  Best.assign(static_cast<std::size_t>(n * n), std::numeric_limits<double>::infinity());
+  Choice.assign(static_cast<std::size_t>(n * n), -1);
+  for (int len = 2; len < n; ++len)
+    for (int i = 0; i + len < n; ++i)
+    {
+      const int j = i + len;
+      double best = -std::numeric_limits<double>::infinity();
+      for (int k = i + 1; k < j; ++k)
+      {
+        const double q = std::min(std::min(Best[i * n + k], Best[k * n + j]),
+          std::min(
+            Quality({ a, Ring[i], Ring[k], Ring[j] }), Quality({ b, Ring[j], Ring[k], Ring[i] })));
+        if (q > best)
+        {
+          best = q;
+          Choice[i * n + j] = k;
+        }
+      }
+      Best[i * n + j] = best;
+    }
+  const double after = Best[n - 1];
+  if (!Accepts(after, before))
+    return false;
+  // Collect the triangles; their diagonals must be new edges.
+  std::vector<std::array<int, 3>> tris;
+  std::vector<std::pair<int, int>> stack = { { 0, n - 1 } };
+  while (!stack.empty())
+  {
+    const auto [i, j] = stack.back();
+    stack.pop_back();
+    if (j - i < 2)
+      continue;
+    const int k = Choice[i * n + j];
+    tris.push_back({ i, k, j });
+    stack.push_back({ i, k });
+    stack.push_back({ k, j });
+  }
+  for (const auto& t : tris)
+    for (int e = 0; e < 3; ++e)
+    {
+      const int u = t[e], w = t[(e + 1) % 3];
+      const bool ringEdge = std::abs(u - w) == 1 || std::abs(u - w) == n - 1;
+      if (!ringEdge && HasEdge(Ring[u], Ring[w]))
+        return false;
+    }
+  if (Options.KeepEdgeLengths && !Options.AcceptWorsening)
+  {
+    int outNew = 0; // each diagonal is counted twice (it is on two triangles)
+    for (const auto& t : tris)
+      for (int e = 0; e < 3; ++e)
+      {
+        const int u = t[e], w = t[(e + 1) % 3];
+        const bool ringEdge = std::abs(u - w) == 1 || std::abs(u - w) == n - 1;
+        outNew += !ringEdge && OutOfRange(Ring[u], Ring[w]) ? 1 : 0;
+      }
+    if (outNew / 2 > (OutOfRange(a, b) ? 1 : 0))
+      return false;
+  }
+  const std::vector<std::int32_t> old = EdgeTets;
+  for (std::int32_t t : old)
+    KillTet(t);
+  for (const auto& t : tris)
+  {
+    AddTet({ a, Ring[t[0]], Ring[t[1]], Ring[t[2]] });
+    AddTet({ b, Ring[t[2]], Ring[t[1]], Ring[t[0]] });
+  }
+  ++EdgeRemovals;
+  return true;
+}
+
+// 2-3 flip of the face opposite `apexIndex` of `tet`: the two tets sharing it become three
+// around the edge joining their apexes.
+bool TetMeshImprover::TryFlip23(std::int32_t tet, int apexIndex, double worst)
+{
+  const Tet t1 = Tets[tet];
+  const std::int32_t d = t1[apexIndex];
+  const std::int32_t x = t1[FaceOpposite[apexIndex][0]], y = t1[FaceOpposite[apexIndex][1]],
+                     z = t1[FaceOpposite[apexIndex][2]];
+  std::int32_t other = -1;
+  for (std::int32_t t : Star[x])
+    if (t != tet && IndexIn(Tets[t], y) >= 0 && IndexIn(Tets[t], z) >= 0)
+      other = t;
+  if (other < 0)
+    return false;
+  const Tet& t2 = Tets[other];
+  std::int32_t e = -1;
+  for (std::int32_t v : t2)
+    if (v != x && v != y && v != z)
+      e = v;
+  if (e < 0 || e == d || HasEdge(d, e))
+    return false;
+  if (Options.KeepEdgeLengths && !Options.AcceptWorsening && OutOfRange(d, e))
+    return false;
+  const double before = std::min(worst, Quality(t2));
+  const Tet n0 = { e, d, x, y }, n1 = { e, d, y, z }, n2 = { e, d, z, x };
+  const double after = std::min(std::min(Quality(n0), Quality(n1)), Quality(n2));
+  if (!Accepts(after, before))
+    return false;
+  KillTet(tet);
+  KillTet(other);
+  AddTet(n0);
+  AddTet(n1);
+  AddTet(n2);
+  ++Flips23;
+  return true;
+}
+
+// Steepest ascent of the worst tet of v's star (numerical gradient of that tet's quality),
+// with a halving line search; a step is kept only if the star's worst rises.
+bool TetMeshImprover::TrySmooth(std::int32_t v)
+{
+  if (Fixed[v] || Star[v].empty())
+    return false;
+  const Eigen::Vector3d start = P[v];
+  double scale = std::numeric_limits<double>::infinity();
+  for (std::int32_t t : Star[v])
+    for (std::int32_t w : Tets[t])
+      if (w != v)
+        scale = std::min(scale, (P[w] - start).norm());
+  const double before = StarWorst(v);
+  double current = before;
+  const bool keepLengths = Options.KeepEdgeLengths && !Options.AcceptWorsening;
+  const int outBefore = keepLengths ? OutOfRangeAround(v) : 0;
+  for (int iter = 0; iter < 8; ++iter)
+  {
+    std::int32_t worstTet = -1;
+    double wq = std::numeric_limits<double>::infinity();
+    for (std::int32_t t : Star[v])
+    {
+      const double q = Quality(Tets[t]);
+      if (q < wq)
+      {
+        wq = q;
+        worstTet = t;
+      }
+    }
+    const double h = 1e-6 * scale;
+    Eigen::Vector3d g;
+    const Eigen::Vector3d here = P[v];
+    for (int k = 0; k < 3; ++k)
+    {
+      P[v] = here;
+      P[v][k] += h;
+      const double qp = Quality(Tets[worstTet]);
+      P[v][k] -= 2.0 * h;
+      const double qm = Quality(Tets[worstTet]);
+      g[k] = (qp - qm) / (2.0 * h);
+    }
+    P[v] = here;
+    const double gn = g.norm();
+    if (!(gn > 0.0) || !std::isfinite(gn))
+      break;
+    bool stepped = false;
+    for (double alpha = 0.2 * scale; alpha > 1e-4 * scale; alpha *= 0.5)
+    {
+      P[v] = here + (alpha / gn) * g;
+      const double q = StarWorst(v);
+      if (q > current + 1e-12 && (!keepLengths || OutOfRangeAround(v) <= outBefore))
+      {
+        current = q;
+        stepped = true;
+        break;
+      }
+    }
+    if (!stepped)
+    {
+      P[v] = here;
+      break;
+    }
+  }
+  const bool accept =
+    Options.AcceptWorsening ? current > kMinQuality && P[v] != start : Accepts(current, before);
+  if (!accept || (Options.AcceptMove && !Options.AcceptMove(v, P[v].data())))
+  {
+    P[v] = start;
+    return false;
+  }
+  Moved[v] = 1;
+  ++Smoothed;
+  return true;
+}
+
+bool TetMeshImprover::Improve(std::int32_t tet)
+{
+  const Tet t = Tets[tet];
+  const double worst = Quality(t);
+  if (Options.Flips)
+  {
+    for (int i = 0; i < 4; ++i)
+      for (int j = i + 1; j < 4; ++j)
+        if (TryEdgeRemoval(t[i], t[j]))
+          return true;
+    for (int m = 0; m < 4; ++m)
+      if (TryFlip23(tet, m, worst))
+        return true;
+  }
+  if (Options.Smoothing)
+  {
+    bool any = false;
+    for (std::int32_t v : t)
+      any = TrySmooth(v) || any;
+    return any;
+  }
+  return false;
+}
+
+void TetMeshImprover::Run(MeshImprovementResult& result)
+{
+  const double toDeg = 180.0 / Pi;
+  auto angle = [&](double q) { return std::asin(std::max(-1.0, std::min(1.0, q))) * toDeg; };
+  result.WorstBefore = Tets.empty() ? 0.0 : angle(WorstQuality());
+  const double target = std::sin(Options.TargetAngle * Pi / 180.0);
+  std::vector<std::pair<double, std::int32_t>> bad;
+  for (int pass = 0; pass < Options.MaxPasses; ++pass)
+  {
+    bad.clear();
+    for (std::size_t t = 0; t < Tets.size(); ++t)
+      if (Alive[t])
+      {
+        const double q = Quality(Tets[t]);
+        if (q < target)
+          bad.emplace_back(q, static_cast<std::int32_t>(t));
+      }
+    std::sort(bad.begin(), bad.end());
+    std::size_t changes = 0;
+    for (const auto& [q, t] : bad)
+      if (Alive[t] && Improve(t))
+        ++changes;
+    ++result.Passes;
+    if (changes == 0)
+      break;
+  }
+  result.WorstAfter = Tets.empty() ? 0.0 : angle(WorstQuality());
+  // Write back: alive tets in creation order, moved points.
+  Mesh.Cells.clear();
+  for (std::size_t t = 0; t < Tets.size(); ++t)
+    if (Alive[t])
+      Mesh.Cells.insert(Mesh.Cells.end(), Tets[t].begin(), Tets[t].end());
+  for (std::size_t i = 0; i < P.size(); ++i)
+    if (Moved[i])
+      for (int d = 0; d < 3; ++d)
+        Mesh.Points[i * 3 + d] = P[i][d];
+  result.NumFlips23 = Flips23;
+  result.NumEdgeRemovals = EdgeRemovals;
+  result.NumSmoothed = Smoothed;
+  result.Moved = std::move(Moved);
+}
+
+} // namespace av
