@@ -13,6 +13,7 @@
 #include "ReferenceEmbedding.h"
 #include "Stopwatch.h"
 #include "StructuredMeshes.h"
+#include "SurfaceCases.h"
 #include "TetMesher.h"
 
 #include <tbb/global_control.h>
@@ -68,6 +69,7 @@ struct Args
   bool Features = true;      // corner / feature-line particles
   bool Reference = false;    // closed-form isometric embedding instead of the solver
   double FeatureAngle = 30.0;
+  double MaxStretch = 0.0;    // surface cases: curvature metric cap (0: the case's own)
 };
 
 /// Paper values (Tab. 5 and Fig. 4); NaN where the paper gives none.
@@ -84,6 +86,10 @@ struct Case
   double MeshSeconds = 0.0;
   std::string MeshDescription;
   PaperValues Paper;
+  bool IsSurface = false;              // a generated surface with a curvature metric
+  std::size_t DefaultSites = 0;        // the paper's output vertex count
+  avbench::PaperMeshValues PaperMesh{}; // Tab. 5 / Tab. 3 meshing row
+  double MaxStretch = 0.0;             // surface cases: the curvature metric's cap
 };
 
 PaperValues PaperFor(av::AnalyticPreset p)
@@ -113,11 +119,37 @@ PaperValues PaperFor(av::AnalyticPreset p)
   return v;
 }
 
+/// A surface case of Tab. 3 (SurfaceCases.h); --resolution N scales its grid by N / 100.
+Case BuildSurface(const Args& a)
+{
+  Case c;
+  const av::Stopwatch watch;
+  avbench::SurfaceCase s = avbench::BuildSurfaceCase(
+    a.CaseName, a.MaxStretch, a.Resolution > 0 ? a.Resolution / 100.0 : 0.0);
+  c.Preset = av::AnalyticPreset::Cube1; // unused for surfaces (no reference embedding)
+  c.IsSurface = true;
+  c.Mesh = std::move(s.Mesh);
+  c.Metric = std::move(s.Metric);
+  c.MeshDescription = s.Description;
+  c.DefaultSites = s.Sites;
+  c.MaxStretch = s.MaxStretch;
+  c.Paper = { s.Paper[0], s.Paper[1], s.Paper[2] };
+  c.PaperMesh = { s.Paper[3], s.Paper[4], s.Paper[5], s.Paper[6], s.Paper[7], s.Paper[8] };
+  c.MeshSeconds = watch.Seconds();
+  return c;
+}
+
 Case BuildCase(const Args& a)
 {
+  if (avbench::IsSurfaceCase(a.CaseName))
+  {
+    return BuildSurface(a);
+  }
   Case c;
   c.Preset = av::AnalyticPresetFromName(a.CaseName);
   c.Paper = PaperFor(c.Preset);
+  c.DefaultSites = avbench::DefaultSitesFor(c.Preset);
+  c.PaperMesh = avbench::PaperMeshValuesFor(c.Preset);
   const av::AnalyticDomain d = av::RecommendedDomain(c.Preset);
   const av::Stopwatch watch;
   if (d.IsBall)
@@ -202,7 +234,8 @@ av::EmbeddingOptions EmbeddingOptionsFor(const Args& a, const Case& c, int dim)
 {
   av::EmbeddingOptions o;
   o.TargetDim = dim;
-  o.Iterations = a.Iterations >= 0 ? a.Iterations : (c.Preset == av::AnalyticPreset::Gaussian2D ? 20 : 50);
+  const bool gaussian = !c.IsSurface && c.Preset == av::AnalyticPreset::Gaussian2D;
+  o.Iterations = a.Iterations >= 0 ? a.Iterations : (gaussian ? 20 : 50);
   o.Mu = a.Mu;
   o.Seed = a.Seed;
   o.AndersonWindow = a.Anderson;
@@ -254,6 +287,10 @@ void ReportEmbedding(const Args& a, const Case& c, const av::EmbeddingOptions& o
 void StageEmbed(const Args& a, const Case& c, JsonLine& out, av::Embedding* keep = nullptr)
 {
   const int dim = a.Dim > 0 ? a.Dim : (c.Mesh.AmbientDim == 2 ? 3 : 8);
+  if (a.Reference && c.IsSurface)
+  {
+    throw std::runtime_error("--reference-embedding: the surface cases have no closed-form embedding");
+  }
   if (a.Reference)
   {
     EmbedReference(c, dim, out, keep);
@@ -317,7 +354,7 @@ av::Embedding EmbedForMesh(const Args& a, const Case& c, JsonLine& out)
 avbench::MeshStageOptions MeshStageOptionsFor(const Args& a, const Case& c)
 {
   avbench::MeshStageOptions o;
-  o.Sites = a.Sites > 0 ? a.Sites : avbench::DefaultSitesFor(c.Preset);
+  o.Sites = a.Sites > 0 ? a.Sites : c.DefaultSites;
   o.SampleIterations = a.SampleIterations;
   o.WarmupIterations = a.WarmupIterations;
   o.Seed = a.Seed;
@@ -338,7 +375,7 @@ avbench::MeshStageOptions MeshStageOptionsFor(const Args& a, const Case& c)
 void ReportMesh(const Case& c, const avbench::MeshStageOptions& o,
   const avbench::MeshStageResult& r, JsonLine& out)
 {
-  const avbench::PaperMeshValues p = avbench::PaperMeshValuesFor(c.Preset);
+  const avbench::PaperMeshValues& p = c.PaperMesh;
   out.Set("sites", r.Sites);
   out.Set("sharp_features", o.PreserveSharpFeatures);
   out.Set("feature_angle", o.FeatureAngle);
@@ -390,7 +427,21 @@ void ReportMesh(const Case& c, const avbench::MeshStageOptions& o,
   out.Set("paper_theta_avg", p.ThetaAvg);
   out.Set("paper_pct_bad", p.PercentBad);
   out.Set("paper_mesh_seconds", p.MeshSeconds);
-  if (c.Preset == av::AnalyticPreset::Gaussian2D)
+  if (r.IsSurface)
+  {
+    out.Set("hausdorff", r.HausdorffPercent);
+    out.Set("hausdorff_to_input", r.HausdorffForwardPercent);
+    out.Set("hausdorff_from_input", r.HausdorffBackwardPercent);
+    out.Set("self_intersections", r.SelfIntersections);
+    out.Set("flipped", r.Flipped);
+    out.Set("euler", r.Euler);
+    out.Set("input_euler", r.InputEuler);
+    out.Set("boundary_loops", r.BoundaryLoops);
+    out.Set("input_boundary_loops", r.InputBoundaryLoops);
+    out.Set("nonmanifold_edges", r.NonManifoldEdges);
+    out.Set("max_stretch_cap", c.MaxStretch);
+  }
+  if (!c.IsSurface && c.Preset == av::AnalyticPreset::Gaussian2D)
   {
     out.Set("paper_mesh_note", "Tab. 3 2D Domain row: a different metric");
   }
@@ -417,7 +468,8 @@ const std::map<std::string, StageFn>& Stages()
 void Usage(std::ostream& os)
 {
   os << "usage: anisovoronoi-bench CASE [options]\n"
-        "  CASE: gaussian2d | cube1 | cube2 | cube3 | sphere-cyl | sphere-cos | all\n"
+        "  CASE: gaussian2d | cube1 | cube2 | cube3 | sphere-cyl | sphere-cos | all |\n"
+        "        cyclide | cyclide2 | torus | surfaces (Tab. 3 surfaces, curvature metric Eq. 19)\n"
         "  --stage S         embed | mesh (embedding, then sampling + RVD + RDT + quality) | all\n"
         "                    (both reports); default embed\n"
         "  --dim D           target dimension (default 3 for gaussian2d, else 8)\n"
@@ -454,6 +506,11 @@ void Usage(std::ostream& os)
         "  --reference-embedding  the preset's exact isometric embedding (x, y, z, H) instead\n"
         "                    of the solver (all presets but sphere-cos): separates the\n"
         "                    embedding's share of a quality loss from the rest\n"
+        "  --max-stretch S   surface cases: cap on the curvature metric's stretch ratio\n"
+        "                    (default: cyclide, torus 10; cyclide2 29 as Tab. 3)\n"
+        "  surface cases: --resolution N scales the parameter grid by N / 100; the mesh\n"
+        "  report adds hausdorff (% of the bounding-box diagonal, both directions),\n"
+        "  self_intersections, flipped, euler, boundary_loops\n"
         "Prints one JSON object per case on stdout.\n";
 }
 
@@ -475,6 +532,10 @@ void CheckArgs(const Args& a)
   if (a.RepairRounds < 0)
   {
     throw std::runtime_error("--repair-rounds must be >= 0");
+  }
+  if (a.MaxStretch < 0.0 || (a.MaxStretch > 0.0 && a.MaxStretch < 1.0))
+  {
+    throw std::runtime_error("--max-stretch must be >= 1");
   }
   if (a.Resolution != -1 && a.Resolution < 2)
   {
@@ -554,6 +615,8 @@ bool Parse(int argc, char** argv, Args& a)
       a.Features = false;
     else if (k == "--reference-embedding")
       a.Reference = true;
+    else if (k == "--max-stretch")
+      a.MaxStretch = std::stod(next());
     else if (k == "--feature-angle")
       a.FeatureAngle = std::stod(next());
     else if (!k.empty() && k[0] != '-' && a.CaseName.empty())
@@ -632,6 +695,10 @@ int main(int argc, char** argv)
     {
       cases.push_back(av::AnalyticPresetName(p));
     }
+  }
+  else if (args.CaseName == "surfaces")
+  {
+    cases = avbench::SurfaceCaseNames();
   }
   else
   {
