@@ -16,6 +16,8 @@
 #include "SurfaceCases.h"
 #include "TetMesher.h"
 
+#include <Eigen/Eigenvalues>
+
 #include <tbb/global_control.h>
 #include <tbb/info.h>
 
@@ -204,8 +206,19 @@ void StretchRange(const Case& c, double& smin, double& smax)
   smax = 0.0;
   for (std::size_t i = 0; i < c.Metric.NumPoints(); ++i)
   {
-    const double s = c.Mesh.AmbientDim == 2 ? av::StretchRatio(av::UnpackSymmetric2(c.Metric.At(i)))
-                                            : av::StretchRatio(av::UnpackSymmetric(c.Metric.At(i)));
+    double s;
+    if (c.IsSurface)
+    {
+      // Rank-2 tangent metric: the ratio of the two nonzero eigenvalues' square roots.
+      const Eigen::Vector3d l =
+        Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(av::UnpackSymmetric(c.Metric.At(i))).eigenvalues();
+      s = std::sqrt(l[2] / l[1]);
+    }
+    else
+    {
+      s = c.Mesh.AmbientDim == 2 ? av::StretchRatio(av::UnpackSymmetric2(c.Metric.At(i)))
+                                 : av::StretchRatio(av::UnpackSymmetric(c.Metric.At(i)));
+    }
     smin = std::min(smin, s);
     smax = std::max(smax, s);
   }

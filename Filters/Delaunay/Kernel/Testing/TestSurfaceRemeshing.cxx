@@ -111,5 +111,5 @@ int TestSurfaceRemeshing(int, char*[])
   CheckRemeshing("torus", av::MakeTorusSurface(3.0, 1.0, 90, 45), 600, 0, 0);
   CheckRemeshing("open tube", av::MakeTorusSurface(3.0, 1.0, 60, 45, 0.5), 500, 0, 2);
   CheckRemeshing("cyclide1", av::MakeDupinCyclideSurface(2.0, 1.0, 1.5, 120, 90), 2000, 0, 0);
-  return 0;
+  return AV_TEST_RESULT();
 }

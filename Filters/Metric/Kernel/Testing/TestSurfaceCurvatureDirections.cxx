@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <iostream>
 
 namespace
 {
@@ -85,6 +86,9 @@ Agreement Compare(const av::SimplexMesh& mesh, const PointFn& f, int nu, int nv,
       AV_CHECK(std::abs(vmin.dot(vmax)) < 1e-9 && std::abs(vmin.dot(n)) < 1e-9);
     }
   }
+  std::cout << a.Checked << " vertices: v_max within " << a.WorstAngle << " deg, |K_max| within "
+            << 100 * a.WorstKMax << " %, |K_min| within " << 100 * a.WorstKMin
+            << " % of K_max, normals |cos| >= " << a.WorstNormalDot << std::endl;
   return a;
 }
 } // namespace
@@ -103,7 +107,7 @@ int TestSurfaceCurvatureDirections(int, char*[])
     AV_CHECK(a.Checked == nu * nv); // the tube direction dominates everywhere
     AV_CHECK_MSG(a.WorstAngle < 1.0, "torus: v_max off the tube direction by " << a.WorstAngle << " deg");
     AV_CHECK_MSG(a.WorstKMax < 0.03, "torus: |K_max| off by " << 100 * a.WorstKMax << " %");
-    AV_CHECK_MSG(a.WorstKMin < 0.03, "torus: |K_min| off by " << 100 * a.WorstKMax << " % of K_max");
+    AV_CHECK_MSG(a.WorstKMin < 0.03, "torus: |K_min| off by " << 100 * a.WorstKMin << " % of K_max");
     AV_CHECK_MSG(a.WorstNormalDot > 0.9999, "torus: normals off, |cos| " << a.WorstNormalDot);
     // Outward orientation of the generator: the normal at (u, v) = (0, 0) is +x.
     AV_CHECK(r.Normals[0] > 0.999);
@@ -124,10 +128,12 @@ int TestSurfaceCurvatureDirections(int, char*[])
     AV_CHECK_MSG(a.WorstKMax < 0.05, "cyclide: |K_max| off by " << 100 * a.WorstKMax << " %");
     AV_CHECK_MSG(a.WorstKMin < 0.05, "cyclide: |K_min| off by " << 100 * a.WorstKMin << " % of K_max");
     AV_CHECK_MSG(a.WorstNormalDot > 0.9999, "cyclide: normals off, |cos| " << a.WorstNormalDot);
-    // The stretch range of Tab. 3's Cyclide1 ([1.6, 9.4]) is reached with the default cap.
+    // The closed form has umbilic lines (|K_u| = |K_v|, ratio 1) and lines where one curvature
+    // vanishes (ratio from the floor 0.1 / diagonal, about 10.5): after smoothing the range is
+    // about [1, 9], under the default cap of 10.
     const auto [lo, hi] = std::minmax_element(r.StretchRatio.begin(), r.StretchRatio.end());
-    AV_CHECK_MSG(*lo > 1.2 && *lo < 2.0 && *hi > 5.0 && *hi <= 10.0 + 1e-12,
+    AV_CHECK_MSG(*lo >= 1.0 && *lo < 1.1 && *hi > 8.0 && *hi <= 10.0 + 1e-12,
       "cyclide stretch range [" << *lo << ", " << *hi << "]");
   }
-  return 0;
+  return AV_TEST_RESULT();
 }

@@ -158,5 +158,5 @@ int TestSurfaceFidelity(int, char*[])
     AV_CHECK_THROWS(av::ComputeSurfaceTopology(bad));
     AV_CHECK_THROWS(av::SampledHausdorffDistance(Square(0, 2), Square(0, 2), 0));
   }
-  return 0;
+  return AV_TEST_RESULT();
 }
