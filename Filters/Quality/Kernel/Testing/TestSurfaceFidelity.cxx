@@ -98,6 +98,9 @@ int TestSurfaceFidelity(int, char*[])
                                                0.2, 0.2, 0, 3, 0.2, 0, 0.2, 3, 0 })) == 1);
     AV_CHECK(av::CountSelfIntersections(Pair({ 0, 0, 0, 2, 0, 0, 0, 2, 0,
                                                1.1, 1.1, 0, 3, 1.1, 0, 1.1, 3, 0 })) == 0);
+    // Coplanar, one inside the other (no edges cross: only the containment test sees it).
+    AV_CHECK(av::CountSelfIntersections(Pair({ 0, 0, 0, 2, 0, 0, 0, 2, 0,
+                                               0.2, 0.2, 0, 0.5, 0.2, 0, 0.2, 0.5, 0 })) == 1);
     // A vertex exactly on the other triangle's interior (touching counts).
     AV_CHECK(av::CountSelfIntersections(Pair({ 0, 0, 0, 2, 0, 0, 0, 2, 0,
                                                0.5, 0.5, 0, 0.5, 0.5, 1, 1, 1, 1 })) == 1);
