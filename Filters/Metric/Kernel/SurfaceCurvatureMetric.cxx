@@ -297,6 +297,16 @@ void AssembleMetric(const SimplexMesh& s,
 }
 } // namespace
 
+std::vector<double> SurfaceVertexNormals(const SimplexMesh& s)
+{
+  const double diag = ValidateSurface(s, SurfaceCurvatureMetricOptions());
+  const std::vector<Vec3> normal = VertexNormals(s, diag);
+  std::vector<double> flat(3 * normal.size());
+  for (std::size_t i = 0; i < normal.size(); ++i)
+    Eigen::Map<Vec3>(flat.data() + 3 * i) = normal[i];
+  return flat;
+}
+
 SurfaceCurvatureMetricResult SurfaceCurvatureMetric(const SimplexMesh& s,
   const SurfaceCurvatureMetricOptions& opt)
 {
