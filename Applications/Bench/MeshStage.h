@@ -81,6 +81,15 @@ struct MeshStageResult
   double PercentEdgesInUnitRange = 0.0;
   double RvdVolumeError = 0.0; ///< |sum piece measures - domain measure| / domain measure
   std::size_t RvdPieces = 0;
+  /// Surfaces (triangles in 3D) only (paper §6.3): fidelity to the input and topology.
+  bool IsSurface = false;
+  double HausdorffPercent = 0.0;         ///< sampled, both ways, % of the input's diagonal
+  double HausdorffForwardPercent = 0.0;  ///< output samples to the input
+  double HausdorffBackwardPercent = 0.0; ///< input samples to the output
+  std::size_t SelfIntersections = 0;     ///< intersecting pairs of triangles sharing no vertex
+  std::size_t Flipped = 0; ///< output triangles whose normal opposes the input surface's
+  long long Euler = 0, InputEuler = 0;
+  std::size_t BoundaryLoops = 0, InputBoundaryLoops = 0, NonManifoldEdges = 0;
 };
 
 /**

@@ -15,7 +15,10 @@
 #include "ReferenceEmbedding.h"
 #include "Stopwatch.h"
 #include "StructuredMeshes.h"
+#include "SurfaceCases.h"
 #include "TetMesher.h"
+
+#include <Eigen/Eigenvalues>
 
 #include <tbb/global_control.h>
 #include <tbb/info.h>
@@ -77,6 +80,7 @@ struct Args
   bool Prepare = false;
   bool NoPrepare = false; // real tensor cases: --no-prepare-metric keeps the raw metric
   av::MetricPreparationOptions Preparation;
+  double MaxStretch = 0.0;    // surface cases: curvature metric cap (0: the case's own)
 };
 
 /// Paper values (Tab. 5 and Fig. 4); NaN where the paper gives none.
@@ -89,7 +93,6 @@ struct Case
 {
   av::AnalyticPreset Preset = av::AnalyticPreset::Cube1; // unused by real cases
   bool Real = false;          // a real:NAME case (RealCases.h)
-  std::size_t RealSites = 0;  // its default number of sites
   double StretchMin = 0.0, StretchMax = 0.0;
   std::size_t FilePoints = 0, FileCells = 0; // real: as read, before the split into simplices
   av::SimplexMesh Mesh;
@@ -99,6 +102,10 @@ struct Case
   PaperValues Paper;
   av::MetricField RawMetric;      ///< before preparation (empty: not prepared)
   av::MetricPreparationResult Prep; ///< what the preparation did
+  bool IsSurface = false;              // a generated surface with a curvature metric
+  std::size_t DefaultSites = 0;        // the paper's output vertex count
+  avbench::PaperMeshValues PaperMesh{}; // Tab. 5 / Tab. 3 meshing row
+  double MaxStretch = 0.0;             // surface cases: the curvature metric's cap
 };
 
 PaperValues PaperFor(av::AnalyticPreset p)
@@ -134,8 +141,19 @@ void StretchRange(const Case& c, double& smin, double& smax)
   smax = 0.0;
   for (std::size_t i = 0; i < c.Metric.NumPoints(); ++i)
   {
-    const double s = c.Mesh.AmbientDim == 2 ? av::StretchRatio(av::UnpackSymmetric2(c.Metric.At(i)))
-                                            : av::StretchRatio(av::UnpackSymmetric(c.Metric.At(i)));
+    double s;
+    if (c.IsSurface)
+    {
+      // Rank-2 tangent metric: the ratio of the two nonzero eigenvalues' square roots.
+      const Eigen::Vector3d l =
+        Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(av::UnpackSymmetric(c.Metric.At(i))).eigenvalues();
+      s = std::sqrt(l[2] / l[1]);
+    }
+    else
+    {
+      s = c.Mesh.AmbientDim == 2 ? av::StretchRatio(av::UnpackSymmetric2(c.Metric.At(i)))
+                                 : av::StretchRatio(av::UnpackSymmetric(c.Metric.At(i)));
+    }
     smin = std::min(smin, s);
     smax = std::max(smax, s);
   }
@@ -171,15 +189,33 @@ Case BuildRealCase(const Args& a)
   c.StretchMax = in.StretchMax;
   c.FilePoints = in.FilePoints;
   c.FileCells = in.FileCells;
-  c.RealSites = avbench::DefaultRealSites(in);
+  c.DefaultSites = avbench::DefaultRealSites(in);
+  c.PaperMesh = avbench::PaperMeshValues{ kNaN, kNaN, kNaN, kNaN, kNaN, kNaN };
+  c.IsSurface = c.Mesh.SimplexDim == 2 && c.Mesh.AmbientDim == 3;
   // Tensor data is prepared by default, as in the CLI; curvature metrics of surfaces only when
   // asked.
-  const bool surface = c.Mesh.SimplexDim == 2 && c.Mesh.AmbientDim == 3;
-  if (a.Prepare || (!surface && !a.NoPrepare))
+  if (a.Prepare || (!c.IsSurface && !a.NoPrepare))
   {
-    PrepareCaseMetric(a, c, a.Sites > 0 ? a.Sites : c.RealSites);
+    PrepareCaseMetric(a, c, a.Sites > 0 ? a.Sites : c.DefaultSites);
     StretchRange(c, c.StretchMin, c.StretchMax);
   }
+/// A surface case of Tab. 3 (SurfaceCases.h); --resolution N scales its grid by N / 100.
+Case BuildSurface(const Args& a)
+{
+  Case c;
+  const av::Stopwatch watch;
+  avbench::SurfaceCase s = avbench::BuildSurfaceCase(
+    a.CaseName, a.MaxStretch, a.Resolution > 0 ? a.Resolution / 100.0 : 0.0);
+  c.Preset = av::AnalyticPreset::Cube1; // unused for surfaces (no reference embedding)
+  c.IsSurface = true;
+  c.Mesh = std::move(s.Mesh);
+  c.Metric = std::move(s.Metric);
+  c.MeshDescription = s.Description;
+  c.DefaultSites = s.Sites;
+  c.MaxStretch = s.MaxStretch;
+  c.Paper = { s.Paper[0], s.Paper[1], s.Paper[2] };
+  c.PaperMesh = { s.Paper[3], s.Paper[4], s.Paper[5], s.Paper[6], s.Paper[7], s.Paper[8] };
+  c.MeshSeconds = watch.Seconds();
   return c;
 }
 
@@ -189,9 +225,15 @@ Case BuildCase(const Args& a)
   {
     return BuildRealCase(a);
   }
+  if (avbench::IsSurfaceCase(a.CaseName))
+  {
+    return BuildSurface(a);
+  }
   Case c;
   c.Preset = av::AnalyticPresetFromName(a.CaseName);
   c.Paper = PaperFor(c.Preset);
+  c.DefaultSites = avbench::DefaultSitesFor(c.Preset);
+  c.PaperMesh = avbench::PaperMeshValuesFor(c.Preset);
   const av::AnalyticDomain d = av::RecommendedDomain(c.Preset);
   const av::Stopwatch watch;
   if (d.IsBall)
@@ -231,7 +273,7 @@ Case BuildCase(const Args& a)
   c.Metric = av::EvaluateAnalyticMetric(c.Preset, c.Mesh);
   c.MeshSeconds = watch.Seconds();
   if (a.Prepare)
-    PrepareCaseMetric(a, c, a.Sites > 0 ? a.Sites : avbench::DefaultSitesFor(c.Preset));
+    PrepareCaseMetric(a, c, a.Sites > 0 ? a.Sites : c.DefaultSites);
   StretchRange(c, c.StretchMin, c.StretchMax);
   return c;
 }
@@ -266,8 +308,8 @@ av::EmbeddingOptions EmbeddingOptionsFor(const Args& a, const Case& c, int dim)
 {
   av::EmbeddingOptions o;
   o.TargetDim = dim;
-  const bool gaussian2d = !c.Real && c.Preset == av::AnalyticPreset::Gaussian2D;
-  o.Iterations = a.Iterations >= 0 ? a.Iterations : (gaussian2d ? 20 : 50);
+  const bool gaussian = !c.Real && !c.IsSurface && c.Preset == av::AnalyticPreset::Gaussian2D;
+  o.Iterations = a.Iterations >= 0 ? a.Iterations : (gaussian ? 20 : 50);
   o.Mu = a.Mu;
   o.Seed = a.Seed;
   o.AndersonWindow = a.Anderson;
@@ -332,6 +374,10 @@ void ReportEmbedding(const Args& a, const Case& c, const av::EmbeddingOptions& o
 void StageEmbed(const Args& a, const Case& c, JsonLine& out, av::Embedding* keep = nullptr)
 {
   const int dim = a.Dim > 0 ? a.Dim : (c.Mesh.AmbientDim == 2 ? 3 : 8);
+  if (a.Reference && c.IsSurface)
+  {
+    throw std::runtime_error("--reference-embedding: the surface cases have no closed-form embedding");
+  }
   if (a.Reference)
   {
     if (c.Real)
@@ -399,7 +445,7 @@ av::Embedding EmbedForMesh(const Args& a, const Case& c, JsonLine& out)
 avbench::MeshStageOptions MeshStageOptionsFor(const Args& a, const Case& c)
 {
   avbench::MeshStageOptions o;
-  o.Sites = a.Sites > 0 ? a.Sites : (c.Real ? c.RealSites : avbench::DefaultSitesFor(c.Preset));
+  o.Sites = a.Sites > 0 ? a.Sites : c.DefaultSites;
   o.SampleIterations = a.SampleIterations;
   o.WarmupIterations = a.WarmupIterations;
   o.Seed = a.Seed;
@@ -421,8 +467,7 @@ avbench::MeshStageOptions MeshStageOptionsFor(const Args& a, const Case& c)
 void ReportMesh(const Case& c, const avbench::MeshStageOptions& o,
   const avbench::MeshStageResult& r, JsonLine& out)
 {
-  const avbench::PaperMeshValues p = c.Real ? avbench::PaperMeshValues{ kNaN, kNaN, kNaN, kNaN, kNaN, kNaN }
-                                            : avbench::PaperMeshValuesFor(c.Preset);
+  const avbench::PaperMeshValues& p = c.PaperMesh;
   out.Set("sites", r.Sites);
   out.Set("sharp_features", o.PreserveSharpFeatures);
   out.Set("feature_angle", o.FeatureAngle);
@@ -479,7 +524,21 @@ void ReportMesh(const Case& c, const avbench::MeshStageOptions& o,
   out.Set("paper_theta_avg", p.ThetaAvg);
   out.Set("paper_pct_bad", p.PercentBad);
   out.Set("paper_mesh_seconds", p.MeshSeconds);
-  if (!c.Real && c.Preset == av::AnalyticPreset::Gaussian2D)
+  if (r.IsSurface)
+  {
+    out.Set("hausdorff", r.HausdorffPercent);
+    out.Set("hausdorff_to_input", r.HausdorffForwardPercent);
+    out.Set("hausdorff_from_input", r.HausdorffBackwardPercent);
+    out.Set("self_intersections", r.SelfIntersections);
+    out.Set("flipped", r.Flipped);
+    out.Set("euler", r.Euler);
+    out.Set("input_euler", r.InputEuler);
+    out.Set("boundary_loops", r.BoundaryLoops);
+    out.Set("input_boundary_loops", r.InputBoundaryLoops);
+    out.Set("nonmanifold_edges", r.NonManifoldEdges);
+    out.Set("max_stretch_cap", c.MaxStretch);
+  }
+  if (!c.Real && !c.IsSurface && c.Preset == av::AnalyticPreset::Gaussian2D)
   {
     out.Set("paper_mesh_note", "Tab. 3 2D Domain row: a different metric");
   }
@@ -507,6 +566,7 @@ void Usage(std::ostream& os)
 {
   os << "usage: anisovoronoi-bench CASE [options]\n"
         "  CASE: gaussian2d | cube1 | cube2 | cube3 | sphere-cyl | sphere-cos | all\n"
+        "        | cyclide | cyclide2 | torus | surfaces (Tab. 3 surfaces, curvature metric Eq. 19)\n"
         "        | real:NAME | real:all  (real data of scripts/make-real-data.sh; NAME:\n"
         "        compressor rotor segmenttet cubef2f1 hueeber1 squarebend mixer (tensor\n"
         "        fields, default 3000 sites) turbine knot1 mushroom fandisk (curvature,\n"
@@ -515,6 +575,7 @@ void Usage(std::ostream& os)
         "                    real-data next to the bin/ folder of this program)\n"
         "  --min-eigenvalue F, --max-anisotropy A, --smooth N  real tensor cases: the tensor ->\n"
         "                    metric options of the anisovoronoi tool (defaults 1e-3, 25, 0)\n"
+
         "  --stage S         embed | mesh (embedding, then sampling + RVD + RDT + quality) | all\n"
         "                    (both reports); default embed\n"
         "  --dim D           target dimension (default 3 for gaussian2d, else 8)\n"
@@ -558,6 +619,11 @@ void Usage(std::ostream& os)
         "                    (--no-gradation: none); adds L_avg_raw, metric_prep_* keys\n"
         "  --no-prepare-metric  real tensor cases (prepared by default, as the CLI does):\n"
         "                    the raw metric\n"
+        "  --max-stretch S   surface cases: cap on the curvature metric's stretch ratio\n"
+        "                    (default: cyclide, torus 10; cyclide2 29 as Tab. 3)\n"
+        "  surface cases: --resolution N scales the parameter grid by N / 100; the mesh\n"
+        "  report adds hausdorff (% of the bounding-box diagonal, both directions),\n"
+        "  self_intersections, flipped, euler, boundary_loops\n"
         "Prints one JSON object per case on stdout.\n";
 }
 
@@ -579,6 +645,10 @@ void CheckArgs(const Args& a)
   if (a.RepairRounds < 0)
   {
     throw std::runtime_error("--repair-rounds must be >= 0");
+  }
+  if (a.MaxStretch < 0.0 || (a.MaxStretch > 0.0 && a.MaxStretch < 1.0))
+  {
+    throw std::runtime_error("--max-stretch must be >= 1");
   }
   if (a.Resolution != -1 && a.Resolution < 2)
   {
@@ -660,6 +730,8 @@ bool Parse(int argc, char** argv, Args& a)
       a.Features = false;
     else if (k == "--reference-embedding")
       a.Reference = true;
+    else if (k == "--max-stretch")
+      a.MaxStretch = std::stod(next());
     else if (k == "--feature-angle")
       a.FeatureAngle = std::stod(next());
     else if (k == "--data-dir")
@@ -779,6 +851,10 @@ int main(int argc, char** argv)
     {
       cases.push_back("real:" + r.Name);
     }
+  }
+  else if (args.CaseName == "surfaces")
+  {
+    cases = avbench::SurfaceCaseNames();
   }
   else
   {

@@ -50,6 +50,8 @@ options:
   --min-eigenvalue X       tensor: floor relative to the largest |eigenvalue| (default 1e-3)
   --max-anisotropy X       tensor: cap on the stretch ratio (default 25, 0 = none)
   --smooth N               tensor: log-Euclidean smoothing iterations (default 0)
+  --max-stretch X          curvature: cap on the stretch ratio s2 / s1 (default 10, 0 = none;
+                           the paper's Cyclide2 needs 29)
 
 metric preparation (on for tensor:ARRAY; for metric:, preset: and --sol inputs only when one
 of these options is given; lengths in the input's units, the metric first normalized so that
@@ -61,6 +63,8 @@ unit length is one of the --sites output cells):
                            sizes) or blend (det M = det(M_tensor)^A, A from --size-blend)
   --size-blend A           blend exponent in [0, 1] (default 0.5)
   --prepare-metric         prepare a metric:, preset: or --sol metric with the defaults above
+
+meshing:
   --refine N               volumes: remesh the domain with TetGen to about N vertices and
                            interpolate the input's point data onto it (a coarse FE mesh
                            cannot carry a fast-varying metric; default 0 = off)
@@ -158,6 +162,8 @@ void CheckOptions(const Options& o)
     Fail("--repair-rounds must be in [0, 1000]", 2);
   if (o.ImproveRounds < 0 || o.ImproveRounds > 10)
     Fail("--improve-rounds must be in [0, 10]", 2);
+  if (!(o.MaxStretch == 0.0 || o.MaxStretch >= 1.0))
+    Fail("--max-stretch must be 0 (no cap) or >= 1", 2);
   if (o.OdtIterations < 0 || o.OdtIterations > 20)
     Fail("--odt-iterations must be in [0, 20]", 2);
 }
@@ -252,6 +258,8 @@ Options ParseCommandLine(int argc, char* argv[])
       o.MinEigenvalue = ParseDouble(a, next());
     else if (a == "--max-anisotropy")
       o.MaxAnisotropy = ParseDouble(a, next());
+    else if (a == "--max-stretch")
+      o.MaxStretch = ParseDouble(a, next());
     else if (a == "--tensor-as-metric")
       o.TensorAsMetric = true;
     else if (a == "--clamp")

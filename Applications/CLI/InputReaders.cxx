@@ -3,60 +3,21 @@
 #include "InputReaders.h"
 
 #include "CommandLine.h"
-#include "OffReader.h"
 #include "vtkAnisoFRDReader.h"
 #include "vtkAnisoMeditReader.h"
+#include "vtkAnisoOFFReader.h"
 
-#include <vtkCellArray.h>
 #include <vtkDataSetReader.h>
 #include <vtkNew.h>
 #include <vtkOBJReader.h>
 #include <vtkPLYReader.h>
-#include <vtkPoints.h>
-#include <vtkPolyData.h>
 #include <vtkSTLReader.h>
 #include <vtkTriangleFilter.h>
-#include <vtkTrivialProducer.h>
 #include <vtkXMLGenericDataObjectReader.h>
 #include <vtksys/SystemTools.hxx>
 
 namespace avcli
 {
-namespace
-{
-/// An OFF surface (the kernel's reader) as a triangle vtkPolyData behind a trivial producer.
-vtkSmartPointer<vtkAlgorithm> ReadOffSurface(const std::string& path)
-{
-  av::SimplexMesh surfaceMesh;
-  try
-  {
-    surfaceMesh = av::ReadOff(path);
-  }
-  catch (const av::InputError& e)
-  {
-    Fail(std::string("read ") + vtksys::SystemTools::GetFilenameName(path) + ": " + e.what());
-  }
-  auto grid = vtkSmartPointer<vtkPolyData>::New();
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToDouble();
-  for (std::size_t i = 0; i < surfaceMesh.NumPoints(); ++i)
-    points->InsertNextPoint(surfaceMesh.Point(i));
-  vtkNew<vtkCellArray> triangles;
-  for (std::size_t c = 0; c < surfaceMesh.NumCells(); ++c)
-  {
-    const vtkIdType ids[3] = {
-      surfaceMesh.Cell(c)[0], surfaceMesh.Cell(c)[1], surfaceMesh.Cell(c)[2]
-    };
-    triangles->InsertNextCell(3, ids);
-  }
-  grid->SetPoints(points);
-  grid->SetPolys(triangles);
-  auto producer = vtkSmartPointer<vtkTrivialProducer>::New();
-  producer->SetOutput(grid);
-  return producer;
-}
-} // namespace
-
 /// Reads INPUT by its extension; returns the algorithm producing it.
 vtkSmartPointer<vtkAlgorithm> MakeReader(const Options& o)
 {
@@ -112,7 +73,9 @@ vtkSmartPointer<vtkAlgorithm> MakeReader(const Options& o)
   }
   else if (ext == ".off")
   {
-    return ReadOffSurface(o.Input);
+    auto r = vtkSmartPointer<vtkAnisoOFFReader>::New();
+    r->SetFileName(o.Input.c_str());
+    return r; // triangles already
   }
   else if (ext == ".obj")
   {

@@ -318,6 +318,7 @@ std::string RunMetric(Options& o, MeshingStages& s, StageRunner& runner)
   {
     auto m = vtkSmartPointer<vtkAnisoCurvatureMetric>::New();
     m->SetInputConnection(s.Domain->GetOutputPort());
+    m->SetMaxStretch(o.MaxStretch);
     s.Metric = m;
   }
   else

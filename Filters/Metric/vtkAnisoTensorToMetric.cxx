@@ -3,7 +3,9 @@
 
 #include "MetricAlgebra.h"
 #include "MetricPreparation.h"
+#include "SurfaceCurvatureMetric.h" // SurfaceVertexNormals
 #include "TensorToMetric.h"
+#include "vtkAnisoDataConversion.h"
 #include "vtkAnisoFilterUtilities.h"
 
 #include <vtkCell.h>
@@ -406,6 +408,25 @@ int vtkAnisoTensorToMetric::RequestData(vtkInformation*,
   if (this->PreparationRequested() && this->NumberOfSites > 0)
     options.ApplyGlobalScale = false;
 
+  // A triangle surface in 3D: the tensors' normal parts must not reach the metric.
+  std::vector<double> normals;
+  this->UsedTangentProjection = false;
+  if (this->ProjectOntoSurface && options.Dimension == 3)
+  {
+    av::SimplexMesh surface;
+    std::string ignored;
+    if (vtkAnisoDataConversion::ToSimplexMesh(input, surface, ignored) &&
+      surface.SimplexDim == 2 && surface.AmbientDim == 3)
+    {
+      if (!this->TupleNormals(surface, tuples.Used, normals, error))
+      {
+        vtkErrorMacro(<< error);
+        return 0;
+      }
+      this->UsedTangentProjection = true;
+    }
+  }
+
   av::TensorToMetricResult result;
   if (!vtkAnisoFilterUtilities::RunKernel(this,
         "tensor to metric conversion",
@@ -413,8 +434,11 @@ int vtkAnisoTensorToMetric::RequestData(vtkInformation*,
         {
           try
           {
-            result = av::TensorToMetric(
-              tuples.Values.data(), static_cast<std::size_t>(tuples.Count), nc, options, edges);
+            result = this->UsedTangentProjection
+              ? av::TangentTensorToMetric(tuples.Values.data(),
+                  static_cast<std::size_t>(tuples.Count), nc, normals.data(), options)
+              : av::TensorToMetric(tuples.Values.data(), static_cast<std::size_t>(tuples.Count),
+                  nc, options, edges);
           }
           catch (const av::InputError& e)
           {
@@ -517,6 +541,32 @@ bool vtkAnisoTensorToMetric::Prepare(vtkDataSet* input,
   return true;
 }
 
+/// Unit vertex normals of `surface` for the tuples (`used`: their point ids, empty = every point).
+bool vtkAnisoTensorToMetric::TupleNormals(const av::SimplexMesh& surface,
+  const std::vector<vtkIdType>& used, std::vector<double>& normals, std::string& error)
+{
+  std::vector<double> all;
+  try
+  {
+    all = av::SurfaceVertexNormals(surface);
+  }
+  catch (const av::InputError& e)
+  {
+    error = std::string("tangent-plane projection: ") + e.what() +
+      " (turn ProjectOntoSurface off to use the tensors as they are)";
+    return false;
+  }
+  if (used.empty())
+  {
+    normals = std::move(all);
+    return true;
+  }
+  normals.resize(3 * used.size());
+  for (std::size_t k = 0; k < used.size(); ++k)
+    std::copy_n(all.data() + 3 * used[k], 3, normals.data() + 3 * k);
+  return true;
+}
+
 /// The Metric and Stretch point arrays and the field data of the conversion.
 void vtkAnisoTensorToMetric::WriteOutput(const av::TensorToMetricResult& result,
   const std::vector<vtkIdType>& used,
@@ -609,6 +659,7 @@ void vtkAnisoTensorToMetric::PrintSelf(ostream& os, vtkIndent indent)
      << (this->Dimension == DIMENSION_AUTO ? std::string("Auto") : std::to_string(this->Dimension))
      << "\n";
   os << indent << "ApplyGlobalScale: " << this->ApplyGlobalScale << "\n";
+  os << indent << "ProjectOntoSurface: " << this->ProjectOntoSurface << "\n";
   os << indent << "MetricArrayName: " << (this->MetricArrayName ? this->MetricArrayName : "")
      << "\n";
   const char* sizeModes[] = { "Tensor", "Uniform", "Blend" };

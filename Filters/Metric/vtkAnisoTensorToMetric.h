@@ -44,6 +44,12 @@
  * eigenvalue), "NumClamped" (points with an eigenvalue raised to the floor), "NumCapped"
  * (points whose anisotropy was capped), "StretchMin", "StretchMax".
  *
+ * On a triangle surface in 3D (every cell a triangle, the points not all at one z) with
+ * ProjectOntoSurface on (default), each tensor is first restricted to the tangent plane at
+ * its point (unit vertex normals, Max's weights): the metric is rank 2, zero along the normal,
+ * and its stretch, floor and cap see the tangent eigenvalues only (av::TangentTensorToMetric).
+ * Smoothing is then refused (smooth the tensors first).
+ *
  * Errors (RequestData returns 0): no tensor array, not 6/9 components, NaN/Inf values, an
  * all-zero field, invalid option values.
  */
@@ -60,6 +66,7 @@
 #ifndef __VTK_WRAP__
 namespace av
 {
+struct SimplexMesh;
 struct TensorToMetricOptions;
 struct TensorToMetricResult;
 }
@@ -137,6 +144,16 @@ public:
   void SetDimensionTo2D() { this->SetDimension(DIMENSION_2D); }
   void SetDimensionTo3D() { this->SetDimension(DIMENSION_3D); }
   ///@}
+
+  ///@{
+  /// On a triangle surface, restrict each tensor to the tangent plane first (default on).
+  vtkSetMacro(ProjectOntoSurface, bool);
+  vtkGetMacro(ProjectOntoSurface, bool);
+  vtkBooleanMacro(ProjectOntoSurface, bool);
+  ///@}
+
+  /// True when the last update projected the tensors onto the surface's tangent planes.
+  vtkGetMacro(UsedTangentProjection, bool);
 
   ///@{
   /// Scale the field by c = 1 / (smallest eigenvalue) when that is < 1 (default on).
@@ -231,6 +248,8 @@ protected:
   int SmoothingIterations = 0;
   int Dimension = DIMENSION_AUTO;
   bool ApplyGlobalScale = true;
+  bool ProjectOntoSurface = true;
+  bool UsedTangentProjection = false;
   char* MetricArrayName = nullptr;
   int SizeMode = SIZE_FROM_TENSOR;
   double SizeBlend = 0.5;
@@ -260,6 +279,8 @@ private:
   vtkDataArray* FindTensors(
     vtkInformationVector** inputVector, vtkDataSet* input, bool& cellTensors, std::string& error);
   bool BuildOptions(vtkDataSet* input, av::TensorToMetricOptions& options, std::string& error);
+  bool TupleNormals(const av::SimplexMesh& surface, const std::vector<vtkIdType>& used,
+    std::vector<double>& normals, std::string& error);
   void WriteOutput(const av::TensorToMetricResult& result, const std::vector<vtkIdType>& used,
     bool cellTensors, int dimension, vtkDataSet* output);
   bool PreparationRequested() const;

@@ -32,6 +32,77 @@ void OrientOutward(SimplexMesh& mesh, Outward outward)
     }
   }
 }
+
+/// A structured triangle grid over a (u, v) parameter rectangle: `nu` x `nv` intervals,
+/// periodic directions wrap (no duplicated seam vertices), open ones get one more vertex
+/// column / row. Each quad is split along its shorter diagonal; every triangle keeps the
+/// orientation of (u, v), so the normal is along x_u x x_v.
+template <class PointFn>
+SimplexMesh ParametricGrid(PointFn point, int nu, int nv, bool periodicU, bool periodicV,
+  double uSpan, double vSpan)
+{
+  SimplexMesh mesh;
+  mesh.AmbientDim = 3;
+  mesh.SimplexDim = 2;
+  const int cu = periodicU ? nu : nu + 1;
+  const int cv = periodicV ? nv : nv + 1;
+  mesh.Points.resize(3 * static_cast<std::size_t>(cu) * cv);
+  for (int j = 0; j < cv; ++j)
+  {
+    for (int i = 0; i < cu; ++i)
+    {
+      point(uSpan * i / nu, vSpan * j / nv, mesh.Points.data() + 3 * (j * cu + i));
+    }
+  }
+  auto id = [&](int i, int j) { return static_cast<std::int32_t>((j % cv) * cu + (i % cu)); };
+  auto distance2 = [&](std::int32_t p, std::int32_t q) {
+    return (Eigen::Map<const Eigen::Vector3d>(mesh.Point(p)) -
+      Eigen::Map<const Eigen::Vector3d>(mesh.Point(q)))
+      .squaredNorm();
+  };
+  mesh.Cells.reserve(6 * static_cast<std::size_t>(nu) * nv);
+  for (int j = 0; j < nv; ++j)
+  {
+    for (int i = 0; i < nu; ++i)
+    {
+      const std::int32_t p00 = id(i, j), p10 = id(i + 1, j), p11 = id(i + 1, j + 1),
+                         p01 = id(i, j + 1);
+      if (distance2(p00, p11) <= distance2(p10, p01))
+      {
+        mesh.Cells.insert(mesh.Cells.end(), { p00, p10, p11, p00, p11, p01 });
+      }
+      else
+      {
+        mesh.Cells.insert(mesh.Cells.end(), { p00, p10, p01, p10, p11, p01 });
+      }
+    }
+  }
+  return mesh;
+}
+
+/// Signed volume enclosed by a closed, consistently oriented triangle surface.
+double EnclosedVolume(const SimplexMesh& mesh)
+{
+  double six = 0.0;
+  for (std::size_t c = 0; c < mesh.NumCells(); ++c)
+  {
+    const std::int32_t* t = mesh.Cell(c);
+    const Eigen::Map<const Eigen::Vector3d> a(mesh.Point(t[0])), b(mesh.Point(t[1])),
+      d(mesh.Point(t[2]));
+    six += a.dot(b.cross(d));
+  }
+  return six / 6.0;
+}
+
+void ReverseAll(SimplexMesh& mesh)
+{
+  for (std::size_t c = 0; c < mesh.NumCells(); ++c)
+  {
+    std::swap(mesh.Cells[3 * c + 1], mesh.Cells[3 * c + 2]);
+  }
+}
+
+constexpr double kTwoPi = 6.28318530717958647692;
 } // namespace
 
 SimplexMesh MakeGeodesicSphere(double radius, int frequency)
@@ -255,6 +326,68 @@ SimplexMesh MakeCylinderSurface(double radius, double height, int around, int al
     }
   }
   OrientOutward(mesh, [](const Eigen::Vector3d& c) { return Eigen::Vector3d(c[0], c[1], 0); });
+  return mesh;
+}
+
+void TorusPoint(double majorRadius, double minorRadius, double u, double v, double xyz[3])
+{
+  const double ring = majorRadius + minorRadius * std::cos(v);
+  xyz[0] = ring * std::cos(u);
+  xyz[1] = ring * std::sin(u);
+  xyz[2] = minorRadius * std::sin(v);
+}
+
+SimplexMesh MakeTorusSurface(double majorRadius, double minorRadius, int around, int tube,
+  double uFraction, double vFraction)
+{
+  if (!(minorRadius > 0.0) || !(majorRadius > minorRadius) || !std::isfinite(majorRadius))
+  {
+    throw InputError("MakeTorusSurface: need finite radii with R > r > 0");
+  }
+  if (around < 3 || tube < 3 || around > 100000 || tube > 100000)
+  {
+    throw InputError("MakeTorusSurface: around and tube must be in [3, 100000]");
+  }
+  if (!(uFraction > 0.0 && uFraction <= 1.0) || !(vFraction > 0.0 && vFraction <= 1.0))
+  {
+    throw InputError("MakeTorusSurface: uFraction and vFraction must be in (0, 1]");
+  }
+  // x_u x x_v points outward for this parameterization (at u = v = 0 it is +x), so the grid's
+  // (u, v) orientation is already the outward one.
+  return ParametricGrid(
+    [&](double u, double v, double* p) { TorusPoint(majorRadius, minorRadius, u, v, p); },
+    around, tube, uFraction == 1.0, vFraction == 1.0, kTwoPi * uFraction, kTwoPi * vFraction);
+}
+
+void DupinCyclidePoint(double a, double c, double mu, double u, double v, double xyz[3])
+{
+  const double b2 = a * a - c * c;
+  const double b = std::sqrt(b2);
+  const double cu = std::cos(u), su = std::sin(u), cv = std::cos(v), sv = std::sin(v);
+  const double d = a - c * cu * cv;
+  xyz[0] = (mu * (c - a * cu * cv) + b2 * cu) / d;
+  xyz[1] = b * su * (a - mu * cv) / d;
+  xyz[2] = b * sv * (c * cu - mu) / d;
+}
+
+SimplexMesh MakeDupinCyclideSurface(double a, double c, double mu, int nu, int nv)
+{
+  if (!std::isfinite(a) || !std::isfinite(c) || !std::isfinite(mu) || !(c >= 0.0) ||
+    !(mu > c) || !(a > mu))
+  {
+    throw InputError("MakeDupinCyclideSurface: a ring cyclide needs 0 <= c < mu < a");
+  }
+  if (nu < 3 || nv < 3 || nu > 100000 || nv > 100000)
+  {
+    throw InputError("MakeDupinCyclideSurface: nu and nv must be in [3, 100000]");
+  }
+  SimplexMesh mesh = ParametricGrid(
+    [&](double u, double v, double* p) { DupinCyclidePoint(a, c, mu, u, v, p); }, nu, nv, true,
+    true, kTwoPi, kTwoPi);
+  if (EnclosedVolume(mesh) < 0.0)
+  {
+    ReverseAll(mesh);
+  }
   return mesh;
 }
 

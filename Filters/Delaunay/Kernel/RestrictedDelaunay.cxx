@@ -93,6 +93,27 @@ std::vector<VoronoiVertexRecord> UniqueVoronoiVertices(
   return recs;
 }
 
+// Surfaces: true when triangle (p0, p1, p2) of site ids `key` faces against the input surface,
+// i.e. its normal opposes the sum of the unit normals of the input triangles that hold its
+// three sites. The element-frame test below sees one element only; a triangle that spans a
+// strongly curved region (a thin tube) can pass it and still be folded over ("flipped").
+inline bool FlippedAgainstSurface(const SimplexMesh& mesh, const SiteSet& sites,
+  const std::vector<double>& points, const Key& key)
+{
+  using V3 = Eigen::Vector3d;
+  const V3 p0(points.data() + 3 * std::size_t(key[0]));
+  const V3 n = (V3(points.data() + 3 * std::size_t(key[1])) - p0)
+                 .cross(V3(points.data() + 3 * std::size_t(key[2])) - p0);
+  V3 ref = V3::Zero();
+  for (int a = 0; a < 3; ++a)
+  {
+    const std::int32_t* t = mesh.Cell(static_cast<std::size_t>(sites.CellIds[key[a]]));
+    const V3 x0(mesh.Point(t[0]));
+    ref += (V3(mesh.Point(t[1])) - x0).cross(V3(mesh.Point(t[2])) - x0).normalized();
+  }
+  return !(n.dot(ref) > 0.0);
+}
+
 // Cell c of `out` from its Voronoi vertex record: sites ordered so that the simplex is
 // positive in the element's embedded frame, flagged inverted when its back-projection to the
 // element's input frame is not positive or is flat.
@@ -130,6 +151,8 @@ inline void OrientCell(const SimplexMesh& mesh, const Embedding& embedding, cons
   // no usable element, and the repair breaks it up like an inverted one.
   const double flat = kFlatTolerance * std::pow(l2, 0.5 * k);
   out.Inverted[c] = (oe > 0.0 && oi > flat) ? 0 : 1;
+  if (!out.Inverted[c] && k == 2 && adim == 3)
+    out.Inverted[c] = FlippedAgainstSurface(mesh, sites, out.Points, key) ? 1 : 0;
   for (int a = 0; a < nv; ++a)
     out.Cells[c * nv + a] = key[a];
   out.CellElement[c] = e;

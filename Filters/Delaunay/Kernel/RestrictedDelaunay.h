@@ -43,7 +43,9 @@ struct RestrictedDelaunayMesh
  * oriented positively in the frame of the element that holds its Voronoi vertex (sites
  * projected onto that element's affine hull in R^Dim) and flagged inverted when, mapped back
  * to input space, its orientation in the same element's input frame is not positive or it is
- * flat (k! volume below 1e-7 (sum of squared edge lengths)^(k/2), both in that frame).
+ * flat (k! volume below 1e-7 (sum of squared edge lengths)^(k/2), both in that frame), or,
+ * on a surface, flipped: its normal opposes the sum of the normals of the input triangles that
+ * hold its three sites (a fold across a strongly curved region that one element's frame misses).
  * No repair here: RepairRestrictedDelaunay (RestrictedDelaunayRefinement.h) inserts sites.
  */
 RestrictedDelaunayMesh ComputeRestrictedDelaunay(const SimplexMesh& mesh,

@@ -63,7 +63,7 @@ double ValidateSurface(const SimplexMesh& s, const SurfaceCurvatureMetricOptions
   return (hi - lo).norm();
 }
 
-/// Area-weighted vertex normals (InputError on bad ids, zero-area or unused triangles).
+/// Vertex normals with Max's weights (InputError on bad ids, zero-area or unused triangles).
 std::vector<Vec3> VertexNormals(const SimplexMesh& s, double diag)
 {
   const std::string who = "SurfaceCurvatureMetric: ";
@@ -79,9 +79,15 @@ std::vector<Vec3> VertexNormals(const SimplexMesh& s, double diag)
     {
       throw InputError(who + "triangle " + std::to_string(c) + " has zero area");
     }
+    // Max's (1999) weights: the face normal times sin(angle) / (|e1| |e2|) at each corner,
+    // i.e. (e1 x e2) / (|e1|^2 |e2|^2). Exact on a sphere, and second order on irregular
+    // one-rings where area weights leave a first-order tilt that the normal-difference
+    // curvature fit below turns into a curvature error.
+    const Vec3 x[3] = { a, b, d };
     for (int k = 0; k < 3; ++k)
     {
-      normal[static_cast<std::size_t>(t[k])] += n2;
+      const Vec3 e1 = x[(k + 1) % 3] - x[k], e2 = x[(k + 2) % 3] - x[k];
+      normal[static_cast<std::size_t>(t[k])] += n2 / (e1.squaredNorm() * e2.squaredNorm());
     }
   }
   for (std::size_t i = 0; i < np; ++i)
@@ -290,6 +296,16 @@ void AssembleMetric(const SimplexMesh& s,
     });
 }
 } // namespace
+
+std::vector<double> SurfaceVertexNormals(const SimplexMesh& s)
+{
+  const double diag = ValidateSurface(s, SurfaceCurvatureMetricOptions());
+  const std::vector<Vec3> normal = VertexNormals(s, diag);
+  std::vector<double> flat(3 * normal.size());
+  for (std::size_t i = 0; i < normal.size(); ++i)
+    Eigen::Map<Vec3>(flat.data() + 3 * i) = normal[i];
+  return flat;
+}
 
 SurfaceCurvatureMetricResult SurfaceCurvatureMetric(const SimplexMesh& s,
   const SurfaceCurvatureMetricOptions& opt)

@@ -53,6 +53,12 @@ struct SurfaceCurvatureMetricResult
 SurfaceCurvatureMetricResult SurfaceCurvatureMetric(
   const SimplexMesh& surface, const SurfaceCurvatureMetricOptions& options);
 
+/**
+ * Unit vertex normals of a consistently oriented triangle surface (3 per vertex), with Max's
+ * weights as the curvature metric uses them. Throws InputError as SurfaceCurvatureMetric does.
+ */
+std::vector<double> SurfaceVertexNormals(const SimplexMesh& surface);
+
 } // namespace av
 
 #endif

@@ -290,3 +290,68 @@ TensorToMetricResult TensorToMetric(const double* tensors,
 }
 
 } // namespace av
+
+namespace av
+{
+TensorToMetricResult TangentTensorToMetric(const double* tensors, std::size_t count,
+  int numComponents, const double* normals, TensorToMetricOptions options)
+{
+  if (numComponents != 6 && numComponents != 9)
+  {
+    throw InputError("TangentTensorToMetric: tensors need 6 or 9 components");
+  }
+  if (options.SmoothingIterations > 0)
+  {
+    throw InputError("TangentTensorToMetric: smoothing is not available with the tangent-plane "
+                     "projection (smooth the tensor field first)");
+  }
+  if (count > 0 && (!tensors || !normals))
+  {
+    throw InputError("TangentTensorToMetric: null tensors or normals");
+  }
+  // Per tuple a frame R = [t1 t2 n]; the tensor in it, R^T T R, keeps its 9 or 6 components
+  // (9: the asymmetry survives, so TensorToMetric still reports it).
+  std::vector<Eigen::Matrix3d> frames(count);
+  std::vector<double> local(count * static_cast<std::size_t>(numComponents));
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    const Eigen::Vector3d n(normals + 3 * i);
+    if (!(n.norm() > 0.5) || !n.allFinite())
+    {
+      throw InputError("TangentTensorToMetric: normal " + std::to_string(i) + " is not a unit vector");
+    }
+    const Eigen::Vector3d u = n.normalized();
+    // The axis least aligned with n gives a well-conditioned first tangent.
+    int axis = 0;
+    u.cwiseAbs().minCoeff(&axis);
+    const Eigen::Vector3d t1 = u.cross(Eigen::Vector3d::Unit(axis)).normalized();
+    Eigen::Matrix3d R;
+    R << t1, u.cross(t1), u;
+    frames[i] = R;
+    const double* t = tensors + i * numComponents;
+    double* out = local.data() + i * numComponents;
+    if (numComponents == 9)
+    {
+      const Eigen::Matrix3d T = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(t);
+      Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> outMap(out);
+      outMap = R.transpose() * T * R;
+    }
+    else
+    {
+      PackSymmetric(R.transpose() * UnpackSymmetric(t) * R, out);
+    }
+  }
+  options.Dimension = 2; // the tangent block XX, YY, XY of the local frame
+  TensorToMetricResult r = TensorToMetric(local.data(), count, numComponents, options);
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    double* m = r.Metric.Values.data() + 6 * i;
+    Eigen::Matrix3d local3 = Eigen::Matrix3d::Zero();
+    local3(0, 0) = m[0];
+    local3(1, 1) = m[1];
+    local3(0, 1) = local3(1, 0) = m[3];
+    PackSymmetric(frames[i] * local3 * frames[i].transpose(), m);
+  }
+  return r;
+}
+} // namespace av

@@ -83,6 +83,22 @@ struct TensorToMetricResult
 TensorToMetricResult TensorToMetric(const double* tensors, std::size_t count, int numComponents,
   const TensorToMetricOptions& options, const std::vector<std::int32_t>& edges = {});
 
+/**
+ * @brief TensorToMetric for tensors given on a surface: each tensor is restricted to the
+ * tangent plane of its tuple before the conversion.
+ *
+ * normals: count x 3 unit normals (e.g. SurfaceVertexNormals). Each tensor is written in a
+ * frame (t1, t2, n) of its tangent plane and normal, its 2x2 tangent block goes through
+ * TensorToMetric with Dimension 2 (every step, floor, cap and global scale on the tangent
+ * eigenvalues only), and the result is rotated back: a rank-2 metric, zero along n, as the
+ * curvature metric (Eq. 19). The normal components of the input never reach the stretch.
+ * Throws InputError for a normal of zero length or NaN, SmoothingIterations > 0 (the per-tuple
+ * frames differ, so a log-Euclidean average in them would be wrong: smooth the tensor field
+ * first) and whatever TensorToMetric throws.
+ */
+TensorToMetricResult TangentTensorToMetric(const double* tensors, std::size_t count,
+  int numComponents, const double* normals, TensorToMetricOptions options);
+
 } // namespace av
 
 #endif

@@ -1,0 +1,165 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SurfaceFidelity: Hausdorff distances with known answers (parallel squares, a half square),
+// self-intersection counts of crossing, coplanar, touching and separate triangle pairs and of
+// generated surfaces, flipped-triangle counts, Euler characteristic and boundary loops of
+// closed and open tori.
+#include "SurfaceFidelity.h"
+#include "SurfaceGenerators.h"
+#include "TriangleBvh.h"
+#include "AnisoTestChecks.h"
+
+#include <Eigen/Dense>
+
+#include <cmath>
+#include <initializer_list>
+
+namespace
+{
+/// Unit square [0, 1]^2 at height z as an n x n grid of triangles; x in [0, width].
+av::SimplexMesh Square(double z, int n, double width = 1.0)
+{
+  av::SimplexMesh m;
+  m.AmbientDim = 3;
+  m.SimplexDim = 2;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i)
+      m.Points.insert(m.Points.end(), { width * i / n, 1.0 * j / n, z });
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i)
+    {
+      const std::int32_t a = j * (n + 1) + i, b = a + 1, c = a + n + 1, d = c + 1;
+      m.Cells.insert(m.Cells.end(), { a, b, d, a, d, c });
+    }
+  return m;
+}
+
+/// Two triangles, given as 6 points, as one mesh (they share no vertex).
+av::SimplexMesh Pair(std::initializer_list<double> xyz)
+{
+  av::SimplexMesh m;
+  m.AmbientDim = 3;
+  m.SimplexDim = 2;
+  m.Points = xyz;
+  m.Cells = { 0, 1, 2, 3, 4, 5 };
+  return m;
+}
+
+av::SimplexMesh Concatenate(const av::SimplexMesh& a, const av::SimplexMesh& b)
+{
+  av::SimplexMesh m = a;
+  const auto offset = static_cast<std::int32_t>(a.NumPoints());
+  m.Points.insert(m.Points.end(), b.Points.begin(), b.Points.end());
+  for (std::int32_t v : b.Cells)
+    m.Cells.push_back(v + offset);
+  return m;
+}
+} // namespace
+
+int TestSurfaceFidelity(int, char*[])
+{
+  // Closest point on a triangle: face, edge and vertex regions.
+  {
+    const Eigen::Vector3d a(0, 0, 0), b(1, 0, 0), c(0, 1, 0);
+    AV_CHECK((av::ClosestPointOnTriangle({ 0.2, 0.2, 3 }, a, b, c) - Eigen::Vector3d(0.2, 0.2, 0)).norm() < 1e-15);
+    AV_CHECK((av::ClosestPointOnTriangle({ 1, 1, 0 }, a, b, c) - Eigen::Vector3d(0.5, 0.5, 0)).norm() < 1e-15);
+    AV_CHECK((av::ClosestPointOnTriangle({ -1, -2, 1 }, a, b, c) - a).norm() < 1e-15);
+    AV_CHECK((av::ClosestPointOnTriangle({ 0.5, -1, 0 }, a, b, c) - Eigen::Vector3d(0.5, 0, 0)).norm() < 1e-15);
+  }
+
+  // Hausdorff: two parallel squares 0.01 apart (different triangulations) are 0.01 apart.
+  {
+    const av::HausdorffResult h = av::SampledHausdorffDistance(Square(0.01, 7), Square(0.0, 10));
+    AV_CHECK_NEAR(h.ForwardMax, 0.01, 1e-12);
+    AV_CHECK_NEAR(h.BackwardMax, 0.01, 1e-12);
+    AV_CHECK_NEAR(h.MaxPercent, 100.0 * 0.01 / std::sqrt(2.0), 1e-9);
+    // Half a square against the whole: every point of the half is on the whole (forward 0),
+    // the far edge of the whole is 0.5 from the half (backward).
+    const av::HausdorffResult half = av::SampledHausdorffDistance(Square(0.0, 4, 0.5), Square(0.0, 8));
+    AV_CHECK(half.ForwardMax < 1e-12);
+    AV_CHECK_NEAR(half.BackwardMax, 0.5, 1e-12);
+    // A torus of 120 x 60 against one of 240 x 120: the chords' sagitta, r (1 - cos(pi / 60))
+    // at most for the tube, well below 0.5 % of the diagonal.
+    const av::HausdorffResult t = av::SampledHausdorffDistance(
+      av::MakeTorusSurface(3.0, 1.0, 120, 60), av::MakeTorusSurface(3.0, 1.0, 240, 120));
+    AV_CHECK(t.Max > 1e-4 && t.Max < 4.0 * (1.0 - std::cos(3.14159265358979 / 60.0)));
+    AV_CHECK(t.MaxPercent < 0.05);
+  }
+
+  // Self-intersections of pairs of triangles that share no vertex.
+  {
+    // Crossing: the second triangle pierces the first.
+    AV_CHECK(av::CountSelfIntersections(Pair({ 0, 0, 0, 2, 0, 0, 0, 2, 0,
+                                               0.5, 0.5, -1, 0.5, 0.5, 1, 3, 3, 0.5 })) == 1);
+    // Separate: the same, lifted above the first.
+    AV_CHECK(av::CountSelfIntersections(Pair({ 0, 0, 0, 2, 0, 0, 0, 2, 0,
+                                               0.5, 0.5, 1, 0.5, 0.5, 3, 3, 3, 2 })) == 0);
+    // Coplanar and overlapping; coplanar and apart.
+    AV_CHECK(av::CountSelfIntersections(Pair({ 0, 0, 0, 2, 0, 0, 0, 2, 0,
+                                               0.2, 0.2, 0, 3, 0.2, 0, 0.2, 3, 0 })) == 1);
+    AV_CHECK(av::CountSelfIntersections(Pair({ 0, 0, 0, 2, 0, 0, 0, 2, 0,
+                                               1.1, 1.1, 0, 3, 1.1, 0, 1.1, 3, 0 })) == 0);
+    // Coplanar, one inside the other (no edges cross: only the containment test sees it).
+    AV_CHECK(av::CountSelfIntersections(Pair({ 0, 0, 0, 2, 0, 0, 0, 2, 0,
+                                               0.2, 0.2, 0, 0.5, 0.2, 0, 0.2, 0.5, 0 })) == 1);
+    // A vertex exactly on the other triangle's interior (touching counts).
+    AV_CHECK(av::CountSelfIntersections(Pair({ 0, 0, 0, 2, 0, 0, 0, 2, 0,
+                                               0.5, 0.5, 0, 0.5, 0.5, 1, 1, 1, 1 })) == 1);
+    // Nearly touching: 1e-13 above the plane is apart (the predicates are not fooled).
+    AV_CHECK(av::CountSelfIntersections(Pair({ 0, 0, 0, 2, 0, 0, 0, 2, 0,
+                                               0.5, 0.5, 1e-13, 0.5, 0.5, 1, 1, 1, 1 })) == 0);
+    // Generated surfaces are embedded; a torus overlapping a shifted copy of itself is not.
+    const av::SimplexMesh torus = av::MakeTorusSurface(3.0, 1.0, 60, 30);
+    AV_CHECK(av::CountSelfIntersections(torus) == 0);
+    AV_CHECK(av::CountSelfIntersections(av::MakeDupinCyclideSurface(2.0, 1.9, 1.95, 90, 72)) == 0);
+    av::SimplexMesh shifted = torus;
+    for (std::size_t i = 0; i < shifted.NumPoints(); ++i)
+      shifted.Points[3 * i] += 1.0;
+    AV_CHECK(av::CountSelfIntersections(Concatenate(torus, shifted)) > 100);
+  }
+
+  // Flipped triangles against reference normals (+z): one reversed triangle of a square.
+  {
+    av::SimplexMesh sq = Square(0.0, 3);
+    std::vector<double> up(3 * sq.NumPoints(), 0.0);
+    for (std::size_t i = 0; i < sq.NumPoints(); ++i)
+      up[3 * i + 2] = 1.0;
+    AV_CHECK(av::CountFlippedTriangles(sq, up) == 0);
+    std::swap(sq.Cells[3 * 4 + 1], sq.Cells[3 * 4 + 2]);
+    std::vector<std::uint8_t> flags;
+    AV_CHECK(av::CountFlippedTriangles(sq, up, &flags) == 1 && flags[4] == 1);
+    AV_CHECK_THROWS(av::CountFlippedTriangles(sq, std::vector<double>(3)));
+  }
+
+  // Topology: closed torus (chi 0), half torus (a tube: chi 0, 2 loops), a quarter patch (a
+  // disk: chi 1, 1 loop), a cyclide (chi 0), a sphere (chi 2).
+  {
+    const auto closed = av::ComputeSurfaceTopology(av::MakeTorusSurface(3.0, 1.0, 40, 20));
+    AV_CHECK(closed.Euler == 0 && closed.BoundaryLoops == 0 && closed.Components == 1 &&
+      closed.NonManifoldEdges == 0 && closed.BoundaryEdges == 0);
+    const auto tube = av::ComputeSurfaceTopology(av::MakeTorusSurface(3.0, 1.0, 40, 20, 0.5));
+    AV_CHECK(tube.Euler == 0 && tube.BoundaryLoops == 2 && tube.BoundaryEdges == 40);
+    const auto disk =
+      av::ComputeSurfaceTopology(av::MakeTorusSurface(3.0, 1.0, 40, 20, 0.5, 0.5));
+    AV_CHECK(disk.Euler == 1 && disk.BoundaryLoops == 1 && disk.BoundaryEdges == 2 * (40 + 20));
+    AV_CHECK(av::ComputeSurfaceTopology(av::MakeDupinCyclideSurface(2, 1, 1.5, 30, 20)).Euler == 0);
+    AV_CHECK(av::ComputeSurfaceTopology(av::MakeIcosphere(1.0, 2)).Euler == 2);
+    // Two tori: 2 components, chi 0.
+    const av::SimplexMesh t = av::MakeTorusSurface(3.0, 1.0, 20, 10);
+    AV_CHECK(av::ComputeSurfaceTopology(Concatenate(t, t)).Components == 2);
+  }
+
+  // Bad input.
+  {
+    av::SimplexMesh tets;
+    tets.SimplexDim = 3;
+    tets.Points = { 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1 };
+    tets.Cells = { 0, 1, 2, 3 };
+    AV_CHECK_THROWS(av::CountSelfIntersections(tets));
+    AV_CHECK_THROWS(av::SampledHausdorffDistance(Square(0, 2), tets));
+    av::SimplexMesh bad = Square(0, 2);
+    bad.Cells[0] = 99;
+    AV_CHECK_THROWS(av::ComputeSurfaceTopology(bad));
+    AV_CHECK_THROWS(av::SampledHausdorffDistance(Square(0, 2), Square(0, 2), 0));
+  }
+  return AV_TEST_RESULT();
+}
