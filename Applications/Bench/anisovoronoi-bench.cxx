@@ -9,6 +9,7 @@
 #include "EmbeddingSolver.h"
 #include "JsonLine.h"
 #include "MeshStage.h"
+#include "MetricAdaptedMesh.h"
 #include "MetricAlgebra.h"
 #include "ReferenceEmbedding.h"
 #include "Stopwatch.h"
@@ -68,6 +69,7 @@ struct Args
   bool Features = true;      // corner / feature-line particles
   bool Reference = false;    // closed-form isometric embedding instead of the solver
   double FeatureAngle = 30.0;
+  double Adapt = 0.0;        // L_bg of the adapted background mesh (0 = the preset's grid)
 };
 
 /// Paper values (Tab. 5 and Fig. 4); NaN where the paper gives none.
@@ -84,6 +86,7 @@ struct Case
   double MeshSeconds = 0.0;
   std::string MeshDescription;
   PaperValues Paper;
+  av::AdaptedMeshResult Background; ///< --adapt: the figures of the adaptation
 };
 
 PaperValues PaperFor(av::AnalyticPreset p)
@@ -156,6 +159,18 @@ Case BuildCase(const Args& a)
   }
   c.Metric = av::EvaluateAnalyticMetric(c.Preset, c.Mesh);
   c.MeshSeconds = watch.Seconds();
+  if (a.Adapt > 0.0)
+  {
+    // The adapted background; the analytic metric is evaluated exactly at its points.
+    av::AdaptedMeshOptions o;
+    o.NumberOfSites = static_cast<int>(a.Sites > 0 ? a.Sites : avbench::DefaultSitesFor(c.Preset));
+    o.TargetLength = a.Adapt;
+    o.FeatureAngle = a.FeatureAngle;
+    c.Background = av::AdaptBackgroundMesh(c.Mesh, c.Metric, o);
+    c.Mesh = c.Background.Mesh;
+    c.Metric = av::EvaluateAnalyticMetric(c.Preset, c.Mesh);
+    c.MeshDescription += "-adapted-" + std::to_string(a.Adapt).substr(0, 4);
+  }
   return c;
 }
 
@@ -451,6 +466,8 @@ void Usage(std::ostream& os)
         "  --no-features     mesh: no corner / feature-line particles (paper §4.1 sharp features)\n"
         "  --feature-angle A mesh: dihedral angle in degrees above which a boundary edge is a\n"
         "                    feature line (default 30)\n"
+        "  --adapt L         embed on the adapted background mesh (MetricAdaptedMesh) with edges of\n"
+        "                    at most L output edges for the sites (0.5: two per output edge)\n"
         "  --reference-embedding  the preset's exact isometric embedding (x, y, z, H) instead\n"
         "                    of the solver (all presets but sphere-cos): separates the\n"
         "                    embedding's share of a quality loss from the rest\n"
@@ -556,6 +573,8 @@ bool Parse(int argc, char** argv, Args& a)
       a.Reference = true;
     else if (k == "--feature-angle")
       a.FeatureAngle = std::stod(next());
+    else if (k == "--adapt")
+      a.Adapt = std::stod(next());
     else if (!k.empty() && k[0] != '-' && a.CaseName.empty())
       a.CaseName = k;
     else
@@ -585,6 +604,14 @@ bool RunCase(const Args& args, const std::string& name, const StageFn& stage, in
     out.Set("stretch_min", smin);
     out.Set("stretch_max", smax);
     out.Set("input_mesh_seconds", c.MeshSeconds);
+    if (a.Adapt > 0.0)
+    {
+      out.Set("adapt_length", a.Adapt);
+      out.Set("background_seconds", c.Background.Seconds);
+      out.Set("background_splits", c.Background.NumSplits);
+      out.Set("background_collapses", c.Background.NumCollapses);
+      out.Set("background_max_edge", c.Background.MaxEdgeLength);
+    }
     stage(a, c, out);
     out.Set("threads", threads);
     out.Set("peak_rss_mb", PeakRssMb());

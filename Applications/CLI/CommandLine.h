@@ -16,6 +16,7 @@ struct Options
   int WarmupIterations = 100, Seed = 1, Smooth = 0, Refine = 0, RepairRounds = 10,
       ImproveRounds = 1, OdtIterations = 3;
   double FeatureAngle = 30.0;
+  double AdaptLength = 0.0; ///< --adapt / --adapt-length: L_bg of the adapted background (0 = off)
   bool Features = true;
   double Mu = 100.0, Shrink = 0.8, MinEigenvalue = 1e-3, MaxAnisotropy = 25.0;
   bool TensorAsMetric = false, Clamp = false, Quiet = false, Repair = true;

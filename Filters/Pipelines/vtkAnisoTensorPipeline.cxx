@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkAnisoTensorPipeline.h"
 
+#include "vtkAnisoAdaptedBackgroundMesh.h"
 #include "vtkAnisoDataConversion.h"
 #include "vtkAnisoEmbedding.h"
 #include "vtkAnisoFilterUtilities.h"
@@ -268,6 +269,23 @@ int vtkAnisoTensorPipeline::RequestData(vtkInformation*,
   }
 
   std::string error;
+  if (this->AdaptBackgroundMesh)
+  {
+    vtkNew<vtkAnisoAdaptedBackgroundMesh> adapted;
+    adapted->SetInputData(withMetric);
+    if (!metricName.empty())
+      adapted->SetInputArrayToProcess(
+        0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, metricName.c_str());
+    adapted->SetNumberOfSites(this->NumberOfCells);
+    adapted->SetTargetEdgeLength(this->BackgroundEdgeLength);
+    adapted->SetFeatureAngle(this->FeatureAngle);
+    if (!this->RunStage(adapted, "adapted background mesh", 0.05, 0.1, error))
+    {
+      vtkErrorMacro(<< error);
+      return 0;
+    }
+    withMetric = adapted->GetOutput();
+  }
   vtkNew<vtkAnisoEmbedding> embedding;
   embedding->SetInputData(withMetric);
   if (!metricName.empty())
@@ -327,5 +345,7 @@ void vtkAnisoTensorPipeline::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaximumAnisotropy: " << this->MaximumAnisotropy << "\n";
   os << indent << "MinimumEigenvalue: " << this->MinimumEigenvalue << "\n";
   os << indent << "SmoothingIterations: " << this->SmoothingIterations << "\n";
+  os << indent << "AdaptBackgroundMesh: " << this->AdaptBackgroundMesh << "\n";
+  os << indent << "BackgroundEdgeLength: " << this->BackgroundEdgeLength << "\n";
   os << indent << "Seed: " << this->Seed << "\n";
 }

@@ -13,7 +13,8 @@
  * - FieldMode METRIC_FIELD: the point array already is an SPD metric (e.g. "Metric" of
  *   vtkAnisoAnalyticMetric) and is used as is (those three knobs are ignored).
  * Front (run internally on a shallow copy of the input, never modifying it):
- * vtkAnisoSimplexMesh -> vtkAnisoTensorToMetric (TENSOR_FIELD) -> vtkAnisoEmbedding
+ * vtkAnisoSimplexMesh -> vtkAnisoTensorToMetric (TENSOR_FIELD) -> (AdaptBackgroundMesh)
+ * vtkAnisoAdaptedBackgroundMesh (NumberOfCells sites, BackgroundEdgeLength) -> vtkAnisoEmbedding
  * (TargetDimension, Iterations, Seed) -> vtkAnisoParticleSampler (NumberOfCells sites,
  * SamplingIterations, Seed). Subclasses add the back end in RequestBackEnd. Progress of the
  * stages is forwarded; an error of any stage becomes this filter's error (RequestData
@@ -116,6 +117,17 @@ public:
   ///@}
 
   ///@{
+  /// Adapt the background mesh to the metric and NumberOfCells before the embedding
+  /// (vtkAnisoAdaptedBackgroundMesh; default off) with edges of at most BackgroundEdgeLength
+  /// output edges (default 0.5).
+  vtkSetMacro(AdaptBackgroundMesh, bool);
+  vtkGetMacro(AdaptBackgroundMesh, bool);
+  vtkBooleanMacro(AdaptBackgroundMesh, bool);
+  vtkSetClampMacro(BackgroundEdgeLength, double, 1e-3, 10.0);
+  vtkGetMacro(BackgroundEdgeLength, double);
+  ///@}
+
+  ///@{
   /// Seed of the embedding's initial field and of the sampling (default 1).
   vtkSetMacro(Seed, int);
   vtkGetMacro(Seed, int);
@@ -170,6 +182,8 @@ protected:
   double MaximumAnisotropy = 10.0;
   double MinimumEigenvalue = 0.1;
   int SmoothingIterations = 10;
+  bool AdaptBackgroundMesh = false;
+  double BackgroundEdgeLength = 0.5;
   int Seed = 1;
 
   double AverageEdgeLengthError = 0.0;
