@@ -57,20 +57,27 @@ inline std::uint64_t EdgeKey(std::int32_t a, std::int32_t b)
 /// Local vertex pairs of the edges of a triangle (first 3) or a tetrahedron (6).
 extern const int kSimplexEdges[6][2];
 
+/// How a refinement call ended.
+enum class RefineStatus
+{
+  Done,       ///< no edge is longer than the target
+  PassLimit,  ///< long edges remain after maxPasses passes
+  PointLimit  ///< the mesh reached maxPoints points
+};
+
 /**
- * Splits every edge longer than `target`, longest first, in passes of element-disjoint splits,
- * until none is left or the mesh reaches `maxPoints` points (returns false then). New points are
- * edge midpoints with merged parent weights and the log-Euclidean metric of their parents.
+ * Splits edges longer than `target`, longest first, in at most `maxPasses` passes of
+ * element-disjoint splits. New points are edge midpoints with merged parent weights and the
+ * log-Euclidean metric of their parents.
  */
-bool RefineLongEdges(AdaptiveMeshState& state, const SimplexMesh& input,
-  const MetricField& inputMetric, double target, std::size_t maxPoints, std::size_t& numSplits,
-  int& passes);
+RefineStatus RefineLongEdges(AdaptiveMeshState& state, const MetricField& inputMetric,
+  double target, std::size_t maxPoints, int maxPasses, std::size_t& numSplits, int& passes);
 
 /// Collapses edges shorter than `shortLength` under the safety checks of AdaptBackgroundMesh
-/// (options give the angles, the quality floor, the pass count), then drops the dead cells and
-/// unused points. Returns the number of collapses.
+/// (options give the angles and the quality floor) in at most `maxPasses` passes, then drops
+/// the dead cells and unused points. Returns the number of collapses.
 std::size_t CollapseShortEdges(AdaptiveMeshState& state, double shortLength, double target,
-  const AdaptedMeshOptions& options, int& passes);
+  const AdaptedMeshOptions& options, int maxPasses, int& passes);
 
 /// Drops the points no cell uses (ids renumbered in order).
 void CompactMesh(AdaptiveMeshState& state);

@@ -127,6 +127,26 @@ void EdgeStatistics(const AdaptiveMeshState& s, double& maxLength, double& meanL
   maxLength = r.first;
   meanLength = keys.empty() ? 0.0 : r.second / static_cast<double>(keys.size());
 }
+/// Complexity of the working mesh's metric.
+double StateComplexity(const AdaptiveMeshState& s)
+{
+  SimplexMesh view;
+  view.AmbientDim = s.AmbientDim;
+  view.SimplexDim = s.SimplexDim;
+  view.Points = s.Points;
+  view.Cells = s.Cells;
+  MetricField field;
+  field.Values = s.Metric;
+  return MetricComplexity(view, field);
+}
+
+/// Splits until no edge is longer than the target (or the point limit); true when done.
+bool RefineAll(AdaptiveMeshState& s, const MetricField& metric, const AdaptedMeshOptions& o,
+  AdaptedMeshResult& result)
+{
+  return RefineLongEdges(s, metric, o.TargetLength, o.MaxPoints, 1000000, result.NumSplits,
+           result.RefinePasses) == RefineStatus::Done;
+}
 } // namespace
 
 AdaptedMeshResult AdaptBackgroundMesh(
@@ -145,20 +165,29 @@ AdaptedMeshResult AdaptBackgroundMesh(
   result.MetricScale =
     std::pow(options.NumberOfSites * UnitVertexMeasure(k) / result.Complexity, 2.0 / k);
   AdaptiveMeshState s = InitialState(mesh, metric, result.MetricScale);
+  // All splits come before all collapses: a split point then always lies in one input element,
+  // so its parents are that element's vertices (exact weights, on the input surface).
+  bool done = true;
   if (options.Refine)
   {
-    result.HitPointLimit = !RefineLongEdges(s, mesh, metric, options.TargetLength,
-      options.MaxPoints, result.NumSplits, result.RefinePasses);
+    done = RefineAll(s, metric, options, result);
+    // The input's complexity (mean metric per coarse cell) misjudges a fast-varying field; the
+    // refined mesh resolves it: rescale once from it, refine on when the scale grew.
+    const double c = StateComplexity(s);
+    const double scale = std::pow(options.NumberOfSites * UnitVertexMeasure(k) / c, 2.0 / k);
+    if (done && c > 0.0 && std::isfinite(scale) && std::abs(scale / result.MetricScale - 1.0) > 0.05)
+    {
+      result.Complexity = c;
+      result.MetricScale = scale;
+      s.LengthScale = std::sqrt(scale);
+      done = RefineAll(s, metric, options, result);
+    }
   }
+  result.HitPointLimit = !done;
   if (options.Coarsen && options.CollapseRatio > 0.0)
-  {
     result.NumCollapses = CollapseShortEdges(s, options.CollapseRatio * options.TargetLength,
-      options.TargetLength, options, result.CoarsenPasses);
-  }
-  else
-  {
-    CompactMesh(s);
-  }
+      options.TargetLength, options, options.MaxCoarsenPasses, result.CoarsenPasses);
+  CompactMesh(s);
   EdgeStatistics(s, result.MaxEdgeLength, result.MeanEdgeLength);
   result.Mesh.AmbientDim = s.AmbientDim;
   result.Mesh.SimplexDim = s.SimplexDim;

@@ -41,7 +41,7 @@ struct AdaptedMeshOptions
   double MinQuality = 0.2;
   /// Refinement stops (Result.HitPointLimit) once the mesh has this many points. >= 4.
   std::size_t MaxPoints = 4000000;
-  int MaxCoarsenPasses = 12;
+  int MaxCoarsenPasses = 30;
 };
 
 /// What AdaptBackgroundMesh returns.

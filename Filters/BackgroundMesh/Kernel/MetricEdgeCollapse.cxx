@@ -9,6 +9,7 @@
 #include "SharpFeatures.h"
 
 #include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_sort.h>
 
@@ -404,34 +405,38 @@ void BuildStars(CollapseContext& ctx)
         ctx.Stars[fill[s.Cells[c * nv + q]]++] = static_cast<std::int32_t>(c);
 }
 
-/// Short edges of the alive cells, shortest first.
+/// Short edges of the alive cells, shortest first. Lengths are evaluated per cell edge in
+/// parallel so that only the short ones are sorted.
 std::vector<std::pair<double, std::uint64_t>> ShortEdges(
   const CollapseContext& ctx, double shortLength)
 {
   const AdaptiveMeshState& s = ctx.S;
   const int nv = s.Nv(), ne = s.SimplexDim == 3 ? 6 : 3;
-  std::vector<std::uint64_t> keys;
-  keys.reserve(s.NumCells() * ne);
-  for (std::size_t c = 0; c < s.NumCells(); ++c)
-    if (ctx.Alive[c])
-      for (int e = 0; e < ne; ++e)
-        keys.push_back(
-          EdgeKey(s.Cells[c * nv + kSimplexEdges[e][0]], s.Cells[c * nv + kSimplexEdges[e][1]]));
-  tbb::parallel_sort(keys.begin(), keys.end());
-  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
-  std::vector<double> len(keys.size());
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, keys.size(), 4096),
+  using Short = std::pair<double, std::uint64_t>;
+  tbb::enumerable_thread_specific<std::vector<Short>> local;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, s.NumCells(), 2048),
     [&](const tbb::blocked_range<std::size_t>& r)
     {
-      for (std::size_t i = r.begin(); i != r.end(); ++i)
-        len[i] = s.EdgeLength(static_cast<std::int32_t>(keys[i] >> 32),
-          static_cast<std::int32_t>(keys[i] & 0xffffffffu));
+      std::vector<Short>& out = local.local();
+      for (std::size_t c = r.begin(); c != r.end(); ++c)
+      {
+        if (!ctx.Alive[c])
+          continue;
+        for (int e = 0; e < ne; ++e)
+        {
+          const std::int32_t a = s.Cells[c * nv + kSimplexEdges[e][0]];
+          const std::int32_t b = s.Cells[c * nv + kSimplexEdges[e][1]];
+          const double l = s.EdgeLength(a, b);
+          if (l < shortLength)
+            out.emplace_back(l, EdgeKey(a, b));
+        }
+      }
     });
-  std::vector<std::pair<double, std::uint64_t>> out;
-  for (std::size_t i = 0; i < keys.size(); ++i)
-    if (len[i] < shortLength)
-      out.emplace_back(len[i], keys[i]);
-  std::sort(out.begin(), out.end());
+  std::vector<Short> out;
+  for (const auto& v : local)
+    out.insert(out.end(), v.begin(), v.end());
+  tbb::parallel_sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
   return out;
 }
 
@@ -482,7 +487,7 @@ void CompactMesh(AdaptiveMeshState& s)
 }
 
 std::size_t CollapseShortEdges(AdaptiveMeshState& s, double shortLength, double target,
-  const AdaptedMeshOptions& options, int& passes)
+  const AdaptedMeshOptions& options, int maxPasses, int& passes)
 {
   CollapseContext ctx{ s, options, target,
     std::cos(options.SurfaceDeviationAngle * 3.14159265358979323846 / 180.0), {}, {}, {}, {}, {},
@@ -490,7 +495,7 @@ std::size_t CollapseShortEdges(AdaptiveMeshState& s, double shortLength, double 
   ClassifyVertices(ctx);
   ctx.Alive.assign(s.NumCells(), 1);
   std::size_t total = 0;
-  for (passes = 0; passes < options.MaxCoarsenPasses;)
+  for (int pass = 0; pass < maxPasses; ++pass)
   {
     BuildStars(ctx);
     const auto edges = ShortEdges(ctx, shortLength);
@@ -510,7 +515,7 @@ std::size_t CollapseShortEdges(AdaptiveMeshState& s, double shortLength, double 
     }
     ++passes;
     total += done;
-    if (done == 0 || done * 200 < s.NumPoints())
+    if (done == 0 || done * 100 < s.NumPoints())
       break;
   }
   Compact(s, ctx.Alive);

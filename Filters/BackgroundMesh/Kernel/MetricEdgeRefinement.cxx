@@ -175,9 +175,10 @@ void InterpolateNewMetrics(AdaptiveMeshState& s, const MetricField& inputMetric,
 }
 } // namespace
 
-bool RefineLongEdges(AdaptiveMeshState& s, const SimplexMesh&, const MetricField& inputMetric,
-  double target, std::size_t maxPoints, std::size_t& numSplits, int& passes)
+RefineStatus RefineLongEdges(AdaptiveMeshState& s, const MetricField& inputMetric, double target,
+  std::size_t maxPoints, int maxPasses, std::size_t& numSplits, int& passes)
 {
+  int done = 0;
   std::vector<std::int32_t> active(s.NumCells());
   for (std::size_t c = 0; c < active.size(); ++c)
     active[c] = static_cast<std::int32_t>(c);
@@ -189,6 +190,8 @@ bool RefineLongEdges(AdaptiveMeshState& s, const SimplexMesh&, const MetricField
   std::vector<std::int32_t> next;
   while (!active.empty())
   {
+    if (done == maxPasses)
+      return RefineStatus::PassLimit;
     CollectEdges(s, active, entries, starts);
     const std::size_t numEdges = starts.size() - 1;
     lengths.resize(numEdges);
@@ -242,8 +245,9 @@ bool RefineLongEdges(AdaptiveMeshState& s, const SimplexMesh&, const MetricField
     }
     InterpolateNewMetrics(s, inputMetric, firstNew);
     ++passes;
+    ++done;
     if (full)
-      return false;
+      return RefineStatus::PointLimit;
     // Cells without a long edge never get one again: splits only cut long edges.
     for (const std::int32_t c : active)
     {
@@ -252,7 +256,7 @@ bool RefineLongEdges(AdaptiveMeshState& s, const SimplexMesh&, const MetricField
     }
     active.swap(next);
   }
-  return true;
+  return RefineStatus::Done;
 }
 
 } // namespace av

@@ -144,13 +144,13 @@ void CheckSpd(const AdaptedMeshResult& r, bool rank2)
   AV_CHECK(ok);
 }
 
-/// Metric of a wall layer at z = 0: size hz(z) = 0.002 + 0.3 z across, 0.15 along (stretch ~75).
+/// Metric of a wall layer at z = 0: size hz(z) = 0.03 + 0.3 z across, 0.15 along (stretch 5 at the wall).
 MetricField LayerMetric(const SimplexMesh& m)
 {
   MetricField f;
   for (std::size_t i = 0; i < m.NumPoints(); ++i)
   {
-    const double hz = 0.002 + 0.3 * m.Point(i)[2];
+    const double hz = 0.03 + 0.3 * m.Point(i)[2];
     const double h = 0.15;
     f.Values.insert(f.Values.end(), { 1.0 / (h * h), 1.0 / (h * h), 1.0 / (hz * hz), 0, 0, 0 });
   }
@@ -160,16 +160,16 @@ MetricField LayerMetric(const SimplexMesh& m)
 void TestBoundaryLayer()
 {
   const double lo[3] = { 0, 0, 0 }, hi[3] = { 1, 1, 1 };
-  const SimplexMesh input = MakeKuhnTetGrid(5, 5, 5, lo, hi);
+  const SimplexMesh input = MakeKuhnTetGrid(4, 4, 4, lo, hi);
   const MetricField metric = LayerMetric(input);
   AdaptedMeshOptions o;
-  o.NumberOfSites = 3000;
+  o.NumberOfSites = 300;
   o.TargetLength = 0.5;
   const AdaptedMeshResult r = AdaptBackgroundMesh(input, metric, o);
   std::cout << "layer: " << r.Mesh.NumPoints() << " points, " << r.Mesh.NumCells() << " tets, "
             << r.NumSplits << " splits, " << r.NumCollapses << " collapses, max edge "
             << r.MaxEdgeLength << ", " << r.Seconds << " s\n";
-  AV_CHECK(!r.HitPointLimit && r.NumSplits > 1000 && r.NumCollapses > 0);
+  AV_CHECK(!r.HitPointLimit && r.NumSplits > 1000 && r.NumCollapses > 100);
   double minVol = 0.0;
   AV_CHECK_NEAR(TotalMeasure(r.Mesh, minVol), 1.0, 1e-12);
   AV_CHECK(minVol > 0.0);
@@ -202,14 +202,14 @@ void TestBoundaryLayer()
   for (std::size_t i = 0; i < e.size(); i += 2)
   {
     const Eigen::Vector3d a = P(r.Mesh, e[i]), b = P(r.Mesh, e[i + 1]);
-    if (std::max(a[2], b[2]) > 0.01)
+    if (std::max(a[2], b[2]) > 0.02)
       continue;
     maxAcross = std::max(maxAcross, std::abs(a[2] - b[2]));
     maxAlong = std::max(maxAlong, std::hypot(a[0] - b[0], a[1] - b[1]));
   }
-  AV_CHECK_MSG(maxAlong > 10.0 * maxAcross, "along " << maxAlong << " across " << maxAcross);
-  // An isotropic mesh at the wall size would need ~(1/0.002)^3 points; this one is small.
-  AV_CHECK(r.Mesh.NumPoints() < 200000u);
+  AV_CHECK_MSG(maxAlong > 3.0 * maxAcross, "along " << maxAlong << " across " << maxAcross);
+  // An isotropic mesh at the wall size would need ~(1/0.03)^3 / 0.5^3 ~ 300000 points.
+  AV_CHECK(r.Mesh.NumPoints() < 60000u);
 }
 
 /// A fine grid and few sites: coarsening shrinks it, keeps the box and the criterion.
@@ -221,13 +221,13 @@ void TestCoarsening()
   for (std::size_t i = 0; i < input.NumPoints(); ++i)
     metric.Values.insert(metric.Values.end(), { 4, 1, 1, 0, 0, 0 }); // anisotropic, constant
   AdaptedMeshOptions o;
-  o.NumberOfSites = 150;
+  o.NumberOfSites = 20;
   const AdaptedMeshResult r = AdaptBackgroundMesh(input, metric, o);
   std::cout << "coarsen: " << input.NumPoints() << " -> " << r.Mesh.NumPoints() << " points, "
             << r.NumCollapses << " collapses in " << r.CoarsenPasses << " passes, " << r.Seconds
             << " s\n";
   AV_CHECK(r.NumSplits == 0);
-  AV_CHECK(r.Mesh.NumPoints() * 3 < input.NumPoints());
+  AV_CHECK(r.Mesh.NumPoints() * 2 < input.NumPoints());
   double minVol = 0.0;
   AV_CHECK_NEAR(TotalMeasure(r.Mesh, minVol), 2.0, 1e-12);
   AV_CHECK(minVol > 0.0);
