@@ -9,6 +9,7 @@
 #include "EmbeddingSolver.h"
 #include "JsonLine.h"
 #include "MeshStage.h"
+#include "MetricAdaptedMesh.h"
 #include "MetricAlgebra.h"
 #include "RealCases.h"
 #include "MetricPreparation.h"
@@ -81,6 +82,7 @@ struct Args
   bool NoPrepare = false; // real tensor cases: --no-prepare-metric keeps the raw metric
   av::MetricPreparationOptions Preparation;
   double MaxStretch = 0.0;    // surface cases: curvature metric cap (0: the case's own)
+  double Adapt = 0.0;        // L_bg of the adapted background mesh (0 = the preset's grid)
 };
 
 /// Paper values (Tab. 5 and Fig. 4); NaN where the paper gives none.
@@ -106,6 +108,7 @@ struct Case
   std::size_t DefaultSites = 0;        // the paper's output vertex count
   avbench::PaperMeshValues PaperMesh{}; // Tab. 5 / Tab. 3 meshing row
   double MaxStretch = 0.0;             // surface cases: the curvature metric's cap
+  av::AdaptedMeshResult Background; ///< --adapt: the figures of the adaptation
 };
 
 PaperValues PaperFor(av::AnalyticPreset p)
@@ -272,6 +275,18 @@ Case BuildCase(const Args& a)
   }
   c.Metric = av::EvaluateAnalyticMetric(c.Preset, c.Mesh);
   c.MeshSeconds = watch.Seconds();
+  if (a.Adapt > 0.0)
+  {
+    // The adapted background; the analytic metric is evaluated exactly at its points.
+    av::AdaptedMeshOptions o;
+    o.NumberOfSites = static_cast<int>(a.Sites > 0 ? a.Sites : c.DefaultSites);
+    o.TargetLength = a.Adapt;
+    o.FeatureAngle = a.FeatureAngle;
+    c.Background = av::AdaptBackgroundMesh(c.Mesh, c.Metric, o);
+    c.Mesh = c.Background.Mesh;
+    c.Metric = av::EvaluateAnalyticMetric(c.Preset, c.Mesh);
+    c.MeshDescription += "-adapted-" + std::to_string(a.Adapt).substr(0, 4);
+  }
   if (a.Prepare)
     PrepareCaseMetric(a, c, a.Sites > 0 ? a.Sites : c.DefaultSites);
   StretchRange(c, c.StretchMin, c.StretchMax);
@@ -611,6 +626,8 @@ void Usage(std::ostream& os)
         "  --no-features     mesh: no corner / feature-line particles (paper §4.1 sharp features)\n"
         "  --feature-angle A mesh: dihedral angle in degrees above which a boundary edge is a\n"
         "                    feature line (default 30)\n"
+        "  --adapt L         embed on the adapted background mesh (MetricAdaptedMesh) with edges of\n"
+        "                    at most L output edges for the sites (0.5: two per output edge)\n"
         "  --reference-embedding  the preset's exact isometric embedding (x, y, z, H) instead\n"
         "                    of the solver (all presets but sphere-cos): separates the\n"
         "                    embedding's share of a quality loss from the rest\n"
@@ -765,6 +782,8 @@ bool Parse(int argc, char** argv, Args& a)
     }
     else if (k == "--no-gradation")
       a.Preparation.Gradation = false;
+    else if (k == "--adapt")
+      a.Adapt = std::stod(next());
     else if (!k.empty() && k[0] != '-' && a.CaseName.empty())
       a.CaseName = k;
     else
@@ -797,6 +816,14 @@ bool RunCase(const Args& args, const std::string& name, const StageFn& stage, in
     out.Set("stretch_min", c.StretchMin);
     out.Set("stretch_max", c.StretchMax);
     out.Set("input_mesh_seconds", c.MeshSeconds);
+    if (a.Adapt > 0.0)
+    {
+      out.Set("adapt_length", a.Adapt);
+      out.Set("background_seconds", c.Background.Seconds);
+      out.Set("background_splits", c.Background.NumSplits);
+      out.Set("background_collapses", c.Background.NumCollapses);
+      out.Set("background_max_edge", c.Background.MaxEdgeLength);
+    }
     stage(a, c, out);
     out.Set("threads", threads);
     out.Set("peak_rss_mb", PeakRssMb());

@@ -68,6 +68,10 @@ meshing:
   --refine N               volumes: remesh the domain with TetGen to about N vertices and
                            interpolate the input's point data onto it (a coarse FE mesh
                            cannot carry a fast-varying metric; default 0 = off)
+  --adapt                  adapt the background mesh to the metric and --sites before the
+                           embedding: split long metric edges, collapse short ones
+                           (edges of at most 0.5 output edges; default off)
+  --adapt-length L         --adapt with edges of at most L output edges (in (0, 10])
   --no-repair              keep inverted mesh elements (default: insert sites at their dual
                            Voronoi vertices until none is left, paper §4.2)
   --repair-rounds N        insertion rounds at most (default 10)
@@ -158,6 +162,8 @@ void CheckOptions(const Options& o)
     Fail("--feature-angle must be in (0, 180]", 2);
   if (!(o.Shrink > 0 && o.Shrink <= 1))
     Fail("--shrink must be in (0, 1]", 2);
+  if (!(o.AdaptLength >= 0 && o.AdaptLength <= 10))
+    Fail("--adapt-length must be in (0, 10]", 2);
   if (o.RepairRounds < 0 || o.RepairRounds > 1000)
     Fail("--repair-rounds must be in [0, 1000]", 2);
   if (o.ImproveRounds < 0 || o.ImproveRounds > 10)
@@ -248,6 +254,10 @@ Options ParseCommandLine(int argc, char* argv[])
       o.Seed = ParseInt(a, next());
     else if (a == "--refine")
       o.Refine = ParseInt(a, next());
+    else if (a == "--adapt")
+      o.AdaptLength = 0.5;
+    else if (a == "--adapt-length")
+      o.AdaptLength = ParseDouble(a, next());
     else if (a == "--smooth")
       o.Smooth = ParseInt(a, next());
     else if (a == "--mu")

@@ -18,6 +18,7 @@ struct Options
   int WarmupIterations = 100, Seed = 1, Smooth = 0, Refine = 0, RepairRounds = 10,
       ImproveRounds = 1, OdtIterations = 3;
   double FeatureAngle = 30.0;
+  double AdaptLength = 0.0; ///< --adapt / --adapt-length: L_bg of the adapted background (0 = off)
   bool Features = true;
   double Mu = 100.0, Shrink = 0.8, MinEigenvalue = 1e-3, MaxAnisotropy = 25.0;
   double MaxStretch = 10.0; ///< curvature: cap on s2 / s1 (0 = none)

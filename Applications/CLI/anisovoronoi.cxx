@@ -13,6 +13,7 @@
 #include "MeditOutput.h"
 #include "MetricFieldOps.h"
 #include "StageRunner.h"
+#include "vtkAnisoAdaptedBackgroundMesh.h"
 #include "vtkAnisoAnalyticMetric.h"
 #include "vtkAnisoAnalyticMetricSource.h"
 #include "vtkAnisoCurvatureMetric.h"
@@ -78,6 +79,7 @@ struct MeshingStages
 // Stage names: progress lines, and the keys of their seconds in the report.
 const char* const VoronoiStage = "restricted Voronoi diagram";
 const char* const DelaunayStage = "restricted Delaunay mesh";
+const char* const BackgroundStage = "adapt the background mesh";
 std::string SamplingStage(const Options& o)
 {
   return "sampling " + std::to_string(o.Sites) + " sites";
@@ -347,7 +349,21 @@ std::string RunInputStages(Options& o, MeshingStages& s, StageRunner& runner)
   s.Domain = s.Simplices.GetPointer();
   if (o.Refine > 0)
     s.Domain = RunRefinement(o, s.Simplices, runner);
-  return RunMetric(o, s, runner);
+  const std::string metricName = RunMetric(o, s, runner);
+  if (o.AdaptLength > 0)
+  {
+    // 3b. --adapt: the mesh the embedding runs on follows the metric and the sites.
+    auto adapted = vtkSmartPointer<vtkAnisoAdaptedBackgroundMesh>::New();
+    adapted->SetInputConnection(s.Metric->GetOutputPort());
+    adapted->SetInputArrayToProcess(
+      0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, metricName.c_str());
+    adapted->SetNumberOfSites(o.Sites);
+    adapted->SetTargetEdgeLength(o.AdaptLength);
+    adapted->SetFeatureAngle(o.FeatureAngle);
+    runner.Run(adapted, BackgroundStage);
+    s.Metric = adapted;
+  }
+  return metricName;
 }
 
 /// 4. to 6.: embedding, sites, the dual mesh (with the repair's inserted sites), then the
@@ -448,6 +464,9 @@ std::vector<std::pair<std::string, std::string>> ReportEntries(const Options& o,
     { "metric", "\"" + o.Metric + "\"" },
     { "input_vertices", std::to_string(meshIn ? meshIn->GetNumberOfPoints() : 0) },
     { "input_elements", std::to_string(meshIn ? meshIn->GetNumberOfCells() : 0) },
+    { "adapt_length", JsonNumber(o.AdaptLength) },
+    { "background_input_vertices", JsonNumber(FieldValue(embedded, "BackgroundInputPoints")) },
+    { "background_seconds", JsonNumber(runner.SecondsOf(BackgroundStage)) },
     { "dim", std::to_string(o.Dim) },
     { "iterations", std::to_string(o.Iterations) },
     { "metric_scale", JsonNumber(FieldValue(embedded, "MetricScale")) },

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkAnisoTensorPipeline.h"
 
+#include "vtkAnisoAdaptedBackgroundMesh.h"
 #include "vtkAnisoDataConversion.h"
 #include "vtkAnisoEmbedding.h"
 #include "vtkAnisoFilterUtilities.h"
@@ -339,6 +340,23 @@ int vtkAnisoTensorPipeline::RequestData(vtkInformation*,
   }
 
   std::string error;
+  if (this->AdaptBackgroundMesh)
+  {
+    vtkNew<vtkAnisoAdaptedBackgroundMesh> adapted;
+    adapted->SetInputData(withMetric);
+    if (!metricName.empty())
+      adapted->SetInputArrayToProcess(
+        0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, metricName.c_str());
+    adapted->SetNumberOfSites(this->NumberOfCells);
+    adapted->SetTargetEdgeLength(this->BackgroundEdgeLength);
+    adapted->SetFeatureAngle(this->FeatureAngle);
+    if (!this->RunStage(adapted, "adapted background mesh", 0.05, 0.1, error))
+    {
+      vtkErrorMacro(<< error);
+      return 0;
+    }
+    withMetric = adapted->GetOutput();
+  }
   vtkNew<vtkAnisoEmbedding> embedding;
   embedding->SetInputData(withMetric);
   if (!metricName.empty())
@@ -414,5 +432,7 @@ void vtkAnisoTensorPipeline::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "HMax: " << this->HMax << "\n";
   os << indent << "Gradation: " << (this->Gradation ? "on" : "off") << "\n";
   os << indent << "GradationFactor: " << this->GradationFactor << "\n";
+  os << indent << "AdaptBackgroundMesh: " << this->AdaptBackgroundMesh << "\n";
+  os << indent << "BackgroundEdgeLength: " << this->BackgroundEdgeLength << "\n";
   os << indent << "Seed: " << this->Seed << "\n";
 }

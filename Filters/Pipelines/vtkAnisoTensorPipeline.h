@@ -19,7 +19,8 @@
  *   vtkAnisoTensorToMetric, the Medit .sol reader), else TENSOR_FIELD. The mode that ran is
  *   told as a text message (vtkOutputWindow) and as the field-data string "FieldMode".
  * Front (run internally on a shallow copy of the input, never modifying it):
- * vtkAnisoSimplexMesh -> vtkAnisoTensorToMetric (TENSOR_FIELD) -> vtkAnisoEmbedding
+ * vtkAnisoSimplexMesh -> vtkAnisoTensorToMetric (TENSOR_FIELD) -> (AdaptBackgroundMesh)
+ * vtkAnisoAdaptedBackgroundMesh (NumberOfCells sites, BackgroundEdgeLength) -> vtkAnisoEmbedding
  * (TargetDimension, Iterations, Seed) -> vtkAnisoParticleSampler (NumberOfCells sites,
  * SamplingIterations, Seed). Subclasses add the back end in RequestBackEnd. Progress of the
  * stages is forwarded; an error of any stage becomes this filter's error (RequestData
@@ -144,6 +145,14 @@ public:
   vtkBooleanMacro(Gradation, bool);
   vtkSetClampMacro(GradationFactor, double, 1.0001, 1000.0);
   vtkGetMacro(GradationFactor, double);
+  /// Adapt the background mesh to the metric and NumberOfCells before the embedding
+  /// (vtkAnisoAdaptedBackgroundMesh; default off) with edges of at most BackgroundEdgeLength
+  /// output edges (default 0.5).
+  vtkSetMacro(AdaptBackgroundMesh, bool);
+  vtkGetMacro(AdaptBackgroundMesh, bool);
+  vtkBooleanMacro(AdaptBackgroundMesh, bool);
+  vtkSetClampMacro(BackgroundEdgeLength, double, 1e-3, 10.0);
+  vtkGetMacro(BackgroundEdgeLength, double);
   ///@}
 
   ///@{
@@ -219,6 +228,8 @@ protected:
   double HMax = 0.0;
   bool Gradation = true;
   double GradationFactor = 1.3;
+  bool AdaptBackgroundMesh = false;
+  double BackgroundEdgeLength = 0.5;
   int Seed = 1;
 
   double AverageEdgeLengthError = 0.0;
