@@ -8,6 +8,7 @@
 #include "vtkAnisoTestUtilities.h"
 
 #include <vtkCellArray.h>
+#include <vtkDataObject.h>
 #include <vtkCellData.h>
 #include <vtkDataArray.h>
 #include <vtkDoubleArray.h>
@@ -303,6 +304,9 @@ int TestAnisoDelaunayRepair(int, char*[])
   // The input sites must stay as given (checked below): no ODT / sliver improvement rounds.
   AV_CHECK(rdt->GetImprovementRounds() == 1);
   rdt->SetImprovementRounds(0);
+  // Nor the final mesh improvement (it moves sites too); checked at the end.
+  AV_CHECK(rdt->GetImproveMesh());
+  rdt->ImproveMeshOff();
 
   const double before = CheckWithoutRepair(rdt, events);
   CheckWithRepair(rdt, events, mesh, sites, before);
@@ -312,5 +316,34 @@ int TestAnisoDelaunayRepair(int, char*[])
   rdt->Update();
   AV_CHECK(rdt->GetOutput()->GetNumberOfPoints() == Sites);
   AV_CHECK(FieldValue(rdt->GetOutput(), "NumInverted") == before);
+
+  // Repair and mesh improvement (the defaults): still valid, and the improvement worked
+  // (the mesh carries "Metric"), with moved sites' point data interpolated where they are.
+  rdt->SetMaxRepairRounds(10);
+  rdt->ImproveMeshOn();
+  events->Reset();
+  rdt->Update();
+  vtkUnstructuredGrid* out = rdt->GetOutput();
+  std::printf("repair + improvement: %g flips, %g moves, inverted %g\n",
+    FieldValue(out, "NumImprovementFlips"), FieldValue(out, "NumImprovementMoves"),
+    FieldValue(out, "NumInverted"));
+  AV_CHECK(events->Errors == 0);
+  AV_CHECK(FieldValue(out, "NumInverted") == 0 && NegativeTriangles(out) == 0);
+  AV_CHECK(FieldValue(out, "NumImprovementFlips") + FieldValue(out, "NumImprovementMoves") > 0);
+  vtkDataArray* emb = out->GetPointData()->GetArray("Embedding");
+  AV_CHECK(emb != nullptr);
+  for (vtkIdType i = 0; emb && i < out->GetNumberOfPoints(); ++i)
+  {
+    double p[3];
+    out->GetPoint(i, p);
+    AV_CHECK(std::abs(emb->GetComponent(i, 0) - p[0]) < 1e-9 &&
+      std::abs(emb->GetComponent(i, 1) - p[1]) < 1e-9);
+  }
+  // Without a metric array: a warning, the repaired dual as it is.
+  rdt->SetInputArrayToProcess(1, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "NoSuchArray");
+  events->Reset();
+  rdt->Update();
+  AV_CHECK(events->Warnings >= 1 && events->Errors == 0);
+  AV_CHECK(FieldValue(rdt->GetOutput(), "NumImprovementMoves") == 0);
   return AV_TEST_RESULT();
 }
