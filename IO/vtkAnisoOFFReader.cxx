@@ -19,7 +19,8 @@ vtkAnisoOFFReader::vtkAnisoOFFReader()
   this->SetNumberOfInputPorts(0);
 }
 
-int vtkAnisoOFFReader::RequestData(vtkInformation*, vtkInformationVector**,
+int vtkAnisoOFFReader::RequestData(vtkInformation*,
+  vtkInformationVector**,
   vtkInformationVector* outputVector)
 {
   vtkPolyData* output = vtkPolyData::GetData(outputVector);

@@ -59,8 +59,10 @@ struct DistanceSums
 DistanceSums SampleDistances(const SimplexMesh& from, const TriangleBvh& to, int n)
 {
   return tbb::parallel_reduce(
-    tbb::blocked_range<std::size_t>(0, from.NumCells(), 256), DistanceSums{},
-    [&](const tbb::blocked_range<std::size_t>& r, DistanceSums acc) {
+    tbb::blocked_range<std::size_t>(0, from.NumCells(), 256),
+    DistanceSums{},
+    [&](const tbb::blocked_range<std::size_t>& r, DistanceSums acc)
+    {
       for (std::size_t t = r.begin(); t != r.end(); ++t)
       {
         const std::int32_t* v = from.Cell(t);
@@ -79,7 +81,8 @@ DistanceSums SampleDistances(const SimplexMesh& from, const TriangleBvh& to, int
       }
       return acc;
     },
-    [](DistanceSums x, const DistanceSums& y) {
+    [](DistanceSums x, const DistanceSums& y)
+    {
       x.Max = std::max(x.Max, y.Max);
       x.Sum += y.Sum;
       x.Count += y.Count;
@@ -121,8 +124,8 @@ int Orient2d(const Vec3& a, const Vec3& b, const Vec3& c, int drop)
 {
   const int x = (drop + 1) % 3, y = (drop + 2) % 3;
   const double det = (b[x] - a[x]) * (c[y] - a[y]) - (b[y] - a[y]) * (c[x] - a[x]);
-  const double bound = 4.0e-16 *
-    (std::abs((b[x] - a[x]) * (c[y] - a[y])) + std::abs((b[y] - a[y]) * (c[x] - a[x])));
+  const double bound =
+    4.0e-16 * (std::abs((b[x] - a[x]) * (c[y] - a[y])) + std::abs((b[y] - a[y]) * (c[x] - a[x])));
   if (det > bound)
     return 1;
   if (det < -bound)
@@ -157,8 +160,7 @@ bool InsideTriangle2d(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c
 }
 
 /// Does segment pq meet triangle abc (boundary included)?
-bool SegmentMeetsTriangle(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b,
-  const Vec3& c)
+bool SegmentMeetsTriangle(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b, const Vec3& c)
 {
   const int op = Orient3d(a, b, c, p), oq = Orient3d(a, b, c, q);
   if (op * oq > 0)
@@ -197,8 +199,9 @@ std::int32_t Find(std::vector<std::int32_t>& parent, std::int32_t x)
 }
 } // namespace
 
-HausdorffResult SampledHausdorffDistance(
-  const SimplexMesh& surface, const SimplexMesh& reference, int samplesPerEdge)
+HausdorffResult SampledHausdorffDistance(const SimplexMesh& surface,
+  const SimplexMesh& reference,
+  int samplesPerEdge)
 {
   CheckSurface(surface, "SampledHausdorffDistance");
   CheckSurface(reference, "SampledHausdorffDistance");
@@ -225,24 +228,29 @@ std::size_t CountSelfIntersections(const SimplexMesh& surface)
   CheckSurface(surface, "CountSelfIntersections");
   const TriangleBvh bvh(surface);
   return tbb::parallel_reduce(
-    tbb::blocked_range<std::size_t>(0, surface.NumCells(), 128), std::size_t(0),
-    [&](const tbb::blocked_range<std::size_t>& r, std::size_t count) {
+    tbb::blocked_range<std::size_t>(0, surface.NumCells(), 128),
+    std::size_t(0),
+    [&](const tbb::blocked_range<std::size_t>& r, std::size_t count)
+    {
       for (std::size_t i = r.begin(); i != r.end(); ++i)
       {
         const std::int32_t* vi = surface.Cell(i);
         const std::array<Vec3, 3> s = { P(surface, vi[0]), P(surface, vi[1]), P(surface, vi[2]) };
-        bvh.ForEachOverlapping(bvh.TriangleBox(static_cast<std::int32_t>(i)), [&](std::int32_t j) {
-          if (static_cast<std::size_t>(j) <= i)
-            return; // each pair once
-          const std::int32_t* vj = surface.Cell(j);
-          for (int a = 0; a < 3; ++a)
-            for (int b = 0; b < 3; ++b)
-              if (vi[a] == vj[b])
-                return; // adjacent: they share a vertex
-          const std::array<Vec3, 3> t = { P(surface, vj[0]), P(surface, vj[1]),
-            P(surface, vj[2]) };
-          count += TrianglesIntersect(s, t) ? 1 : 0;
-        });
+        bvh.ForEachOverlapping(bvh.TriangleBox(static_cast<std::int32_t>(i)),
+          [&](std::int32_t j)
+          {
+            if (static_cast<std::size_t>(j) <= i)
+              return; // each pair once
+            const std::int32_t* vj = surface.Cell(j);
+            for (int a = 0; a < 3; ++a)
+              for (int b = 0; b < 3; ++b)
+                if (vi[a] == vj[b])
+                  return; // adjacent: they share a vertex
+            const std::array<Vec3, 3> t = {
+              P(surface, vj[0]), P(surface, vj[1]), P(surface, vj[2])
+            };
+            count += TrianglesIntersect(s, t) ? 1 : 0;
+          });
       }
       return count;
     },
@@ -250,7 +258,8 @@ std::size_t CountSelfIntersections(const SimplexMesh& surface)
 }
 
 std::size_t CountFlippedTriangles(const SimplexMesh& surface,
-  const std::vector<double>& vertexNormals, std::vector<std::uint8_t>* flipped)
+  const std::vector<double>& vertexNormals,
+  std::vector<std::uint8_t>* flipped)
 {
   CheckSurface(surface, "CountFlippedTriangles");
   if (vertexNormals.size() != 3 * surface.NumPoints())
@@ -328,8 +337,8 @@ SurfaceTopology ComputeSurfaceTopology(const SimplexMesh& surface)
     topo.Components += used[v] && Find(parent, id) == id ? 1 : 0;
     topo.BoundaryLoops += onBoundary[v] && Find(loopParent, id) == id ? 1 : 0;
   }
-  topo.Euler = vertices - static_cast<long long>(unique) +
-    static_cast<long long>(surface.NumCells());
+  topo.Euler =
+    vertices - static_cast<long long>(unique) + static_cast<long long>(surface.NumCells());
   return topo;
 }
 

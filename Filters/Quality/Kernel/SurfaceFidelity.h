@@ -34,8 +34,9 @@ struct HausdorffResult
  * distance that converges as n grows. Runs in parallel (TBB).
  * Throws InputError for meshes that are not non-empty triangle surfaces in 3D.
  */
-HausdorffResult SampledHausdorffDistance(
-  const SimplexMesh& surface, const SimplexMesh& reference, int samplesPerEdge = 3);
+HausdorffResult SampledHausdorffDistance(const SimplexMesh& surface,
+  const SimplexMesh& reference,
+  int samplesPerEdge = 3);
 
 /**
  * Number of pairs of triangles that share no vertex and intersect (touching counts), the
@@ -54,7 +55,8 @@ std::size_t CountSelfIntersections(const SimplexMesh& surface);
  * `flipped`, if given, gets one flag per triangle.
  */
 std::size_t CountFlippedTriangles(const SimplexMesh& surface,
-  const std::vector<double>& vertexNormals, std::vector<std::uint8_t>* flipped = nullptr);
+  const std::vector<double>& vertexNormals,
+  std::vector<std::uint8_t>* flipped = nullptr);
 
 /// Euler characteristic V - E + F of the used vertices, and the count of boundary loops.
 struct SurfaceTopology

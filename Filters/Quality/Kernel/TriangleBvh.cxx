@@ -10,8 +10,10 @@
 namespace av
 {
 
-Eigen::Vector3d ClosestPointOnTriangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
-  const Eigen::Vector3d& b, const Eigen::Vector3d& c)
+Eigen::Vector3d ClosestPointOnTriangle(const Eigen::Vector3d& p,
+  const Eigen::Vector3d& a,
+  const Eigen::Vector3d& b,
+  const Eigen::Vector3d& c)
 {
   // Voronoi regions of the vertices, then of the edges, else the face (Ericson, 5.1.5).
   const Eigen::Vector3d ab = b - a, ac = c - a, ap = p - a;
@@ -65,7 +67,8 @@ TriangleBvh::TriangleBvh(const SimplexMesh& surface)
       const std::int32_t v = surface.Cell(t)[k];
       if (v < 0 || static_cast<std::size_t>(v) >= surface.NumPoints())
       {
-        throw InputError("TriangleBvh: triangle " + std::to_string(t) + " has a point id out of range");
+        throw InputError(
+          "TriangleBvh: triangle " + std::to_string(t) + " has a point id out of range");
       }
       const Eigen::Map<const Eigen::Vector3d> p(surface.Point(v));
       box.extend(p);
@@ -98,10 +101,11 @@ void TriangleBvh::Build(std::int32_t node, std::int32_t begin, std::int32_t end,
   int axis = 0;
   centers.sizes().maxCoeff(&axis);
   const std::int32_t mid = begin + (end - begin) / 2;
-  std::nth_element(this->Order.begin() + begin, this->Order.begin() + mid,
-    this->Order.begin() + end, [&](std::int32_t s, std::int32_t t) {
-      return this->Centroids[s][axis] < this->Centroids[t][axis];
-    });
+  std::nth_element(this->Order.begin() + begin,
+    this->Order.begin() + mid,
+    this->Order.begin() + end,
+    [&](std::int32_t s, std::int32_t t)
+    { return this->Centroids[s][axis] < this->Centroids[t][axis]; });
   const std::int32_t left = static_cast<std::int32_t>(this->Nodes.size());
   this->Nodes.emplace_back();
   this->Nodes.emplace_back();

@@ -15,8 +15,10 @@ namespace av
 {
 
 /// Closest point of triangle (a, b, c) to p (Ericson's region test), exact in the plane case.
-Eigen::Vector3d ClosestPointOnTriangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
-  const Eigen::Vector3d& b, const Eigen::Vector3d& c);
+Eigen::Vector3d ClosestPointOnTriangle(const Eigen::Vector3d& p,
+  const Eigen::Vector3d& a,
+  const Eigen::Vector3d& b,
+  const Eigen::Vector3d& c);
 
 /**
  * Bounding-volume hierarchy of a triangle surface (AmbientDim 3, SimplexDim 2): a binary tree,

@@ -2,8 +2,8 @@
 // vtkAnisoOFFReader: a quad and a triangle (the quad fanned into two triangles) with a comment
 // and the header on the counts' line, double-precision points, and the error paths (no file
 // name, missing file, index out of range): one error each, an empty output, no crash.
-#include "vtkAnisoTestUtilities.h" // AV_CHECK, EventCounter
 #include "vtkAnisoOFFReader.h"
+#include "vtkAnisoTestUtilities.h" // AV_CHECK, EventCounter
 
 #include <vtkCellArray.h>
 #include <vtkCommand.h>
@@ -34,8 +34,8 @@ int TestAnisoOFFReader(int, char*[])
   AV_CHECK(pd->GetPoint(4)[2] == 0.30000000000000004);
   vtkNew<vtkIdList> ids;
   pd->GetPolys()->GetCellAtId(2, ids);
-  AV_CHECK(ids->GetNumberOfIds() == 3 && ids->GetId(0) == 0 && ids->GetId(1) == 1 &&
-    ids->GetId(2) == 4);
+  AV_CHECK(
+    ids->GetNumberOfIds() == 3 && ids->GetId(0) == 0 && ids->GetId(1) == 1 && ids->GetId(2) == 4);
   for (vtkIdType c = 0; c < 2; ++c)
   {
     pd->GetPolys()->GetCellAtId(c, ids);

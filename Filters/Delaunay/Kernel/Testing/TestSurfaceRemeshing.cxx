@@ -5,13 +5,13 @@
 // triangle flipped against the input surface, no self-intersection, stays within 0.5 % of the
 // diagonal of the input; the sampler's energy never rises and every RVD piece is nearest to
 // its own site in the embedding.
+#include "AnisoTestChecks.h"
 #include "EmbeddingSolver.h"
 #include "MeshingPipeline.h"
 #include "ParticleSampler.h"
 #include "SurfaceCurvatureMetric.h"
 #include "SurfaceFidelity.h"
 #include "SurfaceGenerators.h"
-#include "AnisoTestChecks.h"
 
 #include <Eigen/Dense>
 
@@ -46,7 +46,8 @@ std::size_t FartherThanAnotherSite(const av::RestrictedVoronoiDiagram& r, const 
     for (std::int64_t v = r.PieceVertexOffsets[p]; v < r.PieceVertexOffsets[p + 1]; ++v)
     {
       const Eigen::Map<const Eigen::VectorXd> x(r.EmbeddedPoints.data() + v * dim, dim);
-      const double own = (x - Eigen::Map<const Eigen::VectorXd>(s.At(r.PieceSite[p]), dim)).squaredNorm();
+      const double own =
+        (x - Eigen::Map<const Eigen::VectorXd>(s.At(r.PieceSite[p]), dim)).squaredNorm();
       double best = std::numeric_limits<double>::infinity();
       for (std::size_t q = 0; q < s.NumSites(); ++q)
         best = std::min(best, (x - Eigen::Map<const Eigen::VectorXd>(s.At(q), dim)).squaredNorm());
@@ -56,8 +57,11 @@ std::size_t FartherThanAnotherSite(const av::RestrictedVoronoiDiagram& r, const 
   return bad;
 }
 
-void CheckRemeshing(const char* name, const av::SimplexMesh& mesh, std::size_t sites,
-  long long euler, std::size_t loops)
+void CheckRemeshing(const char* name,
+  const av::SimplexMesh& mesh,
+  std::size_t sites,
+  long long euler,
+  std::size_t loops)
 {
   const av::MetricField metric = av::SurfaceCurvatureMetric(mesh, {}).Metric;
   av::EmbeddingOptions eo;
@@ -80,15 +84,14 @@ void CheckRemeshing(const char* name, const av::SimplexMesh& mesh, std::size_t s
   dual.Points = rdt.Points;
   dual.Cells = rdt.Cells;
   const av::SurfaceTopology topo = av::ComputeSurfaceTopology(dual);
-  const std::size_t flipped =
-    av::CountFlippedTriangles(dual, SiteNormals(mesh, r.Repaired.Sites));
+  const std::size_t flipped = av::CountFlippedTriangles(dual, SiteNormals(mesh, r.Repaired.Sites));
   const std::size_t crossings = av::CountSelfIntersections(dual);
   const av::HausdorffResult h = av::SampledHausdorffDistance(dual, mesh);
   std::cout << name << ": " << dual.NumCells() << " triangles, chi " << topo.Euler << ", loops "
-            << topo.BoundaryLoops << ", nonmanifold edges " << topo.NonManifoldEdges
-            << ", flipped " << flipped << " (RDT inverted before repair "
-            << r.Repaired.InitialInverted << ", after " << rdt.NumInverted << "), crossings "
-            << crossings << ", Hausdorff " << h.MaxPercent << " %" << std::endl;
+            << topo.BoundaryLoops << ", nonmanifold edges " << topo.NonManifoldEdges << ", flipped "
+            << flipped << " (RDT inverted before repair " << r.Repaired.InitialInverted
+            << ", after " << rdt.NumInverted << "), crossings " << crossings << ", Hausdorff "
+            << h.MaxPercent << " %" << std::endl;
   AV_CHECK_MSG(topo.Euler == euler, name << ": chi " << topo.Euler << ", expected " << euler);
   AV_CHECK_MSG(topo.BoundaryLoops == loops, name << ": " << topo.BoundaryLoops << " loops");
   AV_CHECK(topo.Components == 1 && topo.NonManifoldEdges == 0);

@@ -3,12 +3,12 @@
 // (Eq. 14) sums the interior vertices only (recomputed here from the embedded coordinates, with
 // and without the boundary vertices, on an open torus patch), the energy never increases and
 // the error falls below 8 % on coarse grids, and the first three coordinates stay the input's.
+#include "AnisoTestChecks.h"
 #include "EdgeLengthError.h"
 #include "EmbeddingSolver.h"
 #include "MeshTopology.h"
 #include "SurfaceCurvatureMetric.h"
 #include "SurfaceGenerators.h"
-#include "AnisoTestChecks.h"
 
 #include <cmath>
 #include <iostream>
@@ -18,7 +18,9 @@ namespace
 {
 /// E_reg of the extra coordinates (dims 3 .. Dim-1), umbrella Laplacian over the one-ring, summed
 /// over the vertices where `include` is true.
-double Regularizer(const av::SimplexMesh& mesh, const av::Embedding& e, const std::vector<char>& include)
+double Regularizer(const av::SimplexMesh& mesh,
+  const av::Embedding& e,
+  const std::vector<char>& include)
 {
   const std::vector<std::int32_t> edges = av::UniqueEdges(mesh);
   std::vector<std::vector<std::int32_t>> ring(mesh.NumPoints());
@@ -97,7 +99,8 @@ int TestSurfaceEmbedding(int, char*[])
     const av::EdgeLengthErrorResult e = av::ComputeEdgeLengthError(mesh, m, r.Embedded);
     std::cout << (closed ? "torus" : "patch") << ": L_avg " << e.AveragePercent << " %, L_max "
               << e.MaxPercent << " %" << std::endl;
-    AV_CHECK(e.AveragePercent < 8.0); // coarse grids (4.0 % patch, 5.5 % torus); random start ~ 100 %
+    AV_CHECK(
+      e.AveragePercent < 8.0); // coarse grids (4.0 % patch, 5.5 % torus); random start ~ 100 %
     if (!closed)
     {
       const double inner = Regularizer(mesh, r.Embedded, interior);

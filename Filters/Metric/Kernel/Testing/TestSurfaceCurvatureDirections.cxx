@@ -3,9 +3,9 @@
 // curvature are the parameter lines, so the principal directions are x_u / |x_u| and
 // x_v / |x_v| and the principal curvatures the normal curvatures along them, computed here by
 // finite differences of the generators' closed forms (not of the mesh).
+#include "AnisoTestChecks.h"
 #include "SurfaceCurvatureMetric.h"
 #include "SurfaceGenerators.h"
-#include "AnisoTestChecks.h"
 
 #include <Eigen/Dense>
 
@@ -26,8 +26,13 @@ Eigen::Vector3d At(const PointFn& f, double u, double v)
 }
 
 /// Unit tangents along u and v and the absolute normal curvatures along them at (u, v).
-void Analytic(const PointFn& f, double u, double v, Eigen::Vector3d& tu, Eigen::Vector3d& tv,
-  double& ku, double& kv)
+void Analytic(const PointFn& f,
+  double u,
+  double v,
+  Eigen::Vector3d& tu,
+  Eigen::Vector3d& tv,
+  double& ku,
+  double& kv)
 {
   const double h = 1e-4;
   const Eigen::Vector3d p = At(f, u, v);
@@ -45,18 +50,22 @@ void Analytic(const PointFn& f, double u, double v, Eigen::Vector3d& tu, Eigen::
 struct Agreement
 {
   int Checked = 0;
-  double WorstAngle = 0.0;      ///< degrees between v_max and the analytic direction
-  double WorstKMax = 0.0;       ///< relative error of |K_max|
-  double WorstKMin = 0.0;       ///< error of |K_min| relative to |K_max|
-  double WorstNormalDot = 1.0;  ///< smallest |n . analytic normal|
+  double WorstAngle = 0.0;     ///< degrees between v_max and the analytic direction
+  double WorstKMax = 0.0;      ///< relative error of |K_max|
+  double WorstKMin = 0.0;      ///< error of |K_min| relative to |K_max|
+  double WorstNormalDot = 1.0; ///< smallest |n . analytic normal|
 };
 
 /// Compares the kernel's directions and curvatures with the closed form at every vertex of a
 /// periodic nu x nv grid (vertex j * nu + i at u = 2 pi i / nu, v = 2 pi j / nv) where the
 /// analytic curvatures differ by at least `minRatio` (elsewhere the directions are not defined
 /// well enough to compare).
-Agreement Compare(const av::SimplexMesh& mesh, const PointFn& f, int nu, int nv,
-  const av::SurfaceCurvatureMetricResult& r, double minRatio)
+Agreement Compare(const av::SimplexMesh& mesh,
+  const PointFn& f,
+  int nu,
+  int nv,
+  const av::SurfaceCurvatureMetricResult& r,
+  double minRatio)
 {
   const double twoPi = 6.28318530717958647692;
   Agreement a;
@@ -105,9 +114,11 @@ int TestSurfaceCurvatureDirections(int, char*[])
     const PointFn f = [](double u, double v, double* p) { av::TorusPoint(3.0, 1.0, u, v, p); };
     const Agreement a = Compare(torus, f, nu, nv, r, 1.5);
     AV_CHECK(a.Checked == nu * nv); // the tube direction dominates everywhere
-    AV_CHECK_MSG(a.WorstAngle < 1.0, "torus: v_max off the tube direction by " << a.WorstAngle << " deg");
+    AV_CHECK_MSG(
+      a.WorstAngle < 1.0, "torus: v_max off the tube direction by " << a.WorstAngle << " deg");
     AV_CHECK_MSG(a.WorstKMax < 0.03, "torus: |K_max| off by " << 100 * a.WorstKMax << " %");
-    AV_CHECK_MSG(a.WorstKMin < 0.03, "torus: |K_min| off by " << 100 * a.WorstKMin << " % of K_max");
+    AV_CHECK_MSG(
+      a.WorstKMin < 0.03, "torus: |K_min| off by " << 100 * a.WorstKMin << " % of K_max");
     AV_CHECK_MSG(a.WorstNormalDot > 0.9999, "torus: normals off, |cos| " << a.WorstNormalDot);
     // Outward orientation of the generator: the normal at (u, v) = (0, 0) is +x.
     AV_CHECK(r.Normals[0] > 0.999);
@@ -119,14 +130,15 @@ int TestSurfaceCurvatureDirections(int, char*[])
     const av::SimplexMesh cyclide = av::MakeDupinCyclideSurface(2.0, 1.0, 1.5, nu, nv);
     av::SurfaceCurvatureMetricOptions o;
     const auto r = av::SurfaceCurvatureMetric(cyclide, o);
-    const PointFn f = [](double u, double v, double* p) {
-      av::DupinCyclidePoint(2.0, 1.0, 1.5, u, v, p);
-    };
+    const PointFn f = [](double u, double v, double* p)
+    { av::DupinCyclidePoint(2.0, 1.0, 1.5, u, v, p); };
     const Agreement a = Compare(cyclide, f, nu, nv, r, 1.5);
     AV_CHECK_MSG(a.Checked > nu * nv / 2, "cyclide: only " << a.Checked << " anisotropic vertices");
-    AV_CHECK_MSG(a.WorstAngle < 2.0, "cyclide: v_max off the curvature line by " << a.WorstAngle << " deg");
+    AV_CHECK_MSG(
+      a.WorstAngle < 2.0, "cyclide: v_max off the curvature line by " << a.WorstAngle << " deg");
     AV_CHECK_MSG(a.WorstKMax < 0.05, "cyclide: |K_max| off by " << 100 * a.WorstKMax << " %");
-    AV_CHECK_MSG(a.WorstKMin < 0.05, "cyclide: |K_min| off by " << 100 * a.WorstKMin << " % of K_max");
+    AV_CHECK_MSG(
+      a.WorstKMin < 0.05, "cyclide: |K_min| off by " << 100 * a.WorstKMin << " % of K_max");
     AV_CHECK_MSG(a.WorstNormalDot > 0.9999, "cyclide: normals off, |cos| " << a.WorstNormalDot);
     // The closed form has umbilic lines (|K_u| = |K_v|, ratio 1) and lines where one curvature
     // vanishes (ratio from the floor 0.1 / diagonal, about 10.5): after smoothing the range is

@@ -3,11 +3,11 @@
 // the tangent block is diag(4, 1) (stretch 4, where the plain 3D conversion says 25, capped
 // 100), on the equator at +x it is diag(1, 100) (capped at 25); every metric is zero along its
 // normal. Errors: smoothing, a zero normal.
+#include "AnisoTestChecks.h"
 #include "MetricAlgebra.h"
 #include "SurfaceCurvatureMetric.h"
 #include "SurfaceGenerators.h"
 #include "TensorToMetric.h"
-#include "AnisoTestChecks.h"
 
 #include <Eigen/Dense>
 
@@ -26,10 +26,12 @@ int TestTangentTensorToMetric(int, char*[])
     const double t[6] = { 4, 1, 100, 0, 0, 0 };
     std::copy(t, t + 6, tensors.data() + 6 * i);
     // Max's normals of an icosphere are its radial directions.
-    AV_CHECK(Eigen::Vector3d(normals.data() + 3 * i).dot(Eigen::Vector3d(sphere.Point(i))) > 0.9999);
+    AV_CHECK(
+      Eigen::Vector3d(normals.data() + 3 * i).dot(Eigen::Vector3d(sphere.Point(i))) > 0.9999);
   }
   av::TensorToMetricOptions o; // stretch = |eigenvalue|, cap 25, global scale on
-  const av::TensorToMetricResult r = av::TangentTensorToMetric(tensors.data(), n, 6, normals.data(), o);
+  const av::TensorToMetricResult r =
+    av::TangentTensorToMetric(tensors.data(), n, 6, normals.data(), o);
   const av::TensorToMetricResult plain = av::TensorToMetric(tensors.data(), n, 6, o);
   int poles = 0, equator = 0;
   double worstNormal = 0.0;

@@ -3,10 +3,10 @@
 // self-intersection counts of crossing, coplanar, touching and separate triangle pairs and of
 // generated surfaces, flipped-triangle counts, Euler characteristic and boundary loops of
 // closed and open tori.
+#include "AnisoTestChecks.h"
 #include "SurfaceFidelity.h"
 #include "SurfaceGenerators.h"
 #include "TriangleBvh.h"
-#include "AnisoTestChecks.h"
 
 #include <Eigen/Dense>
 
@@ -60,10 +60,16 @@ int TestSurfaceFidelity(int, char*[])
   // Closest point on a triangle: face, edge and vertex regions.
   {
     const Eigen::Vector3d a(0, 0, 0), b(1, 0, 0), c(0, 1, 0);
-    AV_CHECK((av::ClosestPointOnTriangle({ 0.2, 0.2, 3 }, a, b, c) - Eigen::Vector3d(0.2, 0.2, 0)).norm() < 1e-15);
-    AV_CHECK((av::ClosestPointOnTriangle({ 1, 1, 0 }, a, b, c) - Eigen::Vector3d(0.5, 0.5, 0)).norm() < 1e-15);
+    AV_CHECK(
+      (av::ClosestPointOnTriangle({ 0.2, 0.2, 3 }, a, b, c) - Eigen::Vector3d(0.2, 0.2, 0)).norm() <
+      1e-15);
+    AV_CHECK(
+      (av::ClosestPointOnTriangle({ 1, 1, 0 }, a, b, c) - Eigen::Vector3d(0.5, 0.5, 0)).norm() <
+      1e-15);
     AV_CHECK((av::ClosestPointOnTriangle({ -1, -2, 1 }, a, b, c) - a).norm() < 1e-15);
-    AV_CHECK((av::ClosestPointOnTriangle({ 0.5, -1, 0 }, a, b, c) - Eigen::Vector3d(0.5, 0, 0)).norm() < 1e-15);
+    AV_CHECK(
+      (av::ClosestPointOnTriangle({ 0.5, -1, 0 }, a, b, c) - Eigen::Vector3d(0.5, 0, 0)).norm() <
+      1e-15);
   }
 
   // Hausdorff: two parallel squares 0.01 apart (different triangulations) are 0.01 apart.
@@ -74,7 +80,8 @@ int TestSurfaceFidelity(int, char*[])
     AV_CHECK_NEAR(h.MaxPercent, 100.0 * 0.01 / std::sqrt(2.0), 1e-9);
     // Half a square against the whole: every point of the half is on the whole (forward 0),
     // the far edge of the whole is 0.5 from the half (backward).
-    const av::HausdorffResult half = av::SampledHausdorffDistance(Square(0.0, 4, 0.5), Square(0.0, 8));
+    const av::HausdorffResult half =
+      av::SampledHausdorffDistance(Square(0.0, 4, 0.5), Square(0.0, 8));
     AV_CHECK(half.ForwardMax < 1e-12);
     AV_CHECK_NEAR(half.BackwardMax, 0.5, 1e-12);
     // A torus of 120 x 60 against one of 240 x 120: the chords' sagitta, r (1 - cos(pi / 60))
@@ -88,25 +95,25 @@ int TestSurfaceFidelity(int, char*[])
   // Self-intersections of pairs of triangles that share no vertex.
   {
     // Crossing: the second triangle pierces the first.
-    AV_CHECK(av::CountSelfIntersections(Pair({ 0, 0, 0, 2, 0, 0, 0, 2, 0,
-                                               0.5, 0.5, -1, 0.5, 0.5, 1, 3, 3, 0.5 })) == 1);
+    AV_CHECK(av::CountSelfIntersections(
+               Pair({ 0, 0, 0, 2, 0, 0, 0, 2, 0, 0.5, 0.5, -1, 0.5, 0.5, 1, 3, 3, 0.5 })) == 1);
     // Separate: the same, lifted above the first.
-    AV_CHECK(av::CountSelfIntersections(Pair({ 0, 0, 0, 2, 0, 0, 0, 2, 0,
-                                               0.5, 0.5, 1, 0.5, 0.5, 3, 3, 3, 2 })) == 0);
+    AV_CHECK(av::CountSelfIntersections(
+               Pair({ 0, 0, 0, 2, 0, 0, 0, 2, 0, 0.5, 0.5, 1, 0.5, 0.5, 3, 3, 3, 2 })) == 0);
     // Coplanar and overlapping; coplanar and apart.
-    AV_CHECK(av::CountSelfIntersections(Pair({ 0, 0, 0, 2, 0, 0, 0, 2, 0,
-                                               0.2, 0.2, 0, 3, 0.2, 0, 0.2, 3, 0 })) == 1);
-    AV_CHECK(av::CountSelfIntersections(Pair({ 0, 0, 0, 2, 0, 0, 0, 2, 0,
-                                               1.1, 1.1, 0, 3, 1.1, 0, 1.1, 3, 0 })) == 0);
+    AV_CHECK(av::CountSelfIntersections(
+               Pair({ 0, 0, 0, 2, 0, 0, 0, 2, 0, 0.2, 0.2, 0, 3, 0.2, 0, 0.2, 3, 0 })) == 1);
+    AV_CHECK(av::CountSelfIntersections(
+               Pair({ 0, 0, 0, 2, 0, 0, 0, 2, 0, 1.1, 1.1, 0, 3, 1.1, 0, 1.1, 3, 0 })) == 0);
     // Coplanar, one inside the other (no edges cross: only the containment test sees it).
-    AV_CHECK(av::CountSelfIntersections(Pair({ 0, 0, 0, 2, 0, 0, 0, 2, 0,
-                                               0.2, 0.2, 0, 0.5, 0.2, 0, 0.2, 0.5, 0 })) == 1);
+    AV_CHECK(av::CountSelfIntersections(
+               Pair({ 0, 0, 0, 2, 0, 0, 0, 2, 0, 0.2, 0.2, 0, 0.5, 0.2, 0, 0.2, 0.5, 0 })) == 1);
     // A vertex exactly on the other triangle's interior (touching counts).
-    AV_CHECK(av::CountSelfIntersections(Pair({ 0, 0, 0, 2, 0, 0, 0, 2, 0,
-                                               0.5, 0.5, 0, 0.5, 0.5, 1, 1, 1, 1 })) == 1);
+    AV_CHECK(av::CountSelfIntersections(
+               Pair({ 0, 0, 0, 2, 0, 0, 0, 2, 0, 0.5, 0.5, 0, 0.5, 0.5, 1, 1, 1, 1 })) == 1);
     // Nearly touching: 1e-13 above the plane is apart (the predicates are not fooled).
-    AV_CHECK(av::CountSelfIntersections(Pair({ 0, 0, 0, 2, 0, 0, 0, 2, 0,
-                                               0.5, 0.5, 1e-13, 0.5, 0.5, 1, 1, 1, 1 })) == 0);
+    AV_CHECK(av::CountSelfIntersections(
+               Pair({ 0, 0, 0, 2, 0, 0, 0, 2, 0, 0.5, 0.5, 1e-13, 0.5, 0.5, 1, 1, 1, 1 })) == 0);
     // Generated surfaces are embedded; a torus overlapping a shifted copy of itself is not.
     const av::SimplexMesh torus = av::MakeTorusSurface(3.0, 1.0, 60, 30);
     AV_CHECK(av::CountSelfIntersections(torus) == 0);
@@ -138,8 +145,7 @@ int TestSurfaceFidelity(int, char*[])
       closed.NonManifoldEdges == 0 && closed.BoundaryEdges == 0);
     const auto tube = av::ComputeSurfaceTopology(av::MakeTorusSurface(3.0, 1.0, 40, 20, 0.5));
     AV_CHECK(tube.Euler == 0 && tube.BoundaryLoops == 2 && tube.BoundaryEdges == 40);
-    const auto disk =
-      av::ComputeSurfaceTopology(av::MakeTorusSurface(3.0, 1.0, 40, 20, 0.5, 0.5));
+    const auto disk = av::ComputeSurfaceTopology(av::MakeTorusSurface(3.0, 1.0, 40, 20, 0.5, 0.5));
     AV_CHECK(disk.Euler == 1 && disk.BoundaryLoops == 1 && disk.BoundaryEdges == 2 * (40 + 20));
     AV_CHECK(av::ComputeSurfaceTopology(av::MakeDupinCyclideSurface(2, 1, 1.5, 30, 20)).Euler == 0);
     AV_CHECK(av::ComputeSurfaceTopology(av::MakeIcosphere(1.0, 2)).Euler == 2);
