@@ -15,6 +15,8 @@ struct Options
   int Step = 0, Resolution = 0, Sites = 2000, Dim = 8, Iterations = 50, SampleIterations = 150;
   int WarmupIterations = 100, Seed = 1, Smooth = 0, Refine = 0, RepairRounds = 10,
       ImproveRounds = 1, OdtIterations = 3;
+  int MaxIterations = 500;          // embedding: run to convergence up to this many
+  std::string Solver = "auto";      // embedding global step: auto | direct | iterative
   double FeatureAngle = 30.0;
   bool Features = true;
   double Mu = 100.0, Shrink = 0.8, MinEigenvalue = 1e-3, MaxAnisotropy = 25.0;
