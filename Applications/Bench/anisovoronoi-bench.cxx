@@ -55,6 +55,7 @@ struct Args
   double CgTolerance = 1e-6;       // iterative: relative residual of each CG solve
   int MaxIterations = 500;         // run to convergence up to this many iterations
   double ConvergenceTolerance = 1e-4; // mean relative energy decrease per iteration to stop
+  double ErrorTarget = 2.0;        // run past --iterations while L_avg (%) is above this
   std::string Init = "smooth";
   bool Weighted = false;
   bool TrackError = true;
@@ -217,6 +218,7 @@ av::EmbeddingOptions EmbeddingOptionsFor(const Args& a, const Case& c, int dim)
   o.IterativeTolerance = a.CgTolerance;
   o.MaxIterations = a.MaxIterations;
   o.ConvergenceTolerance = a.ConvergenceTolerance;
+  o.TargetAverageErrorPercent = a.ErrorTarget;
   o.ElementMeasureWeighting = a.Weighted;
   o.Initialization = a.Init == "random" ? av::EmbeddingInitialization::Random : av::EmbeddingInitialization::Smooth;
   return o;
@@ -259,6 +261,8 @@ void ReportEmbedding(const Args& a, const Case& c, const av::EmbeddingOptions& o
   out.Set("convergence_tolerance", o.ConvergenceTolerance);
   out.Set("final_relative_decrease", r.FinalRelativeDecrease);
   out.Set("converged", r.Converged);
+  out.Set("error_target", o.TargetAverageErrorPercent);
+  out.Set("reached_error_target", r.ReachedErrorTarget);
   if (std::isfinite(errorAtIterations))
   {
     out.Set("L_avg_at_min_iterations", errorAtIterations);
@@ -468,6 +472,7 @@ void Usage(std::ostream& os)
         "                    exactly --iterations)\n"
         "  --convergence-tolerance T  stop past --iterations when the energy drops by less than T\n"
         "                    per iteration (mean of the last 10; default 1e-4)\n"
+        "  --error-target P  past --iterations, stop once L_avg <= P % (default 2; 0 = none)\n"
         "  --init smooth|random  initial free coordinates (default smooth)\n"
         "  --weighted        element-measure weighted energy (default: paper's unweighted)\n"
         "  --no-track        do not evaluate L_avg per iteration (iterations_to_paper_error)\n"
@@ -572,6 +577,8 @@ bool Parse(int argc, char** argv, Args& a)
       a.MaxIterations = std::stoi(next());
     else if (k == "--convergence-tolerance")
       a.ConvergenceTolerance = std::stod(next());
+    else if (k == "--error-target")
+      a.ErrorTarget = std::stod(next());
     else if (k == "--init")
       a.Init = next();
     else if (k == "--weighted")

@@ -39,6 +39,7 @@ av::EmbeddingOptions MakeOptions(vtkAnisoEmbedding* self)
   options.Iterations = self->GetIterations();
   options.MaxIterations = self->GetMaxIterations();
   options.ConvergenceTolerance = self->GetConvergenceTolerance();
+  options.TargetAverageErrorPercent = self->GetTargetAverageError();
   options.GlobalSolver = self->GetGlobalSolver() == vtkAnisoEmbedding::DIRECT_SOLVER
     ? av::EmbeddingGlobalSolver::Direct
     : self->GetGlobalSolver() == vtkAnisoEmbedding::ITERATIVE_SOLVER
@@ -253,6 +254,7 @@ void vtkAnisoEmbedding::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Iterations: " << this->Iterations << "\n";
   os << indent << "MaxIterations: " << this->MaxIterations << "\n";
   os << indent << "ConvergenceTolerance: " << this->ConvergenceTolerance << "\n";
+  os << indent << "TargetAverageError: " << this->TargetAverageError << "\n";
   os << indent << "GlobalSolver: "
      << (this->GlobalSolver == DIRECT_SOLVER      ? "Direct"
           : this->GlobalSolver == ITERATIVE_SOLVER ? "Iterative"

@@ -72,7 +72,8 @@ public:
   ///@}
 
   ///@{
-  /// Run to convergence: after Iterations, go on while the energy still drops by more than
+  /// Run to convergence: after Iterations, go on while L_avg is above TargetAverageError and
+  /// the energy still drops by more than
   /// ConvergenceTolerance (default 1e-4) per iteration on average over the last 10, up to
   /// MaxIterations in all (default 500; <= Iterations: exactly Iterations). High-stretch inputs
   /// need hundreds of iterations; converged ones stop at Iterations.
@@ -80,6 +81,14 @@ public:
   vtkGetMacro(MaxIterations, int);
   vtkSetClampMacro(ConvergenceTolerance, double, 0.0, 1.0);
   vtkGetMacro(ConvergenceTolerance, double);
+  ///@}
+
+  ///@{
+  /// Past Iterations, stop as soon as L_avg (%) is at or below this (default 2, the paper's
+  /// grade; 0 = only ConvergenceTolerance and MaxIterations stop the run). Inputs that fit at
+  /// Iterations stop there, as before.
+  vtkSetClampMacro(TargetAverageError, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(TargetAverageError, double);
   ///@}
 
   ///@{
@@ -177,6 +186,7 @@ protected:
   int Iterations = 50;
   int MaxIterations = 500;
   double ConvergenceTolerance = 1e-4;
+  double TargetAverageError = 2.0;
   int GlobalSolver = AUTOMATIC_SOLVER;
   double ErrorWarningThreshold = 50.0;
   double Mu = 100.0;

@@ -173,7 +173,20 @@ bool EmbeddingSolver::Internals::ShouldStop(
   {
     return false;
   }
-  // Past the fixed count: go on only while the energy still drops (averaged over the window).
+  // Past the fixed count: go on only while the error is above the target and the energy still
+  // drops (averaged over the window).
+  if (this->ErrorTarget)
+  {
+    Embedding current;
+    current.Dim = this->MB;
+    current.Coords = this->X;
+    res.FinalAverageErrorPercent = this->ErrorTarget->Evaluate(current).AveragePercent;
+    if (res.FinalAverageErrorPercent <= o.TargetAverageErrorPercent)
+    {
+      res.ReachedErrorTarget = res.Converged = true;
+      return true;
+    }
+  }
   const bool converged = window >= kConvergenceWindow &&
     res.FinalRelativeDecrease <= o.ConvergenceTolerance;
   res.Converged = converged;

@@ -6,6 +6,7 @@
 #include "EmbeddingSolverInternals.h"
 #include "Stopwatch.h"
 
+#include <algorithm>
 #include <thread>
 
 namespace av
@@ -27,6 +28,12 @@ EmbeddingSolver::EmbeddingSolver(
   p.NE = mesh.NumCells();
   p.Cells = mesh.Cells;
   p.BuildTopology(mesh);
+  if (options.TargetAverageErrorPercent > 0.0 &&
+    std::max(options.Iterations, options.MaxIterations) > options.Iterations)
+  {
+    p.ErrorMesh = mesh;
+    p.ErrorTarget.reset(new EdgeLengthErrorEvaluator(p.ErrorMesh, metric));
+  }
   const bool iterative = options.GlobalSolver == EmbeddingGlobalSolver::Iterative ||
     (options.GlobalSolver == EmbeddingGlobalSolver::Automatic &&
       p.NP >= kIterativeSolverMinVertices);

@@ -69,11 +69,14 @@ struct EmbeddingOptions
   std::uint64_t Seed = 1;  ///< seed of the initial random field (runs are reproducible)
   /// Stop when (E_prev - E) / E_prev falls below this (0 = run all iterations).
   double RelativeEnergyTolerance = 0.0;
-  /// Run to convergence: after Iterations, keep iterating while the energy still drops by more
-  /// than ConvergenceTolerance per iteration on average over the last kConvergenceWindow
-  /// iterations, up to MaxIterations in all (MaxIterations <= Iterations: exactly Iterations).
+  /// Run to convergence: after Iterations, keep iterating while the §5.1 edge length error
+  /// L_avg is above TargetAverageErrorPercent (0: no error target) and the energy still drops
+  /// by more than ConvergenceTolerance per iteration on average over the last
+  /// kConvergenceWindow iterations, up to MaxIterations in all (MaxIterations <= Iterations:
+  /// exactly Iterations). Inputs that fit at Iterations (the presets) stop there unchanged.
   int MaxIterations = 500;
   double ConvergenceTolerance = 1e-4;
+  double TargetAverageErrorPercent = 2.0;
   EmbeddingGlobalSolver GlobalSolver = EmbeddingGlobalSolver::Automatic;
   /// Iterative solver: stop each CG solve at |r| <= IterativeTolerance |b| (warm start from the
   /// current iterate; CG never raises the energy whatever the tolerance, see README).
@@ -121,7 +124,10 @@ struct EmbeddingResult
   /// Average relative energy decrease per iteration over the last kConvergenceWindow iterations
   /// at exit (fewer when fewer were run): the convergence measure.
   double FinalRelativeDecrease = 0.0;
-  bool Converged = false; ///< stopped because FinalRelativeDecrease <= ConvergenceTolerance
+  bool Converged = false; ///< stopped past Iterations on the error target or the tolerance
+  bool ReachedErrorTarget = false; ///< L_avg <= TargetAverageErrorPercent at exit
+  /// L_avg (%) at exit when the error target was evaluated (past Iterations), else -1.
+  double FinalAverageErrorPercent = -1.0;
 };
 
 /// Iterations over which the convergence test averages the relative energy decrease (Anderson's

@@ -4,6 +4,7 @@
 #ifndef av_EmbeddingSolverInternals_h
 #define av_EmbeddingSolverInternals_h
 
+#include "EdgeLengthError.h"
 #include "EmbeddingSolver.h"
 #include "FloatSupernodalSolver.h"
 #include "IterativeGlobalSolver.h"
@@ -60,6 +61,8 @@ struct EmbeddingSolver::Internals
   Cholesky Chol;
   std::unique_ptr<FloatSupernodalSolver> FloatSolver; // SinglePrecisionSolve
   std::unique_ptr<IterativeGlobalSolver> Iterative;   // EmbeddingGlobalSolver::Iterative
+  SimplexMesh ErrorMesh; // a copy for ErrorTarget (the caller's mesh may not outlive us)
+  std::unique_ptr<EdgeLengthErrorEvaluator> ErrorTarget; // TargetAverageErrorPercent > 0
   Eigen::MatrixXd LastRhs;                            // right-hand sides of the last global step
   EmbeddingEnergy Energy;
   double SetupSeconds = 0.0, FactorSeconds = 0.0;

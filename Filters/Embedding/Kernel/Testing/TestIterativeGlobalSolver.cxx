@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace
 {
@@ -115,6 +116,7 @@ void CheckConvergenceStop(const SimplexMesh& cube, const MetricField& metric)
   o.Iterations = 12;
   o.MaxIterations = 3000;
   o.ConvergenceTolerance = 1e-3;
+  o.TargetAverageErrorPercent = 0.0; // the energy test alone
   const EmbeddingResult r = ComputeEmbedding(cube, metric, o);
   const std::size_t last = r.EnergyHistory.size() - 1;
   std::cout << "run to convergence (tolerance 1e-3): " << r.IterationsDone
@@ -142,6 +144,36 @@ void CheckConvergenceStop(const SimplexMesh& cube, const MetricField& metric)
   AV_CHECK(ComputeEmbedding(cube, metric, o).IterationsDone == 12);
 }
 
+/// The error target: past Iterations, the run stops at the first iteration whose L_avg is at or
+/// below the target (checked here with an independent evaluator in the progress callback).
+void CheckErrorTarget(const SimplexMesh& cube, const MetricField& metric)
+{
+  const EdgeLengthErrorEvaluator evaluator(cube, metric);
+  std::vector<double> lavg(1, -1.0);
+  EmbeddingOptions o;
+  o.Iterations = 5;
+  o.MaxIterations = 400;
+  o.ConvergenceTolerance = 0.0; // only the error target (and the cap) stop the run
+  o.TargetAverageErrorPercent = 2.0;
+  o.Progress = [&](const EmbeddingProgress& p) {
+    lavg.push_back(evaluator.Evaluate(p.Solver->CurrentEmbedding()).AveragePercent);
+    return true;
+  };
+  const EmbeddingResult r = ComputeEmbedding(cube, metric, o);
+  const int n = r.IterationsDone;
+  std::cout << "error target 2 %: stopped at iteration " << n << " with L_avg "
+            << r.FinalAverageErrorPercent << " % (at iteration 5: " << lavg[5] << " %)\n";
+  AV_CHECK(lavg[5] > 2.0); // the fixed count alone does not reach it on this grid
+  AV_CHECK(r.ReachedErrorTarget && r.Converged && n > 5 && n < 400);
+  AV_CHECK(static_cast<int>(lavg.size()) == n + 1);
+  AV_CHECK_NEAR(r.FinalAverageErrorPercent, lavg[n], 1e-12);
+  AV_CHECK(lavg[n] <= 2.0);
+  for (int it = 5; it < n; ++it)
+  {
+    AV_CHECK(lavg[it] > 2.0); // it stopped at the first one
+  }
+}
+
 void CheckBadOptions(const SimplexMesh& cube, const MetricField& metric)
 {
   EmbeddingOptions o;
@@ -165,6 +197,7 @@ int TestIterativeGlobalSolver(int, char*[])
   CheckAgreesWithDirect(cube, metric);
   CheckMonotone(cube, metric);
   CheckConvergenceStop(cube, metric);
+  CheckErrorTarget(cube, metric);
   CheckBadOptions(cube, metric);
   return AV_TEST_RESULT();
 }
