@@ -19,8 +19,9 @@ bool WorseThan(double a, double b)
 }
 }
 
-LargeErrorSummary SummarizeLargeCellErrors(
-  const SimplexMesh& mesh, const std::vector<double>& cellPercent, double thresholdPercent)
+LargeErrorSummary SummarizeLargeCellErrors(const SimplexMesh& mesh,
+  const std::vector<double>& cellPercent,
+  double thresholdPercent)
 {
   const std::size_t nc = mesh.NumCells();
   if (cellPercent.size() != nc)

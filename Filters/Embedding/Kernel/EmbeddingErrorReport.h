@@ -18,18 +18,19 @@ namespace av
 struct LargeErrorSummary
 {
   double ThresholdPercent = 0.0;
-  std::size_t NumCells = 0;      ///< cells in the mesh
-  std::size_t NumAbove = 0;      ///< cells with an error above ThresholdPercent
-  std::int64_t WorstCell = -1;   ///< cell with the largest error (-1: empty mesh)
-  double WorstPercent = 0.0;     ///< its error, in %
+  std::size_t NumCells = 0;    ///< cells in the mesh
+  std::size_t NumAbove = 0;    ///< cells with an error above ThresholdPercent
+  std::int64_t WorstCell = -1; ///< cell with the largest error (-1: empty mesh)
+  double WorstPercent = 0.0;   ///< its error, in %
   std::array<double, 3> WorstCentroid{ { 0.0, 0.0, 0.0 } }; ///< its centroid (z = 0 in 2D)
 };
 
 /// Counts the cells with cellPercent > thresholdPercent and locates the worst cell.
 /// cellPercent: one value per cell (EdgeLengthErrorResult::CellMaxPercent). Throws InputError
 /// on a size mismatch.
-LargeErrorSummary SummarizeLargeCellErrors(
-  const SimplexMesh& mesh, const std::vector<double>& cellPercent, double thresholdPercent);
+LargeErrorSummary SummarizeLargeCellErrors(const SimplexMesh& mesh,
+  const std::vector<double>& cellPercent,
+  double thresholdPercent);
 
 /// One sentence for a warning ("" when no cell is above the threshold): how many cells, the
 /// worst cell's id, location and error, the threshold, and what usually helps.

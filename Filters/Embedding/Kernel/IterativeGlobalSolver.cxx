@@ -153,7 +153,8 @@ void IterativeGlobalSolver::Hypre::BuildMatrix(const Eigen::SparseMatrix<double>
   Check(HYPRE_IJMatrixCreate(MPI_COMM_SELF, 0, n - 1, 0, n - 1, &this->Matrix), "IJMatrixCreate");
   Check(HYPRE_IJMatrixSetObjectType(this->Matrix, HYPRE_PARCSR), "IJMatrixSetObjectType");
   std::vector<HYPRE_Int> offd(static_cast<std::size_t>(n), 0);
-  Check(HYPRE_IJMatrixSetDiagOffdSizes(this->Matrix, count.data(), offd.data()), "SetDiagOffdSizes");
+  Check(
+    HYPRE_IJMatrixSetDiagOffdSizes(this->Matrix, count.data(), offd.data()), "SetDiagOffdSizes");
   Check(HYPRE_IJMatrixInitialize(this->Matrix), "IJMatrixInitialize");
   Check(HYPRE_IJMatrixSetValues(
           this->Matrix, n, count.data(), this->Indices.data(), cols.data(), vals.data()),
@@ -194,15 +195,17 @@ void IterativeGlobalSolver::Hypre::BuildSolver(int maxIterations)
   HYPRE_PCGSetMaxIter(this->Pcg, maxIterations);
   HYPRE_PCGSetTwoNorm(this->Pcg, 1);
   HYPRE_PCGSetPrintLevel(this->Pcg, 0);
-  HYPRE_PCGSetPrecond(this->Pcg, reinterpret_cast<HYPRE_PtrToSolverFcn>(HYPRE_BoomerAMGSolve),
-    reinterpret_cast<HYPRE_PtrToSolverFcn>(HYPRE_BoomerAMGSetup), this->Amg);
+  HYPRE_PCGSetPrecond(this->Pcg,
+    reinterpret_cast<HYPRE_PtrToSolverFcn>(HYPRE_BoomerAMGSolve),
+    reinterpret_cast<HYPRE_PtrToSolverFcn>(HYPRE_BoomerAMGSetup),
+    this->Amg);
   // The hierarchy depends on the matrix only: build it now (PCG setup calls AMG setup).
   Check(HYPRE_ParCSRPCGSetup(this->Pcg, this->ParMatrix, this->ParB, this->ParX), "PCGSetup");
   this->SetUp = true;
 }
 
-IterativeGlobalSolver::IterativeGlobalSolver(
-  const Eigen::SparseMatrix<double>& lower, int maxIterations)
+IterativeGlobalSolver::IterativeGlobalSolver(const Eigen::SparseMatrix<double>& lower,
+  int maxIterations)
   : H(new Hypre)
 {
   const Stopwatch clock;
@@ -223,8 +226,9 @@ IterativeGlobalSolver::~IterativeGlobalSolver()
   this->H.reset();
 }
 
-long long IterativeGlobalSolver::Solve(
-  const Eigen::MatrixXd& rhs, Eigen::MatrixXd& x, double tolerance)
+long long IterativeGlobalSolver::Solve(const Eigen::MatrixXd& rhs,
+  Eigen::MatrixXd& x,
+  double tolerance)
 {
   const std::lock_guard<std::mutex> lock(HypreMutex());
   Hypre& h = *this->H;

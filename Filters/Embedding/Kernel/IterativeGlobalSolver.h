@@ -16,10 +16,10 @@ namespace av
 struct IterativeSolveStatistics
 {
   long long Solves = 0;
-  long long Iterations = 0;   ///< CG iterations summed over all solves
-  int MaxIterations = 0;      ///< most CG iterations one solve took
-  int NotConverged = 0;       ///< solves that hit the iteration cap before the tolerance
-  double SetupSeconds = 0.0;  ///< matrix conversion and AMG hierarchy
+  long long Iterations = 0;           ///< CG iterations summed over all solves
+  int MaxIterations = 0;              ///< most CG iterations one solve took
+  int NotConverged = 0;               ///< solves that hit the iteration cap before the tolerance
+  double SetupSeconds = 0.0;          ///< matrix conversion and AMG hierarchy
   double WorstRelativeResidual = 0.0; ///< largest final |r| / |b| seen
 };
 

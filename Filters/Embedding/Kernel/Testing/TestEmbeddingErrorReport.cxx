@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Per-cell edge length error and the large-error summary on a hand-computed two-tet case.
+#include "AnisoTestChecks.h"
 #include "EdgeLengthError.h"
 #include "EmbeddingErrorReport.h"
-#include "AnisoTestChecks.h"
 
 #include <cmath>
 #include <string>

@@ -2,10 +2,10 @@
 // The iterative global step (CG + BoomerAMG): agreement with the direct solver, monotone energy
 // even with a loose CG tolerance, and the run-to-convergence stopping rule.
 #include "AnalyticMetrics.h"
+#include "AnisoTestChecks.h"
 #include "EdgeLengthError.h"
 #include "EmbeddingSolver.h"
 #include "StructuredMeshes.h"
-#include "AnisoTestChecks.h"
 
 #include <algorithm>
 #include <cmath>
@@ -65,7 +65,8 @@ void CheckAgreesWithDirect(const SimplexMesh& cube, const MetricField& metric)
             << iterative.SolverMaxIterations << ")\n";
   AV_CHECK(perSolve > 0.0 && perSolve < 60.0); // AMG keeps CG short (measured about 10)
   const double d = RelativeDifference(iterative.Embedded, direct.Embedded);
-  const double de = std::abs(iterative.EnergyHistory.back().Total - direct.EnergyHistory.back().Total) /
+  const double de =
+    std::abs(iterative.EnergyHistory.back().Total - direct.EnergyHistory.back().Total) /
     direct.EnergyHistory.back().Total;
   std::cout << "iterative vs direct after 10 plain steps: coordinates " << d << ", energy " << de
             << "\n";
@@ -155,7 +156,8 @@ void CheckErrorTarget(const SimplexMesh& cube, const MetricField& metric)
   o.MaxIterations = 400;
   o.ConvergenceTolerance = 0.0; // only the error target (and the cap) stop the run
   o.TargetAverageErrorPercent = 2.0;
-  o.Progress = [&](const EmbeddingProgress& p) {
+  o.Progress = [&](const EmbeddingProgress& p)
+  {
     lavg.push_back(evaluator.Evaluate(p.Solver->CurrentEmbedding()).AveragePercent);
     return true;
   };
