@@ -14,6 +14,10 @@ find_path(TETGEN_INCLUDE_DIR tetgen.h REQUIRED)
 find_library(TETGEN_LIBRARY NAMES tet REQUIRED)
 find_path(LBFGSPP_INCLUDE_DIR LBFGS.h REQUIRED)
 find_path(NANOFLANN_INCLUDE_DIR nanoflann.hpp REQUIRED)
+# hypre (BoomerAMG) for the embedding's iterative global solve; Debian builds it with MPI.
+find_path(HYPRE_INCLUDE_DIR HYPRE.h PATH_SUFFIXES hypre REQUIRED)
+find_library(HYPRE_LIBRARY HYPRE REQUIRED)
+find_package(MPI REQUIRED COMPONENTS C)
 
 set_property(GLOBAL PROPERTY AV_KERNELS "")
 set_property(GLOBAL PROPERTY AV_KERNEL_INTERFACES "")
@@ -65,7 +69,8 @@ function(av_finish_kernels)
   foreach(k IN LISTS kernels)
     target_link_libraries(AnisoVoronoiKernels PUBLIC av_kernel_${k})
   endforeach()
-  target_link_libraries(AnisoVoronoiKernels PRIVATE TBB::tbb ${CHOLMOD_LIBRARY} ${TETGEN_LIBRARY})
+  target_link_libraries(AnisoVoronoiKernels PRIVATE TBB::tbb ${CHOLMOD_LIBRARY} ${TETGEN_LIBRARY}
+    ${HYPRE_LIBRARY} MPI::MPI_C)
   target_compile_features(AnisoVoronoiKernels PUBLIC cxx_std_17)
   if(NOT AV_KERNELS_ONLY)
     # The VTK modules link it, so it joins their export set.

@@ -20,9 +20,11 @@ if [[ ! -f $FRD ]]; then
   echo "run-main: $FRD is missing (package calculix-cgx-examples; is /usr/share/doc excluded by dpkg?)" >&2
   exit 1
 fi
+# --max-iterations 50: the fixed count of the README figures (running on to convergence stops at
+# 90 iterations here: L_avg 7.15 -> 6.84 %, but the dual mesh then keeps 1 inverted tet).
 "$BUILD_DIR/bin/anisovoronoi" "$FRD" --metric tensor:STRESS --min-eigenvalue 0.1 \
   --max-anisotropy 10 --smooth 10 --sites 3000 --dim 8 \
-  --iterations 50 --shrink 0.7 --repair-nonmanifold --output-dir "$OUT" "$@"
+  --iterations 50 --max-iterations 50 --shrink 0.7 --repair-nonmanifold --output-dir "$OUT" "$@"
 # On the X server of the caller when there is one (the test suite's), else a private Xvfb.
 X=(xvfb-run -a)
 [[ -n ${DISPLAY:-} ]] && X=()

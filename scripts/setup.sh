@@ -7,7 +7,7 @@ cd "$(dirname "$0")/.."
 
 PACKAGES=(cmake g++ ninja-build paraview paraview-dev python3-paraview mpi-default-dev
   libdouble-conversion-dev libeigen3-dev libnanoflann-dev libtet1.5-dev tetgen libtbb-dev
-  libsuitesparse-dev libopenblas0-pthread liblbfgspp-dev xvfb xauth python3-dev
+  libsuitesparse-dev libopenblas0-pthread liblbfgspp-dev xvfb xauth python3-dev libhypre-dev
   calculix-cgx-examples
   # the plugin's in-GUI help (XML_DOCUMENTATION): xmlpatterns, Qt5Help and qhelpgenerator
   qttools5-dev qtxmlpatterns5-dev-tools)

@@ -33,7 +33,11 @@ options:
   --sites N                number of Voronoi cells / mesh vertices (default 2000; with --sol
                            and no --sites: the .sol's own count, its complexity / v_unit)
   --dim N                  embedding dimension (default 8)
-  --iterations N           embedding iterations (default 50)
+  --iterations N           embedding iterations always run (default 50)
+  --max-iterations N       then on to convergence, up to N in all (default 500; <= the above:
+                           exactly --iterations)
+  --solver S               embedding global step: auto (direct below 150,000 vertices),
+                           direct or iterative (CG + algebraic multigrid, linear memory)
   --double-solve           embedding: CHOLMOD's double-precision solves (default: float copy)
   --sample-iterations N    particle L-BFGS iterations at the paper's kernel (default 150;
                            the paper: 50)
@@ -156,8 +160,11 @@ void CheckOptions(const Options& o)
     Fail("--size-blend must be in [0, 1]", 2);
   if (o.Dim < 3 || o.Dim > 20)
     Fail("--dim must be in [3, 20]", 2);
-  if (o.Iterations < 0 || o.SampleIterations < 0 || o.WarmupIterations < 0)
+  if (o.Iterations < 0 || o.SampleIterations < 0 || o.WarmupIterations < 0 ||
+    o.MaxIterations < 0)
     Fail("iteration counts must be >= 0", 2);
+  if (o.Solver != "auto" && o.Solver != "direct" && o.Solver != "iterative")
+    Fail("--solver must be auto, direct or iterative", 2);
   if (!(o.FeatureAngle > 0 && o.FeatureAngle <= 180))
     Fail("--feature-angle must be in (0, 180]", 2);
   if (!(o.Shrink > 0 && o.Shrink <= 1))
@@ -240,6 +247,10 @@ Options ParseCommandLine(int argc, char* argv[])
       o.Dim = ParseInt(a, next());
     else if (a == "--iterations")
       o.Iterations = ParseInt(a, next());
+    else if (a == "--max-iterations")
+      o.MaxIterations = ParseInt(a, next());
+    else if (a == "--solver")
+      o.Solver = next();
     else if (a == "--sample-iterations")
       o.SampleIterations = ParseInt(a, next());
     else if (a == "--warmup-iterations")

@@ -17,6 +17,8 @@ struct Options
   int Step = 0, Resolution = 0, Sites = 2000, Dim = 8, Iterations = 50, SampleIterations = 150;
   int WarmupIterations = 100, Seed = 1, Smooth = 0, Refine = 0, RepairRounds = 10,
       ImproveRounds = 1, OdtIterations = 3;
+  int MaxIterations = 500;          // embedding: run to convergence up to this many
+  std::string Solver = "auto";      // embedding global step: auto | direct | iterative
   double FeatureAngle = 30.0;
   double AdaptLength = 0.0; ///< --adapt / --adapt-length: L_bg of the adapted background (0 = off)
   bool Features = true;

@@ -379,6 +379,10 @@ void RunMeshingStages(const Options& o,
     0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, metricName.c_str());
   s.Embedding->SetTargetDimension(o.Dim);
   s.Embedding->SetIterations(o.Iterations);
+  s.Embedding->SetMaxIterations(o.MaxIterations);
+  s.Embedding->SetGlobalSolver(o.Solver == "direct" ? vtkAnisoEmbedding::DIRECT_SOLVER
+      : o.Solver == "iterative"                    ? vtkAnisoEmbedding::ITERATIVE_SOLVER
+                                                   : vtkAnisoEmbedding::AUTOMATIC_SOLVER);
   s.Embedding->SetSinglePrecisionSolve(!o.DoubleSolve);
   s.Embedding->SetMu(o.Mu);
   s.Embedding->SetSeed(o.Seed);
@@ -469,6 +473,12 @@ std::vector<std::pair<std::string, std::string>> ReportEntries(const Options& o,
     { "background_seconds", JsonNumber(runner.SecondsOf(BackgroundStage)) },
     { "dim", std::to_string(o.Dim) },
     { "iterations", std::to_string(o.Iterations) },
+    { "embedding_iterations", JsonNumber(FieldValue(embedded, "EmbeddingIterations")) },
+    { "embedding_converged",
+      FieldValue(embedded, "EmbeddingConverged") > 0.0 ? "true" : "false" },
+    { "iterative_solve", FieldValue(embedded, "IterativeSolve") > 0.0 ? "true" : "false" },
+    { "cells_above_error_threshold",
+      JsonNumber(FieldValue(embedded, "CellsAboveErrorThreshold")) },
     { "metric_scale", JsonNumber(FieldValue(embedded, "MetricScale")) },
     { "stretch_min", JsonNumber(stretchRange[0]) },
     { "stretch_max", JsonNumber(stretchRange[1]) },

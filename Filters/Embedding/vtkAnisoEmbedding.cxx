@@ -4,6 +4,7 @@
 #include "vtkAnisoEmbedding.h"
 
 #include "EdgeLengthError.h"
+#include "EmbeddingErrorReport.h"
 #include "EmbeddingSolver.h"
 #include "MetricScaling.h"
 #include "Stopwatch.h"
@@ -36,6 +37,14 @@ av::EmbeddingOptions MakeOptions(vtkAnisoEmbedding* self)
   av::EmbeddingOptions options;
   options.TargetDim = self->GetTargetDimension();
   options.Iterations = self->GetIterations();
+  options.MaxIterations = self->GetMaxIterations();
+  options.ConvergenceTolerance = self->GetConvergenceTolerance();
+  options.TargetAverageErrorPercent = self->GetTargetAverageError();
+  options.GlobalSolver = self->GetGlobalSolver() == vtkAnisoEmbedding::DIRECT_SOLVER
+    ? av::EmbeddingGlobalSolver::Direct
+    : self->GetGlobalSolver() == vtkAnisoEmbedding::ITERATIVE_SOLVER
+    ? av::EmbeddingGlobalSolver::Iterative
+    : av::EmbeddingGlobalSolver::Automatic;
   options.Mu = self->GetMu();
   options.Seed = static_cast<std::uint64_t>(self->GetSeed());
   options.RelativeEnergyTolerance = self->GetRelativeEnergyTolerance();
@@ -106,6 +115,8 @@ void AddFigures(vtkFieldData* fd, const av::EdgeLengthErrorResult& errors, doubl
   AddFieldValue(fd, "MetricScale", metricScale);
   AddFieldValue(fd, "EmbeddingDimension", result.Embedded.Dim);
   AddFieldValue(fd, "EmbeddingIterations", result.IterationsDone);
+  AddFieldValue(fd, "EmbeddingConverged", result.Converged ? 1 : 0);
+  AddFieldValue(fd, "IterativeSolve", result.IterativeSolve ? 1 : 0);
   AddFieldValue(fd, "FactorSeconds", result.FactorSeconds);
   AddFieldValue(fd, "SolveSeconds", result.SolveSeconds);
   AddFieldValue(fd, "DoublePrecisionRetries", result.DoublePrecisionRetries);
@@ -200,6 +211,7 @@ int vtkAnisoEmbedding::RequestData(
   const av::Stopwatch clock;
   av::EmbeddingResult result;
   av::EdgeLengthErrorResult errors;
+  av::LargeErrorSummary summary;
   if (!vtkAnisoFilterUtilities::RunKernel(this, "embedding", [&] {
         this->UpdateProgress(0.01);
         av::EmbeddingSolver solver(mesh, metric, options);
@@ -209,9 +221,17 @@ int vtkAnisoEmbedding::RequestData(
           vtkWarningMacro("embedding aborted after " << result.IterationsDone << " iterations");
         }
         errors = av::ComputeEdgeLengthError(mesh, metric, result.Embedded, false, true);
+        summary = av::SummarizeLargeCellErrors(mesh, errors.CellMaxPercent,
+          this->ErrorWarningThreshold > 0.0 ? this->ErrorWarningThreshold : VTK_DOUBLE_MAX);
       }))
   {
     return 0;
+  }
+  // Never silent: say where the embedding could not fit the metric.
+  this->CellsAboveErrorThreshold = static_cast<vtkIdType>(summary.NumAbove);
+  if (this->ErrorWarningThreshold > 0.0 && summary.NumAbove > 0)
+  {
+    vtkWarningMacro(<< av::DescribeLargeCellErrors(summary));
   }
   const double seconds = clock.Seconds();
   // Against the unprepared metric too, when metric preparation left it ("RawMetric", at the
@@ -242,6 +262,8 @@ int vtkAnisoEmbedding::RequestData(
     vtkAnisoFilterUtilities::AddFieldValue(output->GetFieldData(), "L_avg_raw", rawErrors.AveragePercent);
     vtkAnisoFilterUtilities::AddFieldValue(output->GetFieldData(), "L_max_raw", rawErrors.MaxPercent);
   }
+  vtkAnisoFilterUtilities::AddFieldValue(output->GetFieldData(), "CellsAboveErrorThreshold",
+    static_cast<double>(summary.NumAbove));
   BuildEnergyTable(result.EnergyHistory, energyTable);
   this->UpdateProgress(1.0);
   return 1;
@@ -252,6 +274,15 @@ void vtkAnisoEmbedding::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "TargetDimension: " << this->TargetDimension << "\n";
   os << indent << "Iterations: " << this->Iterations << "\n";
+  os << indent << "MaxIterations: " << this->MaxIterations << "\n";
+  os << indent << "ConvergenceTolerance: " << this->ConvergenceTolerance << "\n";
+  os << indent << "TargetAverageError: " << this->TargetAverageError << "\n";
+  os << indent << "GlobalSolver: "
+     << (this->GlobalSolver == DIRECT_SOLVER      ? "Direct"
+          : this->GlobalSolver == ITERATIVE_SOLVER ? "Iterative"
+                                                   : "Automatic")
+     << "\n";
+  os << indent << "ErrorWarningThreshold: " << this->ErrorWarningThreshold << "\n";
   os << indent << "Mu: " << this->Mu << "\n";
   os << indent << "Seed: " << this->Seed << "\n";
   os << indent << "RelativeEnergyTolerance: " << this->RelativeEnergyTolerance << "\n";

@@ -16,15 +16,18 @@
  * - "Embedding": m̄-component point array, the embedded coordinates (first m = input coords);
  * - "EdgeLengthError": per-cell largest relative edge length error (%) of the paper §5.1;
  * - field data "L_avg", "L_max" (%), "MetricScale" (c), "EmbeddingDimension",
- *   "EmbeddingIterations", "FactorSeconds", "SolveSeconds", "DoublePrecisionRetries",
- *   "EmbeddingSeconds"; when the input has the point array "RawMetric" (left by the metric
- *   preparation of vtkAnisoTensorToMetric: the unprepared metric at the same complexity), also
- *   "L_avg_raw", "L_max_raw": the same errors measured with it.
+ *   "EmbeddingIterations", "EmbeddingConverged", "IterativeSolve", "FactorSeconds",
+ *   "SolveSeconds", "DoublePrecisionRetries", "EmbeddingSeconds", "CellsAboveErrorThreshold";
+ *   when the input has the point array "RawMetric" (left by the metric preparation of
+ *   vtkAnisoTensorToMetric: the unprepared metric at the same complexity), also "L_avg_raw",
+ *   "L_max_raw": the same errors measured with it.
+ * When cells have an error above ErrorWarningThreshold, a warning gives their number and the
+ * worst cell's id, location and error (the embedding could not fit the metric there).
  * Output 1 (vtkTable): per iteration (0 = initial state) E_em, E_reg, E_total — chartable.
  *
  * Solver: local step per element (polar factor of a small SVD, parallel), global step with
  * one sparse Cholesky factorisation (CHOLMOD) and one multi-right-hand-side solve per
- * iteration; a smooth random start and energy-safeguarded Anderson acceleration (the energy
+ * iteration, or (large meshes) AMG-preconditioned conjugate gradients; a smooth random start and energy-safeguarded Anderson acceleration (the energy
  * never increases). Filters/Embedding/README.md gives the details and measured figures.
  *
  * Distributed runs (mpiexec pvbatch, pvserver): needs the whole mesh, so it asks its inputs
@@ -51,6 +54,13 @@ public:
     RANDOM = 1
   };
 
+  enum GlobalSolvers
+  {
+    AUTOMATIC_SOLVER = 0,
+    DIRECT_SOLVER = 1,
+    ITERATIVE_SOLVER = 2
+  };
+
   ///@{
   /// Target dimension m̄ (default 8; 3 is enough for the Gaussian 2D case). Range 3..20 and
   /// larger than the input's dimension.
@@ -59,9 +69,44 @@ public:
   ///@}
 
   ///@{
-  /// Local/global iterations (default 50 as the paper).
+  /// Local/global iterations always run (default 50 as the paper).
   vtkSetClampMacro(Iterations, int, 0, 100000);
   vtkGetMacro(Iterations, int);
+  ///@}
+
+  ///@{
+  /// Run to convergence: after Iterations, go on while L_avg is above TargetAverageError and
+  /// the energy still drops by more than
+  /// ConvergenceTolerance (default 1e-4) per iteration on average over the last 10, up to
+  /// MaxIterations in all (default 500; <= Iterations: exactly Iterations). High-stretch inputs
+  /// need hundreds of iterations; converged ones stop at Iterations.
+  vtkSetClampMacro(MaxIterations, int, 0, 100000);
+  vtkGetMacro(MaxIterations, int);
+  vtkSetClampMacro(ConvergenceTolerance, double, 0.0, 1.0);
+  vtkGetMacro(ConvergenceTolerance, double);
+  ///@}
+
+  ///@{
+  /// Past Iterations, stop as soon as L_avg (%) is at or below this (default 2, the paper's
+  /// grade; 0 = only ConvergenceTolerance and MaxIterations stop the run). Inputs that fit at
+  /// Iterations stop there, as before.
+  vtkSetClampMacro(TargetAverageError, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(TargetAverageError, double);
+  ///@}
+
+  ///@{
+  /// Global-step solver: AUTOMATIC_SOLVER (default: direct below 150,000 vertices, iterative
+  /// from there), DIRECT_SOLVER (sparse Cholesky, memory ~n^1.3) or ITERATIVE_SOLVER
+  /// (conjugate gradients with hypre BoomerAMG, warm-started, memory linear in n).
+  vtkSetClampMacro(GlobalSolver, int, AUTOMATIC_SOLVER, ITERATIVE_SOLVER);
+  vtkGetMacro(GlobalSolver, int);
+  ///@}
+
+  ///@{
+  /// Cells whose largest edge length error (%) exceeds this are counted and the worst one is
+  /// named in a warning (default 50, the paper's L_max grade; 0 = no warning).
+  vtkSetClampMacro(ErrorWarningThreshold, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(ErrorWarningThreshold, double);
   ///@}
 
   ///@{
@@ -130,6 +175,7 @@ public:
   vtkGetMacro(AverageEdgeLengthError, double);
   vtkGetMacro(MaximumEdgeLengthError, double);
   vtkGetMacro(MetricScale, double);
+  vtkGetMacro(CellsAboveErrorThreshold, vtkIdType);
 
 protected:
   vtkAnisoEmbedding();
@@ -141,6 +187,11 @@ protected:
 
   int TargetDimension = 8;
   int Iterations = 50;
+  int MaxIterations = 500;
+  double ConvergenceTolerance = 1e-4;
+  double TargetAverageError = 2.0;
+  int GlobalSolver = AUTOMATIC_SOLVER;
+  double ErrorWarningThreshold = 50.0;
   double Mu = 100.0;
   int Seed = 1;
   double RelativeEnergyTolerance = 0.0;
@@ -154,6 +205,7 @@ protected:
   double AverageEdgeLengthError = 0.0;
   double MaximumEdgeLengthError = 0.0;
   double MetricScale = 1.0;
+  vtkIdType CellsAboveErrorThreshold = 0;
 
 private:
   vtkAnisoEmbedding(const vtkAnisoEmbedding&) = delete;

@@ -46,7 +46,8 @@ faces = servermanager.Fetch(voronoi, idx=1)
 assert faces.GetCellData().GetArray("Stretch") is not None
 assert faces.GetCellData().GetArray("FaceKind") is not None
 energy = servermanager.Fetch(voronoi, idx=2)
-assert energy.GetNumberOfRows() == 11, energy.GetNumberOfRows()  # initial state + 10 iterations
+# 10 iterations, then on to convergence (MaxIterations 500): initial state + at least 10
+assert 11 <= energy.GetNumberOfRows() <= 501, energy.GetNumberOfRows()
 
 mesh = AnisoAnisotropicMesh(**common)
 mesh.UpdatePipeline()

@@ -28,7 +28,7 @@ def field(data, name):
 
 # Analytic source -> embedding (5-dimensional, 5 iterations), both output ports.
 src = AnisoAnalyticMetricSource(Preset="Cube1", Resolution=5)
-emb = AnisoEmbedding(Input=src, TargetDimension=5, Iterations=5)
+emb = AnisoEmbedding(Input=src, TargetDimension=5, Iterations=5, MaxIterations=0)  # a fixed count
 emb.Metric = ["POINTS", "Metric"]
 emb.UpdatePipeline()
 mesh = servermanager.Fetch(emb)

@@ -39,7 +39,8 @@ with tempfile.TemporaryDirectory() as tmp:
     os.makedirs(work)
     out = os.path.join(work, "out")
     p, _ = run(["--metric", "preset:cube1", "--resolution", "6", "--sites", "60", "--dim", "5",
-                "--iterations", "10", "--sample-iterations", "10", "--shrink", "1",
+                "--iterations", "10", "--max-iterations", "0", "--sample-iterations", "10",
+                "--shrink", "1",
                 "--output-dir", "out", "--quiet"], work)
     check(p.returncode == 0, "small run exits 0 (stderr: %s)" % p.stderr.strip())
     check(sorted(os.listdir(work)) == ["out"], "nothing written outside the output folder")

@@ -277,6 +277,19 @@ void EmbeddingSolver::Internals::Factor(
   this->FactorSeconds = analyseSeconds + clock.Seconds();
 }
 
+void EmbeddingSolver::Internals::SetupIterative(
+  Eigen::SparseMatrix<double>& kmat, const std::vector<double>& vals)
+{
+  const Stopwatch clock;
+  std::copy(vals.begin(), vals.end(), kmat.valuePtr());
+  if (this->F > 0 && this->NR > 0)
+  {
+    // A few hundred CG iterations at most: AMG-preconditioned CG on these systems takes tens.
+    this->Iterative.reset(new IterativeGlobalSolver(kmat, 500));
+  }
+  this->FactorSeconds = clock.Seconds();
+}
+
 void EmbeddingSolver::Internals::GatherRightHandSides()
 {
   // Gather the per-element contributions of every vertex (no races).

@@ -10,6 +10,7 @@
 #include <tbb/parallel_for.h>
 
 #include <string>
+#include <algorithm>
 #include <utility>
 
 namespace av
@@ -25,13 +26,18 @@ void EmbeddingSolver::Internals::RequireSolved()
   }
 }
 
-Eigen::MatrixXd EmbeddingSolver::Internals::GlobalStep()
+Eigen::MatrixXd EmbeddingSolver::Internals::GlobalStep(const Eigen::MatrixXd& current)
 {
   this->GatherRightHandSides();
   const Eigen::MatrixXd& rhs = this->LastRhs;
   const Stopwatch clock;
   Eigen::MatrixXd sol;
-  if (this->FloatSolver)
+  if (this->Iterative)
+  {
+    sol = current; // warm start: CG from here cannot raise the energy
+    this->Iterative->Solve(rhs, sol, this->Options.IterativeTolerance);
+  }
+  else if (this->FloatSolver)
   {
     sol.resize(rhs.rows(), rhs.cols());
     this->FloatSolver->Solve(rhs.data(), sol.data(), static_cast<int>(rhs.cols()));
@@ -45,11 +51,21 @@ Eigen::MatrixXd EmbeddingSolver::Internals::GlobalStep()
   return sol;
 }
 
-Eigen::MatrixXd EmbeddingSolver::Internals::RedoGlobalStepInDouble()
+Eigen::MatrixXd EmbeddingSolver::Internals::RedoGlobalStepAccurately(const Eigen::MatrixXd& current)
 {
   const Stopwatch clock;
-  Eigen::MatrixXd sol = this->Chol.solve(this->LastRhs);
-  this->RequireSolved();
+  Eigen::MatrixXd sol;
+  if (this->Iterative)
+  {
+    sol = current;
+    this->Iterative->Solve(
+      this->LastRhs, sol, std::max(1e-12, 1e-3 * this->Options.IterativeTolerance));
+  }
+  else
+  {
+    sol = this->Chol.solve(this->LastRhs);
+    this->RequireSolved();
+  }
   this->SolveSeconds += clock.Seconds();
   return sol;
 }
@@ -113,13 +129,20 @@ void EmbeddingSolver::Internals::PlainStep(
 {
   this->SetFree(g);
   EmbeddingEnergy eg = this->LocalStep();
-  if (this->FloatSolver && eg.Total > cur.Total)
+  if ((this->FloatSolver || this->Iterative) && eg.Total > cur.Total)
   {
-    // The exact global step cannot raise the energy; the float one did: redo it in double.
-    g = this->RedoGlobalStepInDouble();
+    // The exact global step cannot raise the energy; the inexact one did: redo it accurately.
+    g = this->RedoGlobalStepAccurately(x);
     this->SetFree(g);
     eg = this->LocalStep();
     ++res.DoublePrecisionRetries;
+    if (this->Iterative && eg.Total > cur.Total)
+    {
+      // Round-off level: no step at all (the energy stays, and the run counts as converged).
+      this->SetFree(x);
+      cur = this->LocalStep();
+      return;
+    }
   }
   cur = eg;
   x = std::move(g);
@@ -134,7 +157,7 @@ bool EmbeddingSolver::Internals::ReportProgress(
   }
   EmbeddingProgress pr;
   pr.Iteration = iteration;
-  pr.Iterations = this->Options.Iterations;
+  pr.Iterations = std::max(this->Options.Iterations, iteration); // more when run to convergence
   pr.Energy = cur;
   pr.Solver = solver;
   return this->Options.Progress(pr);
@@ -145,6 +168,42 @@ bool EmbeddingSolver::Internals::Converged(const std::vector<EmbeddingEnergy>& h
   const double tol = this->Options.RelativeEnergyTolerance;
   const double prev = history[history.size() - 2].Total;
   return tol > 0.0 && prev > 0.0 && (prev - history.back().Total) / prev < tol;
+}
+
+bool EmbeddingSolver::Internals::ShouldStop(
+  int it, const std::vector<EmbeddingEnergy>& history, EmbeddingResult& res) const
+{
+  const EmbeddingOptions& o = this->Options;
+  const int window = std::min<int>(kConvergenceWindow, static_cast<int>(history.size()) - 1);
+  const double now = history.back().Total;
+  const double before = history[history.size() - 1 - static_cast<std::size_t>(window)].Total;
+  res.FinalRelativeDecrease = (before > 0.0 && window > 0) ? (before - now) / (window * before) : 0.0;
+  if (this->Converged(history))
+  {
+    return true;
+  }
+  if (it < o.Iterations)
+  {
+    return false;
+  }
+  // Past the fixed count: go on only while the error is above the target and the energy still
+  // drops (averaged over the window).
+  if (this->ErrorTarget)
+  {
+    Embedding current;
+    current.Dim = this->MB;
+    current.Coords = this->X;
+    res.FinalAverageErrorPercent = this->ErrorTarget->Evaluate(current).AveragePercent;
+    if (res.FinalAverageErrorPercent <= o.TargetAverageErrorPercent)
+    {
+      res.ReachedErrorTarget = res.Converged = true;
+      return true;
+    }
+  }
+  const bool converged = window >= kConvergenceWindow &&
+    res.FinalRelativeDecrease <= o.ConvergenceTolerance;
+  res.Converged = converged;
+  return converged || it >= std::max(o.Iterations, o.MaxIterations);
 }
 
 EmbeddingResult EmbeddingSolver::Run()
@@ -170,9 +229,10 @@ EmbeddingResult EmbeddingSolver::Run()
   // else take the plain step (whose energy is never higher).
   AndersonAcceleration anderson(p.Options.AndersonWindow);
   Eigen::MatrixXd xa;
-  for (int it = 1; it <= p.Options.Iterations; ++it)
+  const int cap = std::max(p.Options.Iterations, p.Options.MaxIterations);
+  for (int it = 1; it <= cap; ++it)
   {
-    Eigen::MatrixXd g = p.GlobalStep();
+    Eigen::MatrixXd g = p.GlobalStep(x);
     if (!p.TryAndersonStep(anderson, g, x, xa, cur, res))
     {
       p.PlainStep(g, x, cur, res);
@@ -184,7 +244,7 @@ EmbeddingResult EmbeddingSolver::Run()
       res.Aborted = true;
       break;
     }
-    if (p.Converged(res.EnergyHistory))
+    if (p.ShouldStop(it, res.EnergyHistory, res))
     {
       break;
     }
@@ -192,6 +252,14 @@ EmbeddingResult EmbeddingSolver::Run()
   res.IterationSeconds = clock.Seconds();
   res.LocalStepSeconds = p.LocalSeconds;
   res.SolveSeconds = p.SolveSeconds;
+  if (p.Iterative)
+  {
+    const IterativeSolveStatistics& st = p.Iterative->Statistics();
+    res.IterativeSolve = true;
+    res.SolverSolves = st.Solves;
+    res.SolverIterations = st.Iterations;
+    res.SolverMaxIterations = st.MaxIterations;
+  }
   res.Embedded = this->CurrentEmbedding();
   return res;
 }

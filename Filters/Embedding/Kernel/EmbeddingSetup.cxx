@@ -52,10 +52,13 @@ void ValidateSizesAndOptions(
   }
   if (o.Iterations < 0 || !(o.Mu >= 0.0) || !std::isfinite(o.Mu) || o.AndersonWindow < 0 ||
     o.AndersonWindow > 50 || !(o.RelativeEnergyTolerance >= 0.0) ||
-    !std::isfinite(o.InitialAmplitude))
+    !std::isfinite(o.InitialAmplitude) || o.MaxIterations < 0 ||
+    !(o.ConvergenceTolerance >= 0.0) || !(o.TargetAverageErrorPercent >= 0.0) || !(o.IterativeTolerance > 0.0 && o.IterativeTolerance < 1.0))
   {
-    throw InputError("embedding: invalid options (need Iterations >= 0, finite Mu >= 0, "
-                     "AndersonWindow in [0, 50], RelativeEnergyTolerance >= 0)");
+    throw InputError("embedding: invalid options (need Iterations >= 0, MaxIterations >= 0, "
+                     "finite Mu >= 0, AndersonWindow in [0, 50], RelativeEnergyTolerance >= 0, "
+                     "ConvergenceTolerance >= 0, TargetAverageErrorPercent >= 0, "
+                     "IterativeTolerance in (0, 1))");
   }
   if (metric.Values.size() != 6 * mesh.NumPoints())
   {

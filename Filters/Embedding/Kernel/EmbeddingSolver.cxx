@@ -6,6 +6,7 @@
 #include "EmbeddingSolverInternals.h"
 #include "Stopwatch.h"
 
+#include <algorithm>
 #include <thread>
 
 namespace av
@@ -27,6 +28,27 @@ EmbeddingSolver::EmbeddingSolver(
   p.NE = mesh.NumCells();
   p.Cells = mesh.Cells;
   p.BuildTopology(mesh);
+  if (options.TargetAverageErrorPercent > 0.0 &&
+    std::max(options.Iterations, options.MaxIterations) > options.Iterations)
+  {
+    p.ErrorMesh = mesh;
+    p.ErrorTarget.reset(new EdgeLengthErrorEvaluator(p.ErrorMesh, metric));
+  }
+  const bool iterative = options.GlobalSolver == EmbeddingGlobalSolver::Iterative ||
+    (options.GlobalSolver == EmbeddingGlobalSolver::Automatic &&
+      p.NP >= kIterativeSolverMinVertices);
+  if (iterative)
+  {
+    Eigen::SparseMatrix<double> kmat;
+    std::vector<double> values;
+    p.AssembleLower(false, kmat, nullptr);
+    p.BuildElements(mesh, metric);
+    p.AssembleLower(true, kmat, &values);
+    p.InitializeState(mesh);
+    p.SetupIterative(kmat, values);
+    p.SetupSeconds = clock.Seconds() - p.FactorSeconds;
+    return;
+  }
   // The fill-reducing ordering and symbolic analysis (single-threaded, ~0.7 s on cube2) need
   // only the pattern: they run on their own thread while the element operators, the values of
   // K and the initial state are computed.

@@ -5,6 +5,7 @@
 
 #include "SimplexMesh.h"
 
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -31,6 +32,23 @@ struct EmbeddingEnergy
   double Total = 0.0;          ///< E_em + Mu * E_reg
 };
 
+/// How the global step's linear systems are solved.
+enum class EmbeddingGlobalSolver
+{
+  /// Direct below kIterativeSolverMinVertices mesh vertices, iterative from there on.
+  Automatic,
+  /// Sparse Cholesky (CHOLMOD supernodal), factorised once; memory grows like n^1.3.
+  Direct,
+  /// Conjugate gradients preconditioned with algebraic multigrid (hypre BoomerAMG), warm-started
+  /// from the current iterate; memory linear in n.
+  Iterative
+};
+
+/// Mesh size (vertices) from which EmbeddingGlobalSolver::Automatic picks the iterative solver
+/// (measured on cube1 grids, Filters/Embedding/README.md: the direct solver is faster below,
+/// and its memory grows to several GB above).
+constexpr std::size_t kIterativeSolverMinVertices = 150000;
+
 class EmbeddingSolver;
 
 /// What the progress callback sees after every iteration.
@@ -46,11 +64,23 @@ struct EmbeddingProgress
 struct EmbeddingOptions
 {
   int TargetDim = 8;       ///< m-bar, in [AmbientDim + 1, 20]
-  int Iterations = 50;     ///< maximum number of local/global iterations (>= 0)
+  int Iterations = 50;     ///< local/global iterations always run (the paper's 50; >= 0)
   double Mu = 100.0;       ///< weight of the regularizer (>= 0)
   std::uint64_t Seed = 1;  ///< seed of the initial random field (runs are reproducible)
   /// Stop when (E_prev - E) / E_prev falls below this (0 = run all iterations).
   double RelativeEnergyTolerance = 0.0;
+  /// Run to convergence: after Iterations, keep iterating while the §5.1 edge length error
+  /// L_avg is above TargetAverageErrorPercent (0: no error target) and the energy still drops
+  /// by more than ConvergenceTolerance per iteration on average over the last
+  /// kConvergenceWindow iterations, up to MaxIterations in all (MaxIterations <= Iterations:
+  /// exactly Iterations). Inputs that fit at Iterations (the presets) stop there unchanged.
+  int MaxIterations = 500;
+  double ConvergenceTolerance = 1e-4;
+  double TargetAverageErrorPercent = 2.0;
+  EmbeddingGlobalSolver GlobalSolver = EmbeddingGlobalSolver::Automatic;
+  /// Iterative solver: stop each CG solve at |r| <= IterativeTolerance |b| (warm start from the
+  /// current iterate; CG never raises the energy whatever the tolerance, see README).
+  double IterativeTolerance = 1e-6;
   /// false: the paper's unweighted sum over elements (Eq. 11); true: weight each element by its
   /// measure relative to the mean element measure (better posed on graded meshes).
   bool ElementMeasureWeighting = false;
@@ -81,13 +111,28 @@ struct EmbeddingResult
   int AndersonRejected = 0; ///< iterations that fell back to the plain step
   bool Aborted = false;     ///< the progress callback asked to stop
   double SetupSeconds = 0.0;     ///< validation, element operators, matrix assembly
-  double FactorSeconds = 0.0;    ///< sparse Cholesky (CHOLMOD supernodal) analyse + factorise
+  double FactorSeconds = 0.0;    ///< sparse Cholesky analyse + factorise, or the AMG setup
   double IterationSeconds = 0.0; ///< all iterations
   double LocalStepSeconds = 0.0; ///< part of IterationSeconds in local steps (incl. energies)
-  double SolveSeconds = 0.0;     ///< part of IterationSeconds in the Cholesky back-substitutions
+  double SolveSeconds = 0.0;     ///< part of IterationSeconds in the global-step solves
   int DoublePrecisionRetries = 0; ///< plain steps redone in double (SinglePrecisionSolve)
   std::size_t FactorNonZeros = 0; ///< non-zeros of the Cholesky factor
+  bool IterativeSolve = false;    ///< the global steps used the iterative solver
+  long long SolverSolves = 0;     ///< iterative: CG solves (one per free dimension and step)
+  long long SolverIterations = 0; ///< iterative: CG iterations summed over all solves
+  int SolverMaxIterations = 0;    ///< iterative: most CG iterations of one solve
+  /// Average relative energy decrease per iteration over the last kConvergenceWindow iterations
+  /// at exit (fewer when fewer were run): the convergence measure.
+  double FinalRelativeDecrease = 0.0;
+  bool Converged = false; ///< stopped past Iterations on the error target or the tolerance
+  bool ReachedErrorTarget = false; ///< L_avg <= TargetAverageErrorPercent at exit
+  /// L_avg (%) at exit when the error target was evaluated (past Iterations), else -1.
+  double FinalAverageErrorPercent = -1.0;
 };
+
+/// Iterations over which the convergence test averages the relative energy decrease (Anderson's
+/// rejected steps make single-iteration decreases noisy).
+constexpr int kConvergenceWindow = 10;
 
 /**
  * Computes the self-intersection free high-d embedding of a simplicial mesh equipped with a

@@ -4,8 +4,10 @@
 #ifndef av_EmbeddingSolverInternals_h
 #define av_EmbeddingSolverInternals_h
 
+#include "EdgeLengthError.h"
 #include "EmbeddingSolver.h"
 #include "FloatSupernodalSolver.h"
+#include "IterativeGlobalSolver.h"
 
 #include <Eigen/CholmodSupport> // the double-precision factor (Cholesky below)
 #include <Eigen/Dense>
@@ -58,6 +60,9 @@ struct EmbeddingSolver::Internals
   };
   Cholesky Chol;
   std::unique_ptr<FloatSupernodalSolver> FloatSolver; // SinglePrecisionSolve
+  std::unique_ptr<IterativeGlobalSolver> Iterative;   // EmbeddingGlobalSolver::Iterative
+  SimplexMesh ErrorMesh; // a copy for ErrorTarget (the caller's mesh may not outlive us)
+  std::unique_ptr<EdgeLengthErrorEvaluator> ErrorTarget; // TargetAverageErrorPercent > 0
   Eigen::MatrixXd LastRhs;                            // right-hand sides of the last global step
   EmbeddingEnergy Energy;
   double SetupSeconds = 0.0, FactorSeconds = 0.0;
@@ -87,6 +92,8 @@ struct EmbeddingSolver::Internals
     Eigen::SparseMatrix<double>& kmat, const std::vector<double>& vals, double analyseSeconds);
   /// Throws when the last double-precision CHOLMOD solve failed.
   void RequireSolved();
+  /// Builds the iterative solver instead of the factorization (kmat: the pattern, vals: values).
+  void SetupIterative(Eigen::SparseMatrix<double>& kmat, const std::vector<double>& vals);
   /// LastRhs = the per-vertex sums of the element contributions C of the last local step.
   void GatherRightHandSides();
 
@@ -97,15 +104,19 @@ struct EmbeddingSolver::Internals
   double RegularizerEnergy() const;
 
   // Global step and iterations (EmbeddingIterations.cxx).
-  Eigen::MatrixXd GlobalStep();
-  Eigen::MatrixXd RedoGlobalStepInDouble();
+  /// The global step for the current local step; current = the current iterate's free
+  /// coordinates (the iterative solver's warm start).
+  Eigen::MatrixXd GlobalStep(const Eigen::MatrixXd& current);
+  /// The same step solved more accurately (double factor, or a 1000x tighter CG tolerance).
+  Eigen::MatrixXd RedoGlobalStepAccurately(const Eigen::MatrixXd& current);
   Eigen::MatrixXd GetFree() const;
   void SetFree(const Eigen::MatrixXd& xr);
   /// The Anderson candidate from the global step g = G(x), kept (x, cur updated) only when it
   /// lowers the energy; false when there is none or it was rejected.
   bool TryAndersonStep(AndersonAcceleration& anderson, const Eigen::MatrixXd& g,
     Eigen::MatrixXd& x, Eigen::MatrixXd& xa, EmbeddingEnergy& cur, EmbeddingResult& res);
-  /// x = g, redone with the double factor when the float solve raised the energy.
+  /// x = g, redone more accurately when the inexact solve raised the energy; if the iterative
+  /// solve still does (round-off), x is kept.
   void PlainStep(
     Eigen::MatrixXd& g, Eigen::MatrixXd& x, EmbeddingEnergy& cur, EmbeddingResult& res);
   /// Calls the progress callback; false when it asks to stop.
@@ -113,6 +124,8 @@ struct EmbeddingSolver::Internals
     const EmbeddingSolver* solver, int iteration, const EmbeddingEnergy& cur) const;
   /// The relative energy decrease of the last iteration fell below RelativeEnergyTolerance.
   bool Converged(const std::vector<EmbeddingEnergy>& history) const;
+  /// Iteration `it` (1-based) is the last: the cap, or past Iterations and converged.
+  bool ShouldStop(int it, const std::vector<EmbeddingEnergy>& history, EmbeddingResult& res) const;
 };
 
 } // namespace av

@@ -44,6 +44,7 @@ EmbeddingOptions GaussianOptions(int dim)
   EmbeddingOptions o;
   o.TargetDim = dim;
   o.Iterations = 40;
+  o.MaxIterations = 0; // a fixed count
   return o;
 }
 
@@ -79,6 +80,7 @@ void CheckIdentityMetric(const SimplexMesh& cube)
     EmbeddingOptions o;
     o.TargetDim = dim;
     o.Iterations = 0;
+    o.MaxIterations = 0; // a fixed count
     o.InitialAmplitude = 1e-9;
     const EmbeddingResult r = ComputeEmbedding(cube, id, o);
     AV_CHECK(r.EnergyHistory.size() == 1u && r.EnergyHistory[0].Embedding < 1e-12);
@@ -91,6 +93,7 @@ void CheckCube1(const SimplexMesh& cube, const MetricField& cubeMetric,
 {
   EmbeddingOptions o;
   o.Iterations = 30;
+  o.MaxIterations = 0; // a fixed count
   const EmbeddingResult r = ComputeEmbedding(cube, cubeMetric, o);
   AV_CHECK(r.IterationsDone == 30 && r.EnergyHistory.size() == 31u);
   AV_CHECK(r.Embedded.Dim == 8 && r.Embedded.NumPoints() == cube.NumPoints());
@@ -114,6 +117,7 @@ void CheckPlainRandomWeighted(const SimplexMesh& cube, const MetricField& cubeMe
   // Plain local/global from the paper's i.i.d. start, element-measure weighting: still monotone.
   EmbeddingOptions o;
   o.Iterations = 15;
+  o.MaxIterations = 0; // a fixed count
   o.AndersonWindow = 0;
   o.Initialization = EmbeddingInitialization::Random;
   o.ElementMeasureWeighting = true;
@@ -132,6 +136,7 @@ void CheckFloatSolves(const SimplexMesh& cube, const MetricField& cubeMetric)
   // (no Anderson, which would amplify round-off) follow the same energy curve.
   EmbeddingOptions o;
   o.Iterations = 20;
+  o.MaxIterations = 0; // a fixed count
   o.AndersonWindow = 0;
   o.SinglePrecisionSolve = false;
   const EmbeddingResult rd = ComputeEmbedding(cube, cubeMetric, o);
@@ -157,6 +162,7 @@ void CheckAbort(const SimplexMesh& cube, const MetricField& cubeMetric)
   // Progress callback can abort; Mu = 0 and a dynamic-size target dimension work.
   EmbeddingOptions o;
   o.Iterations = 10;
+  o.MaxIterations = 0; // a fixed count
   o.TargetDim = 13;
   o.Mu = 0.0;
   int calls = 0;
@@ -246,6 +252,7 @@ void CheckBadInputs()
   const MetricField good = EvaluateAnalyticMetric(AnalyticPreset::Cube1, small);
   EmbeddingOptions o;
   o.Iterations = 1;
+  o.MaxIterations = 0; // a fixed count
   AV_CHECK_THROWS(ComputeEmbedding(SimplexMesh(), MetricField(), o));
   MetricField shortMetric = good;
   shortMetric.Values.pop_back();

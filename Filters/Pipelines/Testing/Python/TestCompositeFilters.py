@@ -73,7 +73,9 @@ assert r > 0.95, r
 slope = np.polyfit(centroid_x, stretch, 1)[0]
 assert 7.0 < slope < 11.0, slope
 assert cube.GetPointData().GetNumberOfArrays() == arrays_before  # input untouched
-assert f.GetOutputDataObject(2).GetNumberOfRows() == 11
+# 10 iterations, then on to convergence (the embedding's MaxIterations, 500): 1 + at least 10 rows
+rows = f.GetOutputDataObject(2).GetNumberOfRows()
+assert 11 <= rows <= 501, rows
 
 # Tensor mode on a cell tensor array (the metric averaged to the cells).
 p2c = vtkPointDataToCellData()
