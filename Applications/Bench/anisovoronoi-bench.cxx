@@ -11,6 +11,7 @@
 #include "MeshStage.h"
 #include "MetricAlgebra.h"
 #include "MetricPreparation.h"
+#include "MetricScaling.h"
 #include "ReferenceEmbedding.h"
 #include "Stopwatch.h"
 #include "StructuredMeshes.h"
@@ -171,7 +172,12 @@ Case BuildCase(const Args& a)
     c.RawMetric = std::move(c.Metric);
     c.Metric = c.Prep.Metric;
     // The raw field at the prepared one's complexity, for L_avg against it.
-    const double t = std::pow(c.Prep.Complexity / c.Prep.RawComplexity, 2.0 / c.Mesh.SimplexDim);
+    // Back from cell units to the preset's scale (the embedding's regime, as the CLI does),
+    // then every eigenvalue >= 1 as the embedding needs; the same factors on the raw field.
+    for (double& v : c.Metric.Values)
+      v /= c.Prep.Scale;
+    const double t = std::pow(c.Prep.Complexity / c.Prep.RawComplexity, 2.0 / c.Mesh.SimplexDim) /
+      c.Prep.Scale * av::ScaleMetricForEmbedding(c.Mesh, c.Metric).Scale;
     for (double& v : c.RawMetric.Values)
       v *= t;
   }
