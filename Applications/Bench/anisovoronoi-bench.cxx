@@ -13,6 +13,7 @@
 #include "MetricAlgebra.h"
 #include "RealCases.h"
 #include "MetricPreparation.h"
+#include "MetricScaling.h"
 #include "ReferenceEmbedding.h"
 #include "Stopwatch.h"
 #include "StructuredMeshes.h"
@@ -177,7 +178,12 @@ void PrepareCaseMetric(const Args& a, Case& c, std::size_t sites)
   c.Prep = av::PrepareMetric(c.Mesh, c.Metric, o);
   c.RawMetric = std::move(c.Metric);
   c.Metric = c.Prep.Metric;
-  const double t = std::pow(c.Prep.Complexity / c.Prep.RawComplexity, 2.0 / c.Mesh.SimplexDim);
+  // Back from cell units to the input's scale (the embedding's regime, as the CLI does), then
+  // every eigenvalue >= 1 as the embedding needs; the same factors on the raw field.
+  for (double& v : c.Metric.Values)
+    v /= c.Prep.Scale;
+  const double t = std::pow(c.Prep.Complexity / c.Prep.RawComplexity, 2.0 / c.Mesh.SimplexDim) /
+    c.Prep.Scale * av::ScaleMetricForEmbedding(c.Mesh, c.Metric).Scale;
   for (double& v : c.RawMetric.Values)
     v *= t;
 }

@@ -236,7 +236,6 @@ vtkSmartPointer<vtkAlgorithm> MakeMetricPreparation(
   m->SetInterpretationToTensorAsMetric();
   m->SetMinimumEigenvalue(1e-15);
   m->SetMaximumAnisotropy(0.0);
-  m->ApplyGlobalScaleOff();
   SetPreparation(o, m);
   return m;
 }

@@ -404,9 +404,6 @@ int vtkAnisoTensorToMetric::RequestData(vtkInformation*,
     }
   }
   this->UpdateProgress(0.3);
-  // With a normalization the output is in cell units; the embedding scales it for itself.
-  if (this->PreparationRequested() && this->NumberOfSites > 0)
-    options.ApplyGlobalScale = false;
 
   // A triangle surface in 3D: the tensors' normal parts must not reach the metric.
   std::vector<double> normals;
@@ -519,12 +516,19 @@ bool vtkAnisoTensorToMetric::Prepare(vtkDataSet* input,
   const double t = prep.RawComplexity > 0.0
     ? std::pow(prep.Complexity / prep.RawComplexity, 2.0 / mesh.SimplexDim)
     : 1.0;
+  // With ApplyGlobalScale the normalization is undone at the end: the field keeps the scale the
+  // embedding is tuned for (smallest eigenvalue 1 where nothing changed; a pure normalization
+  // leaves the conversion's output as it was). "CellUnitScale" turns it into cell units.
+  const double back = this->ApplyGlobalScale ? 1.0 / prep.Scale : 1.0;
   rawMetric = result.Metric.Values;
   for (double& v : rawMetric)
-    v *= t;
+    v *= t * back;
+  for (double& v : prep.Metric.Values)
+    v *= back;
   result.Metric = std::move(prep.Metric);
   result.StretchRatio = std::move(prep.StretchRatio);
-  result.GlobalScale *= prep.Scale;
+  result.GlobalScale *= prep.Scale * back;
+  this->CellUnitScale = prep.Scale * back == 1.0 ? 1.0 : prep.Scale;
   av::EigenvalueRange(result.Metric, dimension == 2, result.MinEigenvalue, result.MaxEigenvalue);
   const auto range = std::minmax_element(result.StretchRatio.begin(), result.StretchRatio.end());
   result.MinStretch = *range.first;
@@ -636,6 +640,7 @@ void vtkAnisoTensorToMetric::WriteOutput(const av::TensorToMetricResult& result,
     AddFieldValue(fd, "MetricPrepMaxChange", this->PreparationFigures[0]);
     AddFieldValue(fd, "MetricPrepChangedFraction", this->ChangedFraction);
     AddFieldValue(fd, "MetricComplexity", this->PreparationFigures[1]);
+    AddFieldValue(fd, "CellUnitScale", this->CellUnitScale);
     AddFieldValue(fd, "ImpliedSites", this->ImpliedSites);
     AddFieldValue(fd, "NumGraded", static_cast<double>(this->NumberOfGradedPoints));
     AddFieldValue(fd, "NumHMinClamped", this->PreparationFigures[2]);

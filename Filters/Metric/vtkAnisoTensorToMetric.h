@@ -27,8 +27,10 @@
  * determinant, shape only; BLEND det^SizeBlend), normalization to NumberOfSites output cells
  * (unit metric length = one output cell; 0 keeps the tensor's scale), size limits HMin / HMax
  * (input length units, 0 = off) and Gradation (growth per unit metric length bounded by
- * GradationFactor, MMG's hgrad). With NumberOfSites > 0 the output metric is in those cell
- * units and ApplyGlobalScale is not applied (the embedding scales it for itself). Cells of the
+ * GradationFactor, MMG's hgrad), all in those cell units. With ApplyGlobalScale (default) the
+ * normalization factor is then divided out again, so the output keeps the scale the embedding
+ * is tuned for (field data "CellUnitScale" multiplies it back into cell units); without, the
+ * output is in cell units. Cells of the
  * highest dimension are split into simplices for the complexity integral; the gradation runs on
  * the cell edges. Adds the point array "RawMetric" (the unprepared metric scaled to the same
  * complexity, for the embedding's L_avg against it) and field data "MetricPrepMedianChange",
@@ -272,6 +274,7 @@ protected:
   double ChangedFraction = 0.0;
   double ImpliedSites = 0.0;
   vtkIdType NumberOfGradedPoints = 0;
+  double CellUnitScale = 1.0; ///< factor from the output metric to cell units
   double PreparationFigures[5] = { 0, 0, 0, 0, 0 }; ///< max change, complexity, clamps, sweeps
 
 private:

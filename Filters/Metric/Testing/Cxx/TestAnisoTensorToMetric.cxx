@@ -475,6 +475,9 @@ void TestPreparation(EventCounter* events)
   AV_CHECK(FieldValue(out, "NumGraded") > 0 && filter->GetNumberOfGradedPoints() > 0);
   AV_CHECK(filter->GetPercentile95Change() > 0.5); // a 1000x jump is not kept as it is
   AV_CHECK(FieldValue(out, "MetricPrepP95Change") == filter->GetPercentile95Change());
+  // The output keeps the conversion's scale (ApplyGlobalScale); the bound is in cell units.
+  const double cellUnits = FieldValue(out, "CellUnitScale");
+  AV_CHECK(cellUnits > 0.0 && cellUnits != 1.0);
   const double lnBeta = std::log(filter->GetGradationFactor());
   double worst = 0.0;
   for (int k = 0; k < nx; ++k)
@@ -488,7 +491,8 @@ void TestPreparation(EventCounter* events)
         {
           if (q < 0)
             continue;
-          const double lp = metric->GetComponent(p, 0), lq = metric->GetComponent(q, 0);
+          const double lp = cellUnits * metric->GetComponent(p, 0);
+          const double lq = cellUnits * metric->GetComponent(q, 0);
           for (const auto& [a, b] : { std::pair<double, double>(lp, lq), { lq, lp } })
           {
             const double grow = 1.0 + 0.5 * std::sqrt(a) * lnBeta;
@@ -511,9 +515,11 @@ void TestPreparation(EventCounter* events)
   filter->GradationOn();
   filter->SetHMax(0.3);
   AV_CHECK(filter->GetExecutive()->Update() == 1);
-  metric = vtkDataSet::SafeDownCast(filter->GetOutputDataObject(0))->GetPointData()->GetArray("Metric");
+  out = vtkDataSet::SafeDownCast(filter->GetOutputDataObject(0));
+  metric = out->GetPointData()->GetArray("Metric");
   for (vtkIdType i = 0; i < n; ++i)
-    AV_CHECK(metric->GetComponent(i, 0) >= (1.0 - 1e-9) / (0.3 * 0.3));
+    AV_CHECK(FieldValue(out, "CellUnitScale") * metric->GetComponent(i, 0) >=
+      (1.0 - 1e-9) / (0.3 * 0.3));
   AV_CHECK(events->Errors == 0);
 }
 
