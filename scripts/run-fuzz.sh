@@ -52,15 +52,20 @@ for t in "${TARGETS[@]}"; do
   mkdir -p "$crashes"
   seed "$t" "$corpus"
   echo "[fuzz] $t for ${SECONDS_PER_TARGET}s (corpus $(ls "$corpus" | wc -l) files)" >&2
-  # One job; 4 MB inputs at most; 2 GB RSS: a parser that allocates what a header claims
-  # without checking it against the file's size is a finding too.
-  if ! nice "$BUILD_DIR/bin/$t" -max_total_time="$SECONDS_PER_TARGET" -max_len=65536 \
-    -rss_limit_mb=2048 -malloc_limit_mb=1024 -timeout=10 -print_final_stats=1 \
-    -artifact_prefix="$crashes/" "$corpus" 2>"$BUILD_DIR/$t.log"; then
-    echo "[fuzz] $t FOUND A CRASH: see $BUILD_DIR/$t.log and $crashes/" >&2
+  # One worker process (-fork=1) that goes on after a crash, so that one run finds them all;
+  # 64 KB inputs at most; 2 GB RSS and 1 GB per allocation: a parser that allocates what a
+  # header claims without checking it against the file's size is a finding too.
+  before=$(ls "$crashes" | wc -l)
+  nice "$BUILD_DIR/bin/$t" -fork=1 -ignore_crashes=1 -ignore_ooms=1 -ignore_timeouts=1 \
+    -max_total_time="$SECONDS_PER_TARGET" -max_len=65536 -rss_limit_mb=2048 \
+    -malloc_limit_mb=1024 -timeout=10 -print_final_stats=1 \
+    -artifact_prefix="$crashes/" "$corpus" 2>"$BUILD_DIR/$t.log" || true
+  found=$(($(ls "$crashes" | wc -l) - before))
+  if ((found > 0)); then
+    echo "[fuzz] $t FOUND $found CRASH INPUT(S): see $BUILD_DIR/$t.log and $crashes/" >&2
     status=1
   fi
-  tail -n 12 "$BUILD_DIR/$t.log" | grep -E "stat::|Done|ERROR|SUMMARY" >&2 || true
+  grep -E "^#[0-9]+: cov|DONE|stat::" "$BUILD_DIR/$t.log" | tail -n 3 >&2 || true
   echo "[fuzz] $t corpus now $(ls "$corpus" | wc -l) files, $(du -sk "$corpus" | cut -f1) KB" >&2
 done
 exit $status

@@ -3,7 +3,9 @@
 # Command 2 of the README: install what is missing, build, run the whole CTest suite.
 # The rendering tests share one X server, started here for the whole run (Xvfb picks a free
 # display itself and reports it when ready: no display race, whatever the load) and stopped on
-# exit. Without DISPLAY, a hand-run ctest skips the rendering tests with a message.
+# exit. -noreset: by default an X server resets when its last client disconnects, and a test
+# connecting during that reset fails ("bad X server connection"). Without DISPLAY, a hand-run
+# ctest skips the rendering tests with a message.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
@@ -19,7 +21,7 @@ cleanup()
   rm -rf "$XVFB_DIR"
 }
 trap cleanup EXIT
-Xvfb -displayfd 3 -screen 0 1280x1024x24 -nolisten tcp 3>"$XVFB_DIR/display" \
+Xvfb -displayfd 3 -screen 0 1280x1024x24 -nolisten tcp -noreset 3>"$XVFB_DIR/display" \
   >"$XVFB_DIR/xvfb.log" 2>&1 &
 XVFB_PID=$!
 for _ in $(seq 300); do

@@ -482,7 +482,15 @@ MeditMesh ParseMeditMesh(const std::string& text, const std::string& sourceName)
     }
     else if (IEquals(kw, "Dimension"))
     {
-      m.Dim = static_cast<int>(tok.Int("the Dimension value", 2, 3));
+      // A second, different Dimension would reinterpret the coordinates already read (found
+      // by FuzzMeditMesh: 'Dimension 2' after 3D vertices gave a mesh of inconsistent size).
+      const int dim = static_cast<int>(tok.Int("the Dimension value", 2, 3));
+      if (m.Dim != 0 && dim != m.Dim)
+      {
+        tok.Fail("a second 'Dimension' (" + std::to_string(dim) + ") contradicts the first (" +
+          std::to_string(m.Dim) + ")");
+      }
+      m.Dim = dim;
     }
     else if (IEquals(kw, "Vertices"))
     {
