@@ -142,8 +142,9 @@ int vtkAnisoAdaptedBackgroundMesh::RequestData(
     vtkWarningMacro(<< note);
   }
   int association = -1;
-  vtkDataArray* metricArray = vtkAnisoDataConversion::FindPointTensorArray(
-    this->GetInputArrayToProcess(0, inputVector, association), association, input);
+  vtkDataArray* chosen = this->GetInputArrayToProcess(0, inputVector, association);
+  vtkDataArray* metricArray =
+    vtkAnisoDataConversion::FindPointTensorArray(chosen, association, input);
   if (!vtkAnisoDataConversion::ToMetricField(metricArray, mesh.NumPoints(), metric, error))
   {
     vtkErrorMacro(<< error);

@@ -50,7 +50,7 @@ vtkSmartPointer<vtkUnstructuredGrid> MakeGrid(int n, int metricComponents)
       {
         const double x[3] = { i * h, j * h, k * h };
         points->InsertNextPoint(x);
-        const double hz = 0.01 + 0.3 * x[2], hxy = 0.2;
+        const double hz = 0.05 + 0.3 * x[2], hxy = 0.2;
         const double a = 1.0 / (hxy * hxy), c = 1.0 / (hz * hz);
         if (metricComponents == 6)
           metric->InsertNextTuple6(a, a, c, 0, 0, 0);
@@ -170,7 +170,7 @@ int TestAnisoAdaptedBackgroundMesh(int, char*[])
     Watch(filter, events);
     filter->SetInputData(input);
     filter->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "Metric");
-    filter->SetNumberOfSites(800);
+    filter->SetNumberOfSites(200);
     filter->Update();
     AV_CHECK(events->Errors == 0);
     CheckOutput(input, filter->GetOutput(), components);
