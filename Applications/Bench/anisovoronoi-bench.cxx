@@ -213,6 +213,9 @@ Case BuildRealCase(const Args& a)
     PrepareCaseMetric(a, c, a.Sites > 0 ? a.Sites : c.DefaultSites);
     StretchRange(c, c.StretchMin, c.StretchMax);
   }
+  return c;
+}
+
 /// A surface case of Tab. 3 (SurfaceCases.h); --resolution N scales its grid by N / 100.
 Case BuildSurface(const Args& a)
 {

@@ -42,7 +42,9 @@ av::AdaptedMeshOptions MakeOptions(vtkAnisoAdaptedBackgroundMesh* self)
 
 /// Point data through the parent weights, the metric array replaced by the kernel's (SPD)
 /// values, cell data from the parent cells, field data from the input.
-void BuildOutput(vtkDataSet* input, vtkDataArray* metricArray, const av::AdaptedMeshResult& r,
+void BuildOutput(vtkDataSet* input,
+  vtkDataArray* metricArray,
+  const av::AdaptedMeshResult& r,
   vtkUnstructuredGrid* output)
 {
   output->ShallowCopy(vtkAnisoDataConversion::FromSimplexMesh(r.Mesh));
@@ -113,15 +115,17 @@ int vtkAnisoAdaptedBackgroundMesh::FillInputPortInformation(int, vtkInformation*
   return 1;
 }
 
-int vtkAnisoAdaptedBackgroundMesh::RequestUpdateExtent(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
+int vtkAnisoAdaptedBackgroundMesh::RequestUpdateExtent(vtkInformation*,
+  vtkInformationVector** inputVector,
+  vtkInformationVector*)
 {
   vtkAnisoDataConversion::RequestWholeInputs(inputVector, this->GetNumberOfInputPorts());
   return 1;
 }
 
-int vtkAnisoAdaptedBackgroundMesh::RequestData(
-  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+int vtkAnisoAdaptedBackgroundMesh::RequestData(vtkInformation* request,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
 {
   vtkDataSet* input = vtkDataSet::GetData(inputVector[0]);
   vtkUnstructuredGrid* output = vtkUnstructuredGrid::GetData(outputVector);
@@ -142,8 +146,9 @@ int vtkAnisoAdaptedBackgroundMesh::RequestData(
     vtkWarningMacro(<< note);
   }
   int association = -1;
-  vtkDataArray* metricArray = vtkAnisoDataConversion::FindPointTensorArray(
-    this->GetInputArrayToProcess(0, inputVector, association), association, input);
+  vtkDataArray* chosen = this->GetInputArrayToProcess(0, inputVector, association);
+  vtkDataArray* metricArray =
+    vtkAnisoDataConversion::FindPointTensorArray(chosen, association, input);
   if (!vtkAnisoDataConversion::ToMetricField(metricArray, mesh.NumPoints(), metric, error))
   {
     vtkErrorMacro(<< error);
@@ -151,7 +156,8 @@ int vtkAnisoAdaptedBackgroundMesh::RequestData(
   }
   this->UpdateProgress(0.05);
   av::AdaptedMeshResult r;
-  if (!vtkAnisoFilterUtilities::RunKernel(this, "background mesh adaptation",
+  if (!vtkAnisoFilterUtilities::RunKernel(this,
+        "background mesh adaptation",
         [&] { r = av::AdaptBackgroundMesh(mesh, metric, MakeOptions(this)); }))
   {
     return 0;

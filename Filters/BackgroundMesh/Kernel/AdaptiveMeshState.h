@@ -20,13 +20,13 @@ struct AdaptiveMeshState
 {
   int AmbientDim = 3;
   int SimplexDim = 3;
-  double LengthScale = 1.0; ///< sqrt(s): normalized length = LengthScale x metric length
-  std::vector<double> Points;         ///< n x AmbientDim
-  std::vector<double> Metric;         ///< n x 6, unscaled
-  std::vector<double> SqrtMetric;     ///< n x 6, M^(1/2) (for the edge length of paper §5.1)
-  std::vector<std::int32_t> Parents;  ///< n x 4 input point ids, -1 unused
-  std::vector<double> Weights;        ///< n x 4
-  std::vector<std::int32_t> Cells;    ///< c x (SimplexDim + 1)
+  double LengthScale = 1.0;          ///< sqrt(s): normalized length = LengthScale x metric length
+  std::vector<double> Points;        ///< n x AmbientDim
+  std::vector<double> Metric;        ///< n x 6, unscaled
+  std::vector<double> SqrtMetric;    ///< n x 6, M^(1/2) (for the edge length of paper §5.1)
+  std::vector<std::int32_t> Parents; ///< n x 4 input point ids, -1 unused
+  std::vector<double> Weights;       ///< n x 4
+  std::vector<std::int32_t> Cells;   ///< c x (SimplexDim + 1)
   std::vector<std::int32_t> CellParent;
 
   int Nv() const { return SimplexDim + 1; }
@@ -60,9 +60,9 @@ extern const int kSimplexEdges[6][2];
 /// How a refinement call ended.
 enum class RefineStatus
 {
-  Done,       ///< no edge is longer than the target
-  PassLimit,  ///< long edges remain after maxPasses passes
-  PointLimit  ///< the mesh reached maxPoints points
+  Done,      ///< no edge is longer than the target
+  PassLimit, ///< long edges remain after maxPasses passes
+  PointLimit ///< the mesh reached maxPoints points
 };
 
 /**
@@ -70,14 +70,23 @@ enum class RefineStatus
  * element-disjoint splits. New points are edge midpoints with merged parent weights and the
  * log-Euclidean metric of their parents.
  */
-RefineStatus RefineLongEdges(AdaptiveMeshState& state, const MetricField& inputMetric,
-  double target, std::size_t maxPoints, int maxPasses, std::size_t& numSplits, int& passes);
+RefineStatus RefineLongEdges(AdaptiveMeshState& state,
+  const MetricField& inputMetric,
+  double target,
+  std::size_t maxPoints,
+  int maxPasses,
+  std::size_t& numSplits,
+  int& passes);
 
 /// Collapses edges shorter than `shortLength` under the safety checks of AdaptBackgroundMesh
 /// (options give the angles and the quality floor) in at most `maxPasses` passes, then drops
 /// the dead cells and unused points. Returns the number of collapses.
-std::size_t CollapseShortEdges(AdaptiveMeshState& state, double shortLength, double target,
-  const AdaptedMeshOptions& options, int maxPasses, int& passes);
+std::size_t CollapseShortEdges(AdaptiveMeshState& state,
+  double shortLength,
+  double target,
+  const AdaptedMeshOptions& options,
+  int maxPasses,
+  int& passes);
 
 /// Drops the points no cell uses (ids renumbered in order).
 void CompactMesh(AdaptiveMeshState& state);

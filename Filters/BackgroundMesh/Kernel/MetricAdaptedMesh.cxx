@@ -25,14 +25,14 @@ void CheckOptions(const AdaptedMeshOptions& o)
 {
   const std::string who = "AdaptBackgroundMesh: ";
   if (o.NumberOfSites <= 0)
-    throw InputError(who + "the number of sites must be positive (got " +
-      std::to_string(o.NumberOfSites) + ")");
+    throw InputError(
+      who + "the number of sites must be positive (got " + std::to_string(o.NumberOfSites) + ")");
   if (!(o.TargetLength > 0.0 && o.TargetLength <= 10.0))
     throw InputError(who + "the target edge length must be in (0, 10] output edges (got " +
       std::to_string(o.TargetLength) + ")");
   if (!(o.CollapseRatio >= 0.0 && o.CollapseRatio <= 0.7))
-    throw InputError(who + "the collapse ratio must be in [0, 0.7] (got " +
-      std::to_string(o.CollapseRatio) + ")");
+    throw InputError(
+      who + "the collapse ratio must be in [0, 0.7] (got " + std::to_string(o.CollapseRatio) + ")");
   if (!(o.FeatureAngle > 0.0 && o.FeatureAngle <= 180.0))
     throw InputError(who + "the feature angle must be in (0, 180] degrees");
   if (!(o.SurfaceDeviationAngle >= 0.0 && o.SurfaceDeviationAngle <= 30.0))
@@ -110,7 +110,8 @@ void EdgeStatistics(const AdaptiveMeshState& s, double& maxLength, double& meanL
   tbb::parallel_sort(keys.begin(), keys.end());
   keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
   using MaxSum = std::pair<double, double>;
-  const MaxSum r = tbb::parallel_reduce(tbb::blocked_range<std::size_t>(0, keys.size(), 4096),
+  const MaxSum r = tbb::parallel_reduce(
+    tbb::blocked_range<std::size_t>(0, keys.size(), 4096),
     MaxSum{ 0.0, 0.0 },
     [&](const tbb::blocked_range<std::size_t>& range, MaxSum acc)
     {
@@ -123,7 +124,9 @@ void EdgeStatistics(const AdaptiveMeshState& s, double& maxLength, double& meanL
       }
       return acc;
     },
-    [](MaxSum x, MaxSum y) { return MaxSum{ std::max(x.first, y.first), x.second + y.second }; });
+    [](MaxSum x, MaxSum y) {
+      return MaxSum{ std::max(x.first, y.first), x.second + y.second };
+    });
   maxLength = r.first;
   meanLength = keys.empty() ? 0.0 : r.second / static_cast<double>(keys.size());
 }
@@ -141,16 +144,24 @@ double StateComplexity(const AdaptiveMeshState& s)
 }
 
 /// Splits until no edge is longer than the target (or the point limit); true when done.
-bool RefineAll(AdaptiveMeshState& s, const MetricField& metric, const AdaptedMeshOptions& o,
+bool RefineAll(AdaptiveMeshState& s,
+  const MetricField& metric,
+  const AdaptedMeshOptions& o,
   AdaptedMeshResult& result)
 {
-  return RefineLongEdges(s, metric, o.TargetLength, o.MaxPoints, 1000000, result.NumSplits,
+  return RefineLongEdges(s,
+           metric,
+           o.TargetLength,
+           o.MaxPoints,
+           1000000,
+           result.NumSplits,
            result.RefinePasses) == RefineStatus::Done;
 }
 } // namespace
 
-AdaptedMeshResult AdaptBackgroundMesh(
-  const SimplexMesh& mesh, const MetricField& metric, const AdaptedMeshOptions& options)
+AdaptedMeshResult AdaptBackgroundMesh(const SimplexMesh& mesh,
+  const MetricField& metric,
+  const AdaptedMeshOptions& options)
 {
   Stopwatch clock;
   CheckOptions(options);
@@ -175,7 +186,8 @@ AdaptedMeshResult AdaptBackgroundMesh(
     // refined mesh resolves it: rescale once from it, refine on when the scale grew.
     const double c = StateComplexity(s);
     const double scale = std::pow(options.NumberOfSites * UnitVertexMeasure(k) / c, 2.0 / k);
-    if (done && c > 0.0 && std::isfinite(scale) && std::abs(scale / result.MetricScale - 1.0) > 0.05)
+    if (done && c > 0.0 && std::isfinite(scale) &&
+      std::abs(scale / result.MetricScale - 1.0) > 0.05)
     {
       result.Complexity = c;
       result.MetricScale = scale;
@@ -185,8 +197,12 @@ AdaptedMeshResult AdaptBackgroundMesh(
   }
   result.HitPointLimit = !done;
   if (options.Coarsen && options.CollapseRatio > 0.0)
-    result.NumCollapses = CollapseShortEdges(s, options.CollapseRatio * options.TargetLength,
-      options.TargetLength, options, options.MaxCoarsenPasses, result.CoarsenPasses);
+    result.NumCollapses = CollapseShortEdges(s,
+      options.CollapseRatio * options.TargetLength,
+      options.TargetLength,
+      options,
+      options.MaxCoarsenPasses,
+      result.CoarsenPasses);
   CompactMesh(s);
   EdgeStatistics(s, result.MaxEdgeLength, result.MeanEdgeLength);
   result.Mesh.AmbientDim = s.AmbientDim;

@@ -88,8 +88,9 @@ struct AdaptedMeshResult
  * Throws InputError on bad options, an empty mesh, bad ids, a metric of the wrong size, non-finite
  * values or a zero-complexity metric.
  */
-AdaptedMeshResult AdaptBackgroundMesh(
-  const SimplexMesh& mesh, const MetricField& metric, const AdaptedMeshOptions& options);
+AdaptedMeshResult AdaptBackgroundMesh(const SimplexMesh& mesh,
+  const MetricField& metric,
+  const AdaptedMeshOptions& options);
 
 } // namespace av
 

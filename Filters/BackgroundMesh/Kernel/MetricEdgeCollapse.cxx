@@ -116,7 +116,10 @@ bool CellHas(const AdaptiveMeshState& s, std::int32_t c, std::int32_t p)
 }
 
 /// Unique sorted vertices of the cells, without `self`.
-int StarVertices(const AdaptiveMeshState& s, const std::int32_t* cells, int n, std::int32_t self,
+int StarVertices(const AdaptiveMeshState& s,
+  const std::int32_t* cells,
+  int n,
+  std::int32_t self,
   std::int32_t* out)
 {
   int m = 0;
@@ -132,8 +135,12 @@ int StarVertices(const AdaptiveMeshState& s, const std::int32_t* cells, int n, s
 }
 
 /// The facets through `p` of the cells (as keys of the other vertices), sorted, with repeats.
-int FacetsThrough(const AdaptiveMeshState& s, const std::int32_t* cells, int n, std::int32_t p,
-  std::int32_t from, std::uint64_t* out)
+int FacetsThrough(const AdaptiveMeshState& s,
+  const std::int32_t* cells,
+  int n,
+  std::int32_t p,
+  std::int32_t from,
+  std::uint64_t* out)
 {
   int m = 0;
   const int nv = s.Nv();
@@ -236,8 +243,8 @@ bool TryCollapse(CollapseContext& ctx, std::int32_t a, std::int32_t b)
     {
       for (int i = 0; i < nf && !onStratum; ++i)
       {
-        const bool single = (i == 0 || facets[i] != facets[i - 1]) &&
-          (i + 1 == nf || facets[i + 1] != facets[i]);
+        const bool single =
+          (i == 0 || facets[i] != facets[i - 1]) && (i + 1 == nf || facets[i + 1] != facets[i]);
         const std::int32_t x = static_cast<std::int32_t>(facets[i] >> 32);
         const std::int32_t y = static_cast<std::int32_t>(facets[i] & 0xffffffffu);
         onStratum = single && (x == b || y == b);
@@ -251,8 +258,8 @@ bool TryCollapse(CollapseContext& ctx, std::int32_t a, std::int32_t b)
   {
     for (int i = 0; i < nf; ++i)
     {
-      const bool single = (i == 0 || facets[i] != facets[i - 1]) &&
-        (i + 1 == nf || facets[i + 1] != facets[i]);
+      const bool single =
+        (i == 0 || facets[i] != facets[i - 1]) && (i + 1 == nf || facets[i + 1] != facets[i]);
       const std::int32_t x = static_cast<std::int32_t>(facets[i] >> 32);
       const std::int32_t y = static_cast<std::int32_t>(facets[i] & 0xffffffffu);
       if (!single || x == b || y == b)
@@ -276,7 +283,8 @@ bool TryCollapse(CollapseContext& ctx, std::int32_t a, std::int32_t b)
   // Orientation, surface folding and quality of the changed elements.
   double oldQ = 1.0, newQ = 1.0;
   for (int i = 0; i < na; ++i)
-    oldQ = std::min(oldQ, MetricQuality(s, s.Cells.data() + static_cast<std::size_t>(starA[i]) * nv));
+    oldQ =
+      std::min(oldQ, MetricQuality(s, s.Cells.data() + static_cast<std::size_t>(starA[i]) * nv));
   const bool surface = k == 2 && s.AmbientDim == 3;
   for (int i = 0; i < nChanged; ++i)
   {
@@ -367,7 +375,8 @@ void ClassifyVertices(CollapseContext& ctx)
     keys.reserve(3 * s.NumCells());
     for (std::size_t c = 0; c < s.NumCells(); ++c)
       for (int e = 0; e < 3; ++e)
-        keys.push_back(EdgeKey(s.Cells[3 * c + kSimplexEdges[e][0]], s.Cells[3 * c + kSimplexEdges[e][1]]));
+        keys.push_back(
+          EdgeKey(s.Cells[3 * c + kSimplexEdges[e][0]], s.Cells[3 * c + kSimplexEdges[e][1]]));
     tbb::parallel_sort(keys.begin(), keys.end());
     for (std::size_t i = 0; i < keys.size(); ++i)
     {
@@ -407,8 +416,8 @@ void BuildStars(CollapseContext& ctx)
 
 /// Short edges of the alive cells, shortest first. Lengths are evaluated per cell edge in
 /// parallel so that only the short ones are sorted.
-std::vector<std::pair<double, std::uint64_t>> ShortEdges(
-  const CollapseContext& ctx, double shortLength)
+std::vector<std::pair<double, std::uint64_t>> ShortEdges(const CollapseContext& ctx,
+  double shortLength)
 {
   const AdaptiveMeshState& s = ctx.S;
   const int nv = s.Nv(), ne = s.SimplexDim == 3 ? 6 : 3;
@@ -486,11 +495,22 @@ void CompactMesh(AdaptiveMeshState& s)
   Compact(s, std::vector<char>(s.NumCells(), 1));
 }
 
-std::size_t CollapseShortEdges(AdaptiveMeshState& s, double shortLength, double target,
-  const AdaptedMeshOptions& options, int maxPasses, int& passes)
+std::size_t CollapseShortEdges(AdaptiveMeshState& s,
+  double shortLength,
+  double target,
+  const AdaptedMeshOptions& options,
+  int maxPasses,
+  int& passes)
 {
-  CollapseContext ctx{ s, options, target,
-    std::cos(options.SurfaceDeviationAngle * 3.14159265358979323846 / 180.0), {}, {}, {}, {}, {},
+  CollapseContext ctx{ s,
+    options,
+    target,
+    std::cos(options.SurfaceDeviationAngle * 3.14159265358979323846 / 180.0),
+    {},
+    {},
+    {},
+    {},
+    {},
     {} };
   ClassifyVertices(ctx);
   ctx.Alive.assign(s.NumCells(), 1);

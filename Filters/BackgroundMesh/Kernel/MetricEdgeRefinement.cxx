@@ -23,8 +23,8 @@ double AdaptiveMeshState::EdgeLength(std::int32_t a, std::int32_t b) const
   const Eigen::Matrix3d q = 0.5 *
     (UnpackSymmetric(SqrtMetric.data() + 6 * static_cast<std::size_t>(a)) +
       UnpackSymmetric(SqrtMetric.data() + 6 * static_cast<std::size_t>(b)));
-  const Eigen::Vector3d d = Position(static_cast<std::size_t>(b)) -
-    Position(static_cast<std::size_t>(a));
+  const Eigen::Vector3d d =
+    Position(static_cast<std::size_t>(b)) - Position(static_cast<std::size_t>(a));
   return LengthScale * (q * d).norm();
 }
 
@@ -36,8 +36,8 @@ void AdaptiveMeshState::UpdateSqrtMetric(std::size_t first)
     [&](const tbb::blocked_range<std::size_t>& r)
     {
       for (std::size_t i = r.begin(); i != r.end(); ++i)
-        PackSymmetric(SymmetricSqrt(UnpackSymmetric(Metric.data() + 6 * i)),
-          SqrtMetric.data() + 6 * i);
+        PackSymmetric(
+          SymmetricSqrt(UnpackSymmetric(Metric.data() + 6 * i)), SqrtMetric.data() + 6 * i);
     });
 }
 
@@ -51,8 +51,11 @@ struct EdgeEntry
 
 /// Parents of the midpoint of a and b: half of each, merged by input id. Both points lie in the
 /// input element that contains the edge, so at most its 4 vertices carry weight.
-void MidpointParents(const AdaptiveMeshState& s, std::int32_t a, std::int32_t b,
-  std::int32_t* ids, double* w)
+void MidpointParents(const AdaptiveMeshState& s,
+  std::int32_t a,
+  std::int32_t b,
+  std::int32_t* ids,
+  double* w)
 {
   int n = 0;
   for (int k = 0; k < 4; ++k)
@@ -83,8 +86,10 @@ void MidpointParents(const AdaptiveMeshState& s, std::int32_t a, std::int32_t b,
 }
 
 /// The edges of the active cells, sorted by key, and where each edge's run of cells starts.
-void CollectEdges(const AdaptiveMeshState& s, const std::vector<std::int32_t>& active,
-  std::vector<EdgeEntry>& entries, std::vector<std::size_t>& starts)
+void CollectEdges(const AdaptiveMeshState& s,
+  const std::vector<std::int32_t>& active,
+  std::vector<EdgeEntry>& entries,
+  std::vector<std::size_t>& starts)
 {
   const int ne = s.SimplexDim == 3 ? 6 : 3;
   const int nv = s.Nv();
@@ -100,7 +105,8 @@ void CollectEdges(const AdaptiveMeshState& s, const std::vector<std::int32_t>& a
           entries[i * ne + e] = { EdgeKey(v[kSimplexEdges[e][0]], v[kSimplexEdges[e][1]]), c };
       }
     });
-  tbb::parallel_sort(entries.begin(), entries.end(),
+  tbb::parallel_sort(entries.begin(),
+    entries.end(),
     [](const EdgeEntry& x, const EdgeEntry& y)
     { return x.Key < y.Key || (x.Key == y.Key && x.Cell < y.Cell); });
   starts.clear();
@@ -113,7 +119,10 @@ void CollectEdges(const AdaptiveMeshState& s, const std::vector<std::int32_t>& a
 }
 
 /// Splits the edge `key` (its cells: entries[b, e)) at its midpoint; children are appended.
-void SplitEdge(AdaptiveMeshState& s, std::uint64_t key, const EdgeEntry* cells, std::size_t count,
+void SplitEdge(AdaptiveMeshState& s,
+  std::uint64_t key,
+  const EdgeEntry* cells,
+  std::size_t count,
   std::vector<std::int32_t>& children)
 {
   const std::int32_t a = static_cast<std::int32_t>(key >> 32);
@@ -175,8 +184,13 @@ void InterpolateNewMetrics(AdaptiveMeshState& s, const MetricField& inputMetric,
 }
 } // namespace
 
-RefineStatus RefineLongEdges(AdaptiveMeshState& s, const MetricField& inputMetric, double target,
-  std::size_t maxPoints, int maxPasses, std::size_t& numSplits, int& passes)
+RefineStatus RefineLongEdges(AdaptiveMeshState& s,
+  const MetricField& inputMetric,
+  double target,
+  std::size_t maxPoints,
+  int maxPasses,
+  std::size_t& numSplits,
+  int& passes)
 {
   int done = 0;
   std::vector<std::int32_t> active(s.NumCells());
@@ -214,7 +228,8 @@ RefineStatus RefineLongEdges(AdaptiveMeshState& s, const MetricField& inputMetri
     if (longEdges.empty())
       break;
     // Longest first; equal lengths by key, so that the result does not depend on the threads.
-    std::sort(longEdges.begin(), longEdges.end(),
+    std::sort(longEdges.begin(),
+      longEdges.end(),
       [&](std::uint32_t x, std::uint32_t y)
       { return lengths[x] > lengths[y] || (lengths[x] == lengths[y] && x < y); });
     locked.assign(s.NumCells(), 0);
@@ -239,8 +254,8 @@ RefineStatus RefineLongEdges(AdaptiveMeshState& s, const MetricField& inputMetri
       }
       for (std::size_t i = starts[g]; i < starts[g + 1]; ++i)
         locked[entries[i].Cell] = 1;
-      SplitEdge(s, entries[starts[g]].Key, entries.data() + starts[g], starts[g + 1] - starts[g],
-        next);
+      SplitEdge(
+        s, entries[starts[g]].Key, entries.data() + starts[g], starts[g + 1] - starts[g], next);
       ++numSplits;
     }
     InterpolateNewMetrics(s, inputMetric, firstNew);

@@ -5,13 +5,13 @@
 // within the target after refinement, SPD metric at every point, no inverted element, parent
 // weights that reproduce the points and carry a linear field exactly, new surface points on the
 // input triangles, size following the sites, and bad input rejected.
+#include "AnisoTestChecks.h"
 #include "MeshTopology.h"
 #include "MetricAdaptedMesh.h"
 #include "MetricAlgebra.h"
 #include "MetricFieldOps.h"
 #include "StructuredMeshes.h"
 #include "SurfaceGenerators.h"
-#include "AnisoTestChecks.h"
 
 #include <algorithm>
 #include <cmath>
@@ -89,8 +89,11 @@ double LongestEdge(const AdaptedMeshResult& r)
   for (std::size_t i = 0; i < e.size(); i += 2)
     longest = std::max(longest,
       std::sqrt(r.MetricScale) *
-        MetricEdgeLength(r.Metric.At(e[i]), r.Metric.At(e[i + 1]), r.Mesh.Point(e[i]),
-          r.Mesh.Point(e[i + 1]), r.Mesh.AmbientDim));
+        MetricEdgeLength(r.Metric.At(e[i]),
+          r.Metric.At(e[i + 1]),
+          r.Mesh.Point(e[i]),
+          r.Mesh.Point(e[i + 1]),
+          r.Mesh.AmbientDim));
   return longest;
 }
 
@@ -144,7 +147,8 @@ void CheckSpd(const AdaptedMeshResult& r, bool rank2)
   AV_CHECK(ok);
 }
 
-/// Metric of a wall layer at z = 0: size hz(z) = 0.03 + 0.3 z across, 0.15 along (stretch 5 at the wall).
+/// Metric of a wall layer at z = 0: size hz(z) = 0.03 + 0.3 z across, 0.15 along (stretch 5 at the
+/// wall).
 MetricField LayerMetric(const SimplexMesh& m)
 {
   MetricField f;
@@ -338,8 +342,8 @@ void TestSurface()
       ++directed[{ r.Mesh.Cell(c)[e], r.Mesh.Cell(c)[(e + 1) % 3] }];
   bool oriented = true;
   for (const auto& kv : directed)
-    oriented = oriented && kv.second == 1 &&
-      directed.count({ kv.first.second, kv.first.first }) == 1;
+    oriented =
+      oriented && kv.second == 1 && directed.count({ kv.first.second, kv.first.first }) == 1;
   AV_CHECK(oriented);
   // With coarsening the surface stays closed, oriented and the points stay on the input.
   o.Coarsen = true;

@@ -50,7 +50,7 @@ vtkSmartPointer<vtkUnstructuredGrid> MakeGrid(int n, int metricComponents)
       {
         const double x[3] = { i * h, j * h, k * h };
         points->InsertNextPoint(x);
-        const double hz = 0.01 + 0.3 * x[2], hxy = 0.2;
+        const double hz = 0.05 + 0.3 * x[2], hxy = 0.2;
         const double a = 1.0 / (hxy * hxy), c = 1.0 / (hz * hz);
         if (metricComponents == 6)
           metric->InsertNextTuple6(a, a, c, 0, 0, 0);
@@ -67,8 +67,9 @@ vtkSmartPointer<vtkUnstructuredGrid> MakeGrid(int n, int metricComponents)
   vtkNew<vtkIntArray> material;
   material->SetName("Material");
   // The 6 tets of the Kuhn split of a cube along the main diagonal 0-7.
-  const int tets[6][4] = { { 0, 1, 3, 7 }, { 0, 1, 7, 5 }, { 0, 2, 7, 3 }, { 0, 2, 6, 7 },
-    { 0, 4, 5, 7 }, { 0, 4, 7, 6 } };
+  const int tets[6][4] = {
+    { 0, 1, 3, 7 }, { 0, 1, 7, 5 }, { 0, 2, 7, 3 }, { 0, 2, 6, 7 }, { 0, 4, 5, 7 }, { 0, 4, 7, 6 }
+  };
   auto id = [n](int i, int j, int k) { return static_cast<vtkIdType>(i + n * (j + n * k)); };
   int cube = 0;
   for (int k = 0; k + 1 < n; ++k)
@@ -149,8 +150,9 @@ void CheckOutput(vtkUnstructuredGrid* input, vtkUnstructuredGrid* out, int compo
   bool follows = material && parent;
   for (vtkIdType c = 0; follows && c < out->GetNumberOfCells(); ++c)
     follows = material->GetTuple1(c) ==
-      input->GetCellData()->GetArray("Material")->GetTuple1(
-        static_cast<vtkIdType>(parent->GetTuple1(c)));
+      input->GetCellData()
+        ->GetArray("Material")
+        ->GetTuple1(static_cast<vtkIdType>(parent->GetTuple1(c)));
   AV_CHECK(follows);
   AV_CHECK(FieldValue(out, "BackgroundMaxEdgeLength") <= 0.5 + 1e-12);
   AV_CHECK(FieldValue(out, "BackgroundSplits") > 0);
@@ -170,7 +172,7 @@ int TestAnisoAdaptedBackgroundMesh(int, char*[])
     Watch(filter, events);
     filter->SetInputData(input);
     filter->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "Metric");
-    filter->SetNumberOfSites(800);
+    filter->SetNumberOfSites(200);
     filter->Update();
     AV_CHECK(events->Errors == 0);
     CheckOutput(input, filter->GetOutput(), components);
