@@ -15,7 +15,7 @@ START=$SECONDS
 
 # Packages the inputs come from (not needed to build AnisoVoronoi, so not in setup.sh).
 PACKAGES=(calculix-ccx calculix-ccx-test calculix-cgx-examples openfoam openfoam-examples
-  libcgal-demo python3-paraview python3-numpy)
+  libcgal-demo paraview python3-paraview python3-numpy)
 
 missing=()
 for p in "${PACKAGES[@]}"; do

@@ -65,8 +65,13 @@ av::SimplexSplitResult SplitFrd(const av::FrdData& d)
     }
     offsets[e + 1] = static_cast<std::int64_t>(connectivity.size());
   }
-  return av::SplitIntoSimplices(d.Points.data(), d.NumNodes(), types.data(), offsets.data(),
-    connectivity.data(), d.NumElements(), 3);
+  return av::SplitIntoSimplices(d.Points.data(),
+    d.NumNodes(),
+    types.data(),
+    offsets.data(),
+    connectivity.data(),
+    d.NumElements(),
+    3);
 }
 
 /// Tensor (6 components) of every split point: the weighted mean of its parents' tensors,
@@ -113,8 +118,11 @@ RealInput LoadVolume(const RealCaseInfo& info, const std::string& path, const Re
   mo.MinimumEigenvalue = o.MinEigenvalue;
   mo.MaximumAnisotropy = o.MaxAnisotropy;
   mo.SmoothingIterations = o.SmoothingIterations;
-  const av::TensorToMetricResult m = av::TensorToMetric(tensors.data(), split.Mesh.NumPoints(), 6,
-    mo, o.SmoothingIterations > 0 ? av::UniqueEdges(split.Mesh) : std::vector<std::int32_t>());
+  const av::TensorToMetricResult m = av::TensorToMetric(tensors.data(),
+    split.Mesh.NumPoints(),
+    6,
+    mo,
+    o.SmoothingIterations > 0 ? av::UniqueEdges(split.Mesh) : std::vector<std::int32_t>());
   in.Mesh = std::move(split.Mesh);
   in.Metric = m.Metric;
   in.StretchMin = m.MinStretch;
@@ -193,8 +201,9 @@ std::string RealDataDirectory(const std::string& option)
   return (up == std::string::npos ? std::string(".") : binDir.substr(0, up)) + "/real-data";
 }
 
-RealInput LoadRealCase(
-  const std::string& name, const std::string& dataDir, const RealCaseOptions& options)
+RealInput LoadRealCase(const std::string& name,
+  const std::string& dataDir,
+  const RealCaseOptions& options)
 {
   const RealCaseInfo& info = FindCase(name);
   const std::string path = dataDir + "/" + info.File;

@@ -50,7 +50,7 @@ struct RealInput
 {
   av::SimplexMesh Mesh;
   av::MetricField Metric;
-  std::string Description; ///< e.g. "ccx-rotor.frd STRESS step 1 -> 2,208 tets"
+  std::string Description;                   ///< e.g. "ccx-rotor.frd STRESS step 1 -> 2,208 tets"
   std::size_t FilePoints = 0, FileCells = 0; ///< as read, before the split into simplices
   double StretchMin = 0.0, StretchMax = 0.0; ///< of the metric (tangent stretch on surfaces)
   bool IsSurface = false;
@@ -59,11 +59,12 @@ struct RealInput
 /**
  * Reads case `name` ("real:rotor") from `dataDir`. Volumes: the .frd mesh split into
  * simplices (av::SplitIntoSimplices), the tensor interpolated onto the new points, then
- * av::TensorToMetric (`options`, else its defaults). Surfaces: the .off, then av::SurfaceCurvatureMetric
- * with its defaults. Throws std::runtime_error for an unknown case or a missing file (naming
- * scripts/make-real-data.sh), av::InputError for bad data.
+ * av::TensorToMetric (`options`, else its defaults). Surfaces: the .off, then
+ * av::SurfaceCurvatureMetric with its defaults. Throws std::runtime_error for an unknown case or a
+ * missing file (naming scripts/make-real-data.sh), av::InputError for bad data.
  */
-RealInput LoadRealCase(const std::string& name, const std::string& dataDir,
+RealInput LoadRealCase(const std::string& name,
+  const std::string& dataDir,
   const RealCaseOptions& options = RealCaseOptions());
 
 /// Sites of a real case when --sites is not given: 3000 for volumes, 2000 for surfaces.

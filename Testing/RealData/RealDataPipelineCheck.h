@@ -128,7 +128,8 @@ inline int RunRealDataPipelineCheck(const RealCaseExpectation& x, std::size_t nu
     AV_CHECK_MSG(in.FileCells == x.FileCells, "cells " << in.FileCells);
     AV_CHECK(in.Mesh.SimplexDim == 3 && in.Mesh.NumCells() > 0);
     AV_CHECK(in.Metric.NumPoints() == in.Mesh.NumPoints());
-    AV_CHECK(std::isfinite(in.StretchMax) && in.StretchMin >= 1.0 && in.StretchMax >= in.StretchMin);
+    AV_CHECK(
+      std::isfinite(in.StretchMax) && in.StretchMin >= 1.0 && in.StretchMax >= in.StretchMin);
     CheckMetricIsSpd(in);
     std::size_t inverted = 0;
     for (std::size_t c = 0; c < in.Mesh.NumCells(); ++c)
