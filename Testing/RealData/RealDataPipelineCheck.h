@@ -140,6 +140,10 @@ inline int RunRealDataPipelineCheck(const RealCaseExpectation& x, std::size_t nu
 
     av::EmbeddingOptions eo; // the defaults but 20 iterations: the test is about validity
     eo.Iterations = 20;
+    // Not run on to the 2 % target: with more iterations the mixer's and squareBend's RVD stop
+    // being a partition (pieces overlap in tets tiny in input space and large in the embedding:
+    // a known RVD bug, Documentation/real-data.md).
+    eo.MaxIterations = 20;
     const av::EmbeddingResult emb = av::ComputeEmbedding(in.Mesh, in.Metric, eo);
     AV_CHECK(emb.Embedded.NumPoints() == in.Mesh.NumPoints() && emb.Embedded.Dim == 8);
     bool finite = true, inputKept = true;

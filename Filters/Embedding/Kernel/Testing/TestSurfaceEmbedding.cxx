@@ -65,6 +65,7 @@ int TestSurfaceEmbedding(int, char*[])
   {
     av::EmbeddingOptions o;
     o.Iterations = 0;
+    o.MaxIterations = 0; // no running on to the error target
     o.Initialization = av::EmbeddingInitialization::Random;
     const av::EmbeddingResult r = av::ComputeEmbedding(patch, metric, o);
     const double reported = r.EnergyHistory.front().Regularization;
@@ -86,6 +87,7 @@ int TestSurfaceEmbedding(int, char*[])
     const av::MetricField m = closed ? av::SurfaceCurvatureMetric(mesh, {}).Metric : metric;
     av::EmbeddingOptions o;
     o.Iterations = 40;
+    o.MaxIterations = 40;
     const av::EmbeddingResult r = av::ComputeEmbedding(mesh, m, o);
     for (std::size_t k = 1; k < r.EnergyHistory.size(); ++k)
     {
