@@ -60,6 +60,21 @@ inline double TriangleMetricQuality(const Eigen::Vector2d& a,
   return a2 * std::min(std::min(lab, lac), lbc) / p;
 }
 
+/// Elements at or below this quality count as inverted or degenerate: no operation may make one.
+constexpr double kMinImprovementQuality = 1e-6;
+
+/**
+ * The acceptance rule of every improvement operation: the worst quality it touches must rise
+ * (by more than round-off), and nothing may fall to kMinImprovementQuality or below.
+ * `acceptWorsening` is the test hook that shows the tests catch a rule that accepts anything.
+ */
+inline bool AcceptsImprovement(double after, double before, bool acceptWorsening)
+{
+  if (after <= kMinImprovementQuality)
+    return false;
+  return acceptWorsening || after > before + 1e-9;
+}
+
 } // namespace av
 
 #endif

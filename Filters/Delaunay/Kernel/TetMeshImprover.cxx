@@ -15,7 +15,7 @@ namespace
 constexpr double Pi = 3.14159265358979323846;
 // No operation may leave an element below this quality (sine of 0.00006 degrees): a flat
 // element's sign is round-off.
-constexpr double kMinQuality = 1e-6;
+constexpr double kMinQuality = kMinImprovementQuality;
 
 // Index orders that put vertex m last by an even permutation: the face opposite m, in this
 // order, is counterclockwise seen from m in a positive tet.
@@ -186,14 +186,9 @@ double TetMeshImprover::StarWorst(std::int32_t v) const
   return worst;
 }
 
-// The acceptance rule: the worst quality touched must rise, and nothing may be inverted.
 bool TetMeshImprover::Accepts(double after, double before) const
 {
-  if (after <= kMinQuality)
-    return false;
-  if (Options.AcceptWorsening)
-    return true;
-  return after > before + 1e-9;
+  return AcceptsImprovement(after, before, Options.AcceptWorsening);
 }
 
 // Orders the link of edge (a, b) into a ring r0..r(n-1) such that every tet (a, b, ri, ri+1)

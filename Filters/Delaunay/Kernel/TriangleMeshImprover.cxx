@@ -15,7 +15,7 @@ namespace
 constexpr double Pi = 3.14159265358979323846;
 // No operation may leave an element below this quality (sine of 0.00006 degrees): a flat
 // element's sign is round-off.
-constexpr double kMinQuality = 1e-6;
+constexpr double kMinQuality = kMinImprovementQuality;
 
 int IndexIn(const std::array<std::int32_t, 3>& t, std::int32_t v)
 {
@@ -85,11 +85,7 @@ double TriangleMeshImprover::StarWorst(std::int32_t v) const
 
 bool TriangleMeshImprover::Accepts(double after, double before) const
 {
-  if (after <= kMinQuality)
-    return false;
-  if (Options.AcceptWorsening)
-    return true;
-  return after > before + 1e-9;
+  return AcceptsImprovement(after, before, Options.AcceptWorsening);
 }
 
 // Vertices on edges of one triangle (the boundary) or of more than two never move.
