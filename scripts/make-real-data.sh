@@ -10,6 +10,9 @@
 set -euo pipefail
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
 OUT=${1:-$ROOT/build/real-data}
+# Absolute: the solvers run in their own folders and write their logs here.
+mkdir -p "$OUT"
+OUT=$(cd "$OUT" && pwd)
 HERE=$ROOT/scripts/real-data
 START=$SECONDS
 

@@ -88,7 +88,8 @@ bool InverseSqrtSpd3(const Eigen::Matrix3d& c, Eigen::Matrix3d& cinv)
 template <int M, bool RankDeficient, typename MatB>
 void PolarFactor(const MatB& b, MatB& v)
 {
-  using MatS = Eigen::Matrix<double, Eigen::Dynamic, M, 0, kEmbeddingMaxTargetDim, M>;
+  // Dynamic columns bounded by M (no heap): Eigen's thin U/V need a dynamic column count.
+  using MatS = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kEmbeddingMaxTargetDim, M>;
   if constexpr (RankDeficient)
   {
     // Surfaces: B = T A has rank 2; the closed form would amplify round-off along the normal.
