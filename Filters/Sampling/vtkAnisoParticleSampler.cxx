@@ -102,6 +102,7 @@ void AddSummary(vtkFieldData* fd, const av::ParticleSamplerResult& result)
   AddFieldValue(fd, "SamplerSeconds", result.Seconds);
   AddFieldValue(fd, "NumCornerSites", static_cast<double>(result.NumCornerSites));
   AddFieldValue(fd, "NumFeatureLineSites", static_cast<double>(result.NumFeatureLineSites));
+  AddFieldValue(fd, "NumCoincidentRemoved", static_cast<double>(result.NumCoincidentRemoved));
 }
 
 /// "Iteration", "Energy": the energy history at the final kernel.

@@ -13,7 +13,10 @@
 
 #include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <cmath>
+#include <numeric>
+#include <vector>
 #include <string>
 
 namespace av
@@ -71,6 +74,58 @@ void CheckOptions(const SimplexMesh& mesh, const ParticleSamplerOptions& opt)
                      "FeatureSpacingFactor >= 0 and a positive, finite "
                      "KernelWidthFactor, "
                      "WarmupKernelWidthFactor and NeighborCutoff are required");
+}
+
+/// Removes the sites at exactly the position of a lower-id site (see NumCoincidentRemoved),
+/// keeping the order of the others and their feature records.
+void RemoveCoincidentSites(ParticleSamplerResult& res)
+{
+  SiteSet& s = res.Sites;
+  const std::size_t n = s.NumSites();
+  const auto dim = static_cast<std::size_t>(s.Dim);
+  std::vector<std::size_t> order(n);
+  std::iota(order.begin(), order.end(), std::size_t(0));
+  auto less = [&](std::size_t a, std::size_t b) {
+    const double* pa = s.At(a);
+    const double* pb = s.At(b);
+    for (std::size_t d = 0; d < dim; ++d)
+      if (pa[d] != pb[d])
+        return pa[d] < pb[d];
+    return a < b;
+  };
+  std::sort(order.begin(), order.end(), less);
+  std::vector<char> drop(n, 0);
+  std::size_t removed = 0;
+  for (std::size_t t = 1; t < n; ++t)
+    if (std::equal(s.At(order[t]), s.At(order[t]) + dim, s.At(order[t - 1])))
+    {
+      drop[order[t]] = 1; // the group's first in the order is its lowest id
+      ++removed;
+    }
+  res.NumCoincidentRemoved = removed;
+  if (removed == 0)
+    return;
+  std::size_t w = 0;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    if (drop[i])
+    {
+      res.NumCornerSites -= res.FeatureKind[i] == 2;
+      res.NumFeatureLineSites -= res.FeatureKind[i] == 1;
+      continue;
+    }
+    std::copy_n(s.At(i), dim, s.Coords.data() + w * dim);
+    std::copy_n(s.Bary.data() + 4 * i, 4, s.Bary.data() + 4 * w);
+    s.CellIds[w] = s.CellIds[i];
+    res.FeatureKind[w] = res.FeatureKind[i];
+    res.FeatureEdge[w] = res.FeatureEdge[i];
+    ++w;
+  }
+  s.Coords.resize(w * dim);
+  s.Bary.resize(4 * w);
+  s.CellIds.resize(w);
+  res.FeatureKind.resize(w);
+  res.FeatureEdge.resize(w);
 }
 
 /// Empty result for n sites in R^dim (zero coordinates, all sites free).
@@ -176,6 +231,7 @@ ParticleSamplerResult SampleParticles(const SimplexMesh& mesh,
   }
   else
     run();
+  RemoveCoincidentSites(res);
   res.Seconds = clock.Seconds();
   return res;
 }

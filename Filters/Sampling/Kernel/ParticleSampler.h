@@ -81,6 +81,11 @@ struct ParticleSamplerResult
   int EnergyEvaluations = 0;   ///< energy evaluations (line-search trials included)
   int NeighborRebuilds = 0;   ///< builds of the outer neighbor lists (grid)
   int IterationsDone = 0;
+  /// Particles removed at the end because another one (of lower id) ended on exactly the same
+  /// point: two particles that reach one mesh vertex (a feature-line particle walked onto a
+  /// corner, free ones pushed into a corner of the embedded boundary) no longer repel, since
+  /// the Gaussian's gradient vanishes at distance 0, and a copy would get an empty cell.
+  std::size_t NumCoincidentRemoved = 0;
   bool Aborted = false;        ///< the progress callback asked to stop
   double Seconds = 0.0;        ///< wall time of the whole call
 };
@@ -108,6 +113,10 @@ struct ParticleSamplerResult
  * moves, and particles placed evenly along the feature lines (FeatureSites) move only along
  * them (their gradient projected on the line, their steps walked from edge to edge up to the
  * next corner); the other particles are drawn as above for the remaining count.
+ *
+ * Particles that end on exactly the point of a lower-id particle are removed (the result then
+ * has fewer than NumSites sites; NumCoincidentRemoved says how many): a corner is listed
+ * before the feature-line particles, and these before the free ones, so the corner stays.
  *
  * When the feature sites would be more than half of NumSites, only the corners are kept (or
  * none, if they alone are more than half) and FeatureWarning says so.

@@ -67,6 +67,7 @@ public:
     KeepCloserThanNearest(C, n, dn);
     std::sort(C.CandOrder.begin(), C.CandOrder.end());
     C.CandOrder.erase(std::unique(C.CandOrder.begin(), C.CandOrder.end()), C.CandOrder.end());
+    DropCoincidentSites(C);
     C.Cand.clear();
     C.CandDist.clear();
     for (const auto& c : C.CandOrder)
@@ -143,6 +144,40 @@ private:
         C.CandOrder[w++] = c;
     }
     C.CandOrder.resize(w);
+  }
+
+  // A site at exactly the position of a lower-id site owns nothing (ties go to the lower id),
+  // and its bisector with that site is the whole space: the sign tests of the clipping cannot
+  // decide it consistently (each vertex is classified against its own reference site), and
+  // the pieces of both stop being a partition. Such sites leave the candidate list. The
+  // sampler can place two particles on one mesh vertex (a feature-line particle that walked
+  // onto a corner, say) and users may give duplicate sites. Equal coordinates give equal
+  // centroid distances, so coincident sites are neighbors in the (distance, id) order.
+  void DropCoincidentSites(Context<K>& C) const
+  {
+    std::size_t w = 0, run = 0; // run: first kept entry of the current equal-distance run
+    for (std::size_t r = 0; r < C.CandOrder.size(); ++r)
+    {
+      const auto c = C.CandOrder[r];
+      if (w == 0 || C.CandOrder[run].first != c.first)
+        run = w;
+      bool coincident = false;
+      for (std::size_t q = run; q < w && !coincident; ++q)
+        coincident = SamePosition(C.CandOrder[q].second, c.second);
+      if (!coincident)
+        C.CandOrder[w++] = c;
+    }
+    C.CandOrder.resize(w);
+  }
+
+  bool SamePosition(std::int32_t a, std::int32_t b) const
+  {
+    const double* pa = F.SiteP(a);
+    const double* pb = F.SiteP(b);
+    for (int d = 0; d < F.Dim; ++d)
+      if (pa[d] != pb[d])
+        return false;
+    return true;
   }
 
   // All sites within sqrt(r2) of the centroid (inclusive, up to round-off) from the kd-tree.
