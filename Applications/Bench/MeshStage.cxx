@@ -98,6 +98,7 @@ av::MeshingPipelineOptions PipelineOptions(const MeshStageOptions& options,
   po.Repair = options.Repair;
   po.MaxRepairRounds = options.MaxRepairRounds;
   po.RepairNonManifold = options.RepairNonManifold;
+  po.ValidDual = options.ValidDual;
   po.ImproveMesh = options.ImproveMesh;
   po.Metric = metric;
   return po;
@@ -115,6 +116,8 @@ void CopyMeshingCounts(const av::MeshingPipelineResult& m, MeshStageResult& r)
     m.Improvement.NumFlips23 + m.Improvement.NumEdgeRemovals + m.Improvement.NumFlips22;
   r.ImprovementSmoothed = m.Improvement.NumSmoothed;
   r.InvertedBeforeImprovement = m.InvertedBeforeImprovement;
+  r.ValidDualReplaced = m.ValidDual.Replaced;
+  r.ValidDualSeconds = m.ValidDualSeconds;
   r.SliversPerturbed = m.NumSlivers;
   r.OdtMovedSites = m.NumOdtMovedSites;
   const av::DelaunayRepairResult& repaired = m.Repaired;

@@ -36,6 +36,7 @@ struct MeshStageOptions
   bool Repair = true;             ///< insert sites to repair inverted dual elements
   int MaxRepairRounds = 10;
   bool RepairNonManifold = false; ///< also repair non-manifold faces
+  bool ValidDual = true;          ///< replace a still invalid volume dual (ValidDualMesh.h)
   /// Site improvement rounds before the repair (av::ImproveSites: ODT steps and sliver
   /// pushes, then RVD + RDT again); 0 = the paper's pipeline.
   int ImproveRounds = 1;
@@ -62,6 +63,8 @@ struct MeshStageResult
   std::size_t ImprovementFlips = 0;    ///< 2-3 flips + edge removals (tets), 2-2 flips (triangles)
   std::size_t ImprovementSmoothed = 0; ///< accepted vertex moves
   std::size_t InvertedBeforeImprovement = 0; ///< dual's inverted (or flat) cells before it
+  bool ValidDualReplaced = false;  ///< the repaired dual was invalid: Delaunay of the sites
+  double ValidDualSeconds = 0.0;
   double MeshSeconds = 0.0; ///< wall of sampling + RVD + RDT + repair
   std::size_t Cells = 0;    ///< restricted Delaunay cells
   std::size_t InsertedSites = 0; ///< by the repair (Sites counts the sampled ones only)

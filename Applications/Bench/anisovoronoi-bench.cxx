@@ -74,6 +74,7 @@ struct Args
   bool Repair = true;        // repair inverted dual elements by site insertion
   int RepairRounds = 10;
   bool RepairNonManifold = false;
+  bool ValidDual = true;
   int ImproveRounds = 1;     // site improvement rounds before the repair (0 = paper)
   int OdtIterations = 3;     // ODT steps per improvement round
   bool PerturbSlivers = true;
@@ -514,6 +515,7 @@ avbench::MeshStageOptions MeshStageOptionsFor(const Args& a, const Case& c)
   o.Repair = a.Repair;
   o.MaxRepairRounds = a.RepairRounds;
   o.RepairNonManifold = a.RepairNonManifold;
+  o.ValidDual = a.ValidDual;
   o.ImproveRounds = a.ImproveRounds;
   o.OdtIterations = a.OdtIterations;
   o.PerturbSlivers = a.PerturbSlivers;
@@ -549,11 +551,14 @@ void ReportMesh(const Case& c, const avbench::MeshStageOptions& o,
   out.Set("slivers_perturbed", r.SliversPerturbed);
   out.Set("repair", o.Repair);
   out.Set("repair_nonmanifold", o.RepairNonManifold);
+  out.Set("valid_dual", o.ValidDual);
   out.Set("repair_seconds", r.RepairSeconds);
   out.Set("mesh_improvement", o.ImproveMesh);
   out.Set("mesh_improvement_seconds", r.MeshImprovementSeconds);
   out.Set("mesh_improvement_flips", r.ImprovementFlips);
   out.Set("mesh_improvement_smoothed", r.ImprovementSmoothed);
+  out.Set("valid_dual_replaced", r.ValidDualReplaced);
+  out.Set("valid_dual_seconds", r.ValidDualSeconds);
   out.Set("inverted_before_mesh_improvement", r.InvertedBeforeImprovement);
   out.Set("repair_rounds", r.RepairRounds);
   out.Set("inverted_per_round", r.InvertedPerRound);
@@ -668,6 +673,8 @@ void Usage(std::ostream& os)
         "                    Voronoi vertices until none is left)\n"
         "  --repair-rounds N mesh: insertion rounds at most (default 10)\n"
         "  --repair-nonmanifold  mesh: also repair non-manifold faces of the dual\n"
+        "  --no-valid-dual   mesh: keep a volume dual still invalid after the repair (default:\n"
+        "                    Delaunay of its sites, carved, flipped towards the metric)\n"
         "  --improve-rounds N  mesh: site improvement rounds before the repair: ODT steps\n"
         "                    and sliver pushes, then RVD + RDT again (default 1, 0 = the\n"
         "                    paper's pipeline)\n"
@@ -803,6 +810,8 @@ bool Parse(int argc, char** argv, Args& a)
       a.RepairRounds = std::stoi(next());
     else if (k == "--repair-nonmanifold")
       a.RepairNonManifold = true;
+    else if (k == "--no-valid-dual")
+      a.ValidDual = false;
     else if (k == "--improve-rounds")
       a.ImproveRounds = std::stoi(next());
     else if (k == "--odt-iterations")

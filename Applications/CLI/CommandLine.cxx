@@ -80,6 +80,9 @@ meshing:
                            Voronoi vertices until none is left, paper §4.2)
   --repair-rounds N        insertion rounds at most (default 10)
   --repair-nonmanifold     also repair faces shared by more than two mesh elements
+  --no-valid-dual          keep a volume mesh that is still invalid after the repair (default:
+                           replace it by the Delaunay tetrahedralization of its sites, carved
+                           to the domain and flipped towards the metric's Delaunay criterion)
   --no-mesh-improvement    keep the dual mesh as it is (default: flips and vertex smoothing
                            raise its worst element, measured in the metric)
   --improve-rounds N       site improvement rounds before the repair (default 1; 0 = the
@@ -297,6 +300,8 @@ Options ParseCommandLine(int argc, char* argv[])
       o.OdtIterations = ParseInt(a, next());
     else if (a == "--repair-nonmanifold")
       o.RepairNonManifold = true;
+    else if (a == "--no-valid-dual")
+      o.ValidDual = false;
     else if (a == "--no-mesh-improvement")
       o.ImproveMesh = false;
     else if (!a.empty() && a[0] == '-')

@@ -25,6 +25,7 @@ struct Options
   double Mu = 100.0, Shrink = 0.8, MinEigenvalue = 1e-3, MaxAnisotropy = 25.0;
   double MaxStretch = 10.0; ///< curvature: cap on s2 / s1 (0 = none)
   bool TensorAsMetric = false, Clamp = false, Quiet = false, Repair = true;
+  bool ValidDual = true;
   bool RepairNonManifold = false, DoubleSolve = false, ImproveMesh = true;
   /// Metric preparation (on for tensor:ARRAY; metric, preset and .sol inputs only when a
   /// preparation option is given, PrepareAsked). SitesGiven: --sites was on the command line.

@@ -403,6 +403,7 @@ void RunMeshingStages(const Options& o,
   s.Delaunay->SetImprovementRounds(o.ImproveRounds);
   s.Delaunay->SetOdtIterations(o.OdtIterations);
   s.Delaunay->SetRepairNonManifold(o.RepairNonManifold);
+  s.Delaunay->SetValidDual(o.ValidDual);
   s.Delaunay->SetImproveMesh(o.ImproveMesh);
   runner.Run(s.Delaunay, DelaunayStage);
   s.Voronoi->SetInputConnection(0, s.Embedding->GetOutputPort(0));
@@ -513,6 +514,7 @@ std::vector<std::pair<std::string, std::string>> ReportEntries(const Options& o,
     { "odt_moved_sites", JsonNumber(FieldValue(rdtOut, "NumOdtMovedSites")) },
     { "rdt_inverted_before_repair", JsonNumber(FieldValue(rdtOut, "NumInvertedBeforeRepair")) },
     { "rdt_inverted", JsonNumber(FieldValue(rdtOut, "NumInverted")) },
+    { "valid_dual_replaced", FieldValue(rdtOut, "ValidDualReplaced") > 0.0 ? "true" : "false" },
     { "mesh_improvement", o.ImproveMesh ? "true" : "false" },
     { "mesh_improvement_seconds", JsonNumber(FieldValue(rdtOut, "MeshImprovementSeconds")) },
     { "mesh_improvement_flips", JsonNumber(FieldValue(rdtOut, "NumImprovementFlips")) },

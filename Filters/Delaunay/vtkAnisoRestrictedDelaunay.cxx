@@ -207,6 +207,8 @@ void AddRunFieldData(const av::MeshingPipelineResult& result, double seconds, vt
   AddFieldValue(
     fd, "NumNonManifoldFacesBeforeRepair", static_cast<double>(repaired.InitialNonManifoldFaces));
   AddFieldValue(fd, "RepairSeconds", result.RepairSeconds);
+  AddFieldValue(fd, "ValidDualReplaced", result.ValidDual.Replaced ? 1.0 : 0.0);
+  AddFieldValue(fd, "ValidDualSeconds", result.ValidDualSeconds);
   AddFieldValue(fd, "NumSliversPerturbed", static_cast<double>(result.NumSlivers));
   AddFieldValue(fd, "NumMovedSites", static_cast<double>(result.NumMovedSites));
   AddFieldValue(fd, "NumOdtMovedSites", static_cast<double>(result.NumOdtMovedSites));
@@ -231,6 +233,7 @@ av::MeshingPipelineOptions MeshingOptions(vtkAnisoRestrictedDelaunay* self,
   options.Repair = self->GetRepairInverted();
   options.MaxRepairRounds = self->GetMaxRepairRounds();
   options.RepairNonManifold = self->GetRepairNonManifold();
+  options.ValidDual = self->GetValidDual();
   options.ImproveMesh = self->GetImproveMesh();
   options.Progress = [self](av::MeshingStep step)
   {
@@ -402,6 +405,7 @@ void vtkAnisoRestrictedDelaunay::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "RepairInverted: " << (this->RepairInverted ? "On" : "Off") << "\n";
   os << indent << "RepairNonManifold: " << (this->RepairNonManifold ? "On" : "Off") << "\n";
+  os << indent << "ValidDual: " << (this->ValidDual ? "On" : "Off") << "\n";
   os << indent << "ImproveMesh: " << (this->ImproveMesh ? "On" : "Off") << "\n";
   os << indent << "MaxRepairRounds: " << this->MaxRepairRounds << "\n";
   os << indent << "ImprovementRounds: " << this->ImprovementRounds << "\n";

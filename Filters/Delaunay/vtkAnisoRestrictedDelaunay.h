@@ -28,7 +28,10 @@
  * inserted at the Voronoi vertex dual to each inverted element (its circumcenter in the
  * embedding, restricted to the domain) and the diagram recomputed, at most MaxRepairRounds
  * times (default 10). RepairNonManifold (default off) also repairs faces shared by more than
- * two elements. What remains is reported with a warning.
+ * two elements. What remains is reported with a warning. A volume dual still invalid then
+ * (inverted or flat elements, faces of more than two) is replaced, with ValidDual (default on),
+ * by a mesh of the same sites that is valid by construction (Delaunay tetrahedralization of the
+ * sites, carved to the domain, flipped towards the metric's Delaunay criterion).
  *
  * Distributed runs (mpiexec pvbatch, pvserver): needs the whole mesh, so it asks its inputs
  * for the whole dataset and runs redundantly on every process that needs its output (the cost
@@ -64,6 +67,12 @@ public:
   vtkSetMacro(RepairNonManifold, bool);
   vtkGetMacro(RepairNonManifold, bool);
   vtkBooleanMacro(RepairNonManifold, bool);
+  /// Volumes: replace a dual that is still invalid after the repair by the Delaunay
+  /// tetrahedralization of its sites, carved to the domain and flipped towards the metric's
+  /// Delaunay criterion (valid by construction; default on; field data ValidDualReplaced).
+  vtkSetMacro(ValidDual, bool);
+  vtkGetMacro(ValidDual, bool);
+  vtkBooleanMacro(ValidDual, bool);
   ///@}
 
   ///@{
@@ -122,6 +131,7 @@ protected:
   bool RepairInverted = true;
   bool ImproveMesh = true;
   bool RepairNonManifold = false;
+  bool ValidDual = true;
   int MaxRepairRounds = 10;
   int ImprovementRounds = 1;
   int OdtIterations = 3;

@@ -38,6 +38,7 @@ int vtkAnisoAnisotropicMesh::RequestBackEnd(
   delaunay->SetInputData(1, sites);
   delaunay->SetRepairInverted(this->RepairInverted);
   delaunay->SetRepairNonManifold(this->RepairNonManifold);
+  delaunay->SetValidDual(this->ValidDual);
   delaunay->SetMaxRepairRounds(this->MaxRepairRounds);
   delaunay->SetImprovementRounds(this->ImprovementRounds);
   delaunay->SetOdtIterations(this->OdtIterations);
@@ -80,6 +81,7 @@ void vtkAnisoAnisotropicMesh::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "RepairInverted: " << (this->RepairInverted ? "On" : "Off") << "\n";
   os << indent << "RepairNonManifold: " << (this->RepairNonManifold ? "On" : "Off") << "\n";
+  os << indent << "ValidDual: " << (this->ValidDual ? "On" : "Off") << "\n";
   os << indent << "MaxRepairRounds: " << this->MaxRepairRounds << "\n";
   os << indent << "ImprovementRounds: " << this->ImprovementRounds << "\n";
   os << indent << "OdtIterations: " << this->OdtIterations << "\n";

@@ -15,7 +15,8 @@
  * NumUnusedSites) and "L_avg", "L_max", "MetricScale".
  * Output 1 (vtkTable): histogram of the per-cell min angles ("MinAngle" bin center, "Count").
  * Inverted elements are repaired by site insertion as in vtkAnisoRestrictedDelaunay
- * (RepairInverted, default on; MaxRepairRounds, default 10; RepairNonManifold, default off),
+ * (RepairInverted, default on; MaxRepairRounds, default 10; RepairNonManifold, default off;
+ * ValidDual, default on: a volume mesh still invalid is replaced by a valid one of its sites),
  * so the mesh may have more vertices than NumberOfCells; field data NumInsertedSites,
  * RepairRounds, NumInvertedBeforeRepair.
  */
@@ -44,6 +45,10 @@ public:
   vtkSetMacro(RepairNonManifold, bool);
   vtkGetMacro(RepairNonManifold, bool);
   vtkBooleanMacro(RepairNonManifold, bool);
+  /// As vtkAnisoRestrictedDelaunay's ValidDual (default on).
+  vtkSetMacro(ValidDual, bool);
+  vtkGetMacro(ValidDual, bool);
+  vtkBooleanMacro(ValidDual, bool);
   ///@}
 
   ///@{
@@ -81,6 +86,7 @@ protected:
 
   bool RepairInverted = true;
   bool RepairNonManifold = false;
+  bool ValidDual = true;
   int MaxRepairRounds = 10;
   int ImprovementRounds = 2;
   int OdtIterations = 3;

@@ -400,3 +400,51 @@ double MaxVolumeForVertexCount(const SimplexMesh& surface, std::size_t targetVer
 }
 
 } // namespace av
+
+namespace av
+{
+
+SimplexMesh DelaunayOfPoints(const std::vector<double>& points)
+{
+  const std::size_t np = points.size() / 3;
+  if (np < 4 || points.size() != 3 * np)
+    throw InputError("DelaunayOfPoints: needs at least 4 points (3 values each)");
+  tetgenio in, out;
+  in.firstnumber = 0;
+  in.numberofpoints = static_cast<int>(np);
+  in.pointlist = new REAL[3 * np];
+  std::copy(points.begin(), points.end(), in.pointlist);
+  char switches[] = "zQ"; // zero-based, quiet: a plain Delaunay tetrahedralization
+  try
+  {
+    tetrahedralize(switches, &in, &out);
+  }
+  catch (int code)
+  {
+    throw InputError("DelaunayOfPoints: " + TetGenErrorText(code));
+  }
+  if (out.numberoftetrahedra <= 0 || out.tetrahedronlist == nullptr ||
+    out.numberofpoints != static_cast<int>(np))
+    throw InputError("DelaunayOfPoints: TetGen produced no tetrahedron or new points (are the "
+                     "points coplanar?)");
+  SimplexMesh m;
+  m.AmbientDim = 3;
+  m.SimplexDim = 3;
+  m.Points = points;
+  const std::size_t nt = static_cast<std::size_t>(out.numberoftetrahedra);
+  const int corners = out.numberofcorners;
+  m.Cells.resize(4 * nt);
+  for (std::size_t c = 0; c < nt; ++c)
+  {
+    std::int32_t* t = m.Cells.data() + 4 * c;
+    for (int k = 0; k < 4; ++k)
+      t[k] = out.tetrahedronlist[c * static_cast<std::size_t>(corners) + k];
+    const Eigen::Map<const Eigen::Vector3d> a(m.Point(t[0])), b(m.Point(t[1])),
+      cc(m.Point(t[2])), d(m.Point(t[3]));
+    if ((b - a).dot((cc - a).cross(d - a)) < 0.0)
+      std::swap(t[2], t[3]);
+  }
+  return m;
+}
+
+} // namespace av

@@ -71,6 +71,14 @@ SimplexMesh TetrahedralizeBox(const double lo[3], const double hi[3], std::size_
  */
 SimplexMesh TetrahedralizeSphere(double radius, std::size_t targetVertices);
 
+/**
+ * Delaunay tetrahedralization of the convex hull of `points` (NumPoints x 3) by TetGen, without
+ * Steiner points: cell ids index `points` (the returned mesh holds a copy of them), every tet
+ * positively oriented. Exactly repeated points are merged by TetGen: a repeated one is then in
+ * no cell. Throws InputError when TetGen fails or all points are coplanar.
+ */
+SimplexMesh DelaunayOfPoints(const std::vector<double>& points);
+
 } // namespace av
 
 #endif

@@ -2,6 +2,8 @@
 // The meshing sequence RVD -> RDT -> site improvement rounds -> repair (MeshingPipeline.h).
 #include "MeshingPipeline.h"
 
+#include "MeshQuality.h"
+
 #include "FinalMeshImprovement.h"
 #include "MeshTopology.h"
 #include "RestrictedDelaunay.h"
@@ -135,6 +137,18 @@ MeshingPipelineResult RunMeshingPipeline(const SimplexMesh& mesh,
     RepairRestrictedDelaunay(mesh, embedding, current, std::move(rvd), std::move(rdt), repair);
   result.RepairSeconds = watch.Seconds();
 
+  if (options.ValidDual)
+  {
+    watch.Restart();
+    const RestrictedDelaunayMesh& dual = result.Repaired.Delaunay;
+    const bool invalid = dual.NumInverted > 0 || dual.NumNonManifoldFaces > 0;
+    const MetricField siteMetric = invalid && options.Metric
+      ? InterpolateMetricAtSites(mesh, *options.Metric, result.Repaired.Sites)
+      : MetricField();
+    result.ValidDual = MakeDualValid(mesh, adjacency, result.Repaired.Sites,
+      options.Metric ? &siteMetric : nullptr, result.Repaired.Delaunay);
+    result.ValidDualSeconds = watch.Seconds();
+  }
   result.InvertedBeforeImprovement = result.Repaired.Delaunay.NumInverted;
   if (options.ImproveMesh && options.Metric)
   {

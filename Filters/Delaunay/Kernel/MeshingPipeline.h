@@ -5,6 +5,7 @@
 #define av_MeshingPipeline_h
 
 #include "MeshImprovement.h"
+#include "ValidDualMesh.h"
 #include "RestrictedDelaunayRefinement.h"
 #include "SimplexMesh.h"
 
@@ -42,6 +43,10 @@ struct MeshingPipelineOptions
   bool Repair = true;
   int MaxRepairRounds = 10;       ///< insertion rounds at most
   bool RepairNonManifold = false; ///< also repair faces shared by more than two elements
+  /// Volumes: when the repaired dual still has inverted / flat cells or non-manifold faces,
+  /// replace it by the Delaunay tetrahedralization of its sites carved to the domain
+  /// (MakeDualValid, ValidDualMesh.h), valid by construction. false: keep the invalid dual.
+  bool ValidDual = true;
   /// Mesh improvement of the final dual (ImproveFinalMesh: flips and vertex smoothing in the
   /// metric); runs when ImproveMesh is true and Metric is given. false: the paper's dual.
   bool ImproveMesh = true;
@@ -74,6 +79,9 @@ struct MeshingPipelineResult
   /// The mesh improvement's counts (Passes 0 when it did not run); Repaired.Delaunay is then
   /// the improved mesh (no longer the dual of Repaired.Voronoi) and Moved includes its moves.
   MeshImprovementResult Improvement;
+  /// The valid-dual step (ValidDual): Replaced when the repaired dual was invalid.
+  ValidDualResult ValidDual;
+  double ValidDualSeconds = 0.0;
   std::size_t InvertedBeforeImprovement = 0; ///< Repaired.Delaunay.NumInverted before it
   double MeshImprovementSeconds = 0.0;
 };

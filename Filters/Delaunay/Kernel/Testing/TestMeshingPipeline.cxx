@@ -53,7 +53,8 @@ void CheckMoved(const av::SiteSet& s, const av::MeshingPipelineResult& r)
 void CheckFolded(const FoldedCase& c, const char* what)
 {
   const auto& [m, e, s] = c;
-  const av::MeshingPipelineOptions o;
+  av::MeshingPipelineOptions o;
+  o.ValidDual = false; // the sequence checked below ends with the repair (TestValidDualMesh)
   const av::MeshingPipelineResult r = av::RunMeshingPipeline(m, e, s, o);
   std::cout << what << ": moved " << r.NumMovedSites << " (ODT " << r.NumOdtMovedSites
             << "), slivers " << r.NumSlivers << ", inverted per repair round";
@@ -120,6 +121,7 @@ void CheckMeshImprovement(const FoldedCase& c, const char* what)
   const av::MetricField metric = UnitMetric(m);
   av::MeshingPipelineOptions o;
   o.Repair = false;
+  o.ValidDual = false; // the improvement on an invalid dual (TestValidDualMesh replaces it)
   const av::MeshingPipelineResult plain = av::RunMeshingPipeline(m, e, s, o);
   o.Metric = &metric;
   std::vector<std::uint8_t> fixed(s.NumSites(), 0);

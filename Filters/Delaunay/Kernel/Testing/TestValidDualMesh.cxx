@@ -1,0 +1,199 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The valid final mesh where the restricted Delaunay dual is not (ValidDualMesh.h): on a
+// folded cube whose dual keeps inverted cells (repair off), the replaced mesh has every tet
+// positive, every face shared by at most two tets, each interior site face by exactly two, and
+// lies in the domain; the metric Delaunay flips (MetricDelaunayFlips.h) keep the mesh valid and
+// its volume exactly, and remove most faces that violate the metric's Delaunay criterion.
+#include "FoldedTestCases.h"
+#include "MeshQuality.h"
+#include "MeshingPipeline.h"
+#include "MetricDelaunayFlips.h"
+#include "TetMesher.h"
+#include "ValidDualMesh.h"
+#include "AnisoTestChecks.h"
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <array>
+#include <iostream>
+#include <map>
+#include <random>
+
+using namespace av_test;
+
+namespace
+{
+
+double SignedVolume(const av::SimplexMesh& m, std::size_t c)
+{
+  const std::int32_t* v = m.Cell(c);
+  const Eigen::Map<const Eigen::Vector3d> a(m.Point(v[0])), b(m.Point(v[1])), cc(m.Point(v[2])),
+    d(m.Point(v[3]));
+  return (b - a).dot((cc - a).cross(d - a)) / 6.0;
+}
+
+/// Faces by the number of tets that hold them: [1] boundary, [2] interior, [3] more.
+std::array<std::size_t, 4> FaceSharing(const av::SimplexMesh& m)
+{
+  std::map<std::array<std::int32_t, 3>, int> count;
+  for (std::size_t c = 0; c < m.NumCells(); ++c)
+    for (int skip = 0; skip < 4; ++skip)
+    {
+      std::array<std::int32_t, 3> f;
+      int n = 0;
+      for (int a = 0; a < 4; ++a)
+        if (a != skip)
+          f[n++] = m.Cell(c)[a];
+      std::sort(f.begin(), f.end());
+      ++count[f];
+    }
+  std::array<std::size_t, 4> h{ 0, 0, 0, 0 };
+  for (const auto& kv : count)
+    ++h[std::min(kv.second, 3)];
+  return h;
+}
+
+double TotalVolume(const av::SimplexMesh& m)
+{
+  double v = 0.0;
+  for (std::size_t c = 0; c < m.NumCells(); ++c)
+    v += SignedVolume(m, c);
+  return v;
+}
+
+av::SimplexMesh AsMesh(const av::RestrictedDelaunayMesh& d)
+{
+  av::SimplexMesh m;
+  m.AmbientDim = 3;
+  m.SimplexDim = 3;
+  m.Points = d.Points;
+  m.Cells = d.Cells;
+  return m;
+}
+
+void TestFoldedCubeGetsValidMesh()
+{
+  const FoldedCase c = FoldedCube(0.2, 8.0, 150, 3);
+  av::MeshingPipelineOptions o;
+  o.Repair = false; // keep the dual's inverted cells
+  o.ImproveMesh = false;
+  o.ValidDual = false;
+  const av::MeshingPipelineResult plain = av::RunMeshingPipeline(c.Mesh, c.Embedding, c.Sites, o);
+  AV_CHECK_MSG(plain.Repaired.Delaunay.NumInverted > 0, "the case must have an invalid dual");
+  AV_CHECK(!plain.ValidDual.Replaced);
+
+  o.ValidDual = true;
+  av::MetricField metric; // anisotropic, so that the flips have work to do
+  for (std::size_t i = 0; i < c.Mesh.NumPoints(); ++i)
+    metric.Values.insert(metric.Values.end(), { 36.0, 1.0, 1.0, 0.0, 0.0, 0.0 });
+  o.Metric = &metric;
+  const av::MeshingPipelineResult r = av::RunMeshingPipeline(c.Mesh, c.Embedding, c.Sites, o);
+  const av::RestrictedDelaunayMesh& d = r.Repaired.Delaunay;
+  AV_CHECK(r.ValidDual.Replaced && r.ValidDual.InvalidCells == plain.Repaired.Delaunay.NumInverted);
+  AV_CHECK(d.NumInverted == 0 && d.NumNonManifoldFaces == 0);
+  const av::SimplexMesh m = AsMesh(d);
+  std::size_t nonPositive = 0;
+  for (std::size_t t = 0; t < m.NumCells(); ++t)
+    nonPositive += !(SignedVolume(m, t) > 0.0);
+  AV_CHECK_MSG(nonPositive == 0, nonPositive << " tet(s) not positive");
+  const auto sharing = FaceSharing(m);
+  AV_CHECK_MSG(sharing[3] == 0, sharing[3] << " face(s) of more than two tets");
+  // Inside the unit cube (the domain is convex: the sites' hull) and most of it.
+  const double vol = TotalVolume(m);
+  AV_CHECK_MSG(vol <= 1.0 + 1e-12 && vol > 0.6, "volume " << vol);
+  // Every site is used (random sites inside the cube are all vertices of their hull's mesh).
+  AV_CHECK_MSG(d.NumUnusedSites == 0, d.NumUnusedSites << " unused site(s)");
+  std::cout << "folded cube: " << plain.Repaired.Delaunay.NumInverted << " inverted -> valid mesh of "
+            << m.NumCells() << " tets, volume " << vol << ", flips 2-3 " << r.ValidDual.Flips.NumFlips23
+            << " 3-2 " << r.ValidDual.Flips.NumFlips32 << std::endl;
+
+  // A valid dual is left as it is.
+  av::RestrictedDelaunayMesh copy = d;
+  copy.NumInverted = 0;
+  const av::ValidDualResult again = av::MakeDualValid(c.Mesh, {}, r.Repaired.Sites, nullptr, copy);
+  AV_CHECK(!again.Replaced && copy.Cells == d.Cells);
+  AV_CHECK(r.ValidDual.Flips.NumFlips23 + r.ValidDual.Flips.NumFlips32 > 0);
+}
+
+/// Faces abc (apexes d, e) with e strictly in the circumsphere of abcd in the constant metric
+/// S^2 (S applied to the points).
+std::size_t NonDelaunayFaces(const av::SimplexMesh& m, const Eigen::Matrix3d& s)
+{
+  std::map<std::array<std::int32_t, 3>, std::vector<std::int32_t>> apex;
+  for (std::size_t c = 0; c < m.NumCells(); ++c)
+    for (int skip = 0; skip < 4; ++skip)
+    {
+      std::array<std::int32_t, 3> f;
+      int n = 0;
+      for (int a = 0; a < 4; ++a)
+        if (a != skip)
+          f[n++] = m.Cell(c)[a];
+      std::sort(f.begin(), f.end());
+      apex[f].push_back(m.Cell(c)[skip]);
+    }
+  std::size_t bad = 0;
+  for (const auto& kv : apex)
+  {
+    if (kv.second.size() != 2)
+      continue;
+    Eigen::Vector3d q[5];
+    const std::int32_t ids[5] = { kv.first[0], kv.first[1], kv.first[2], kv.second[0], kv.second[1] };
+    for (int i = 0; i < 5; ++i)
+      q[i] = s * Eigen::Map<const Eigen::Vector3d>(m.Point(ids[i]));
+    Eigen::Matrix3d a;
+    Eigen::Vector3d rhs;
+    for (int i = 1; i < 4; ++i)
+    {
+      a.row(i - 1) = 2.0 * (q[i] - q[0]).transpose();
+      rhs[i - 1] = q[i].squaredNorm() - q[0].squaredNorm();
+    }
+    const Eigen::Vector3d x = a.fullPivLu().solve(rhs);
+    bad += (q[4] - x).squaredNorm() < (q[0] - x).squaredNorm() * (1.0 - 1e-6);
+  }
+  return bad;
+}
+
+void TestFlipsTowardsConstantMetric()
+{
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<double> pts;
+  for (int i = 0; i < 400; ++i)
+    for (int d = 0; d < 3; ++d)
+      pts.push_back(u(rng));
+  av::SimplexMesh m = av::DelaunayOfPoints(pts);
+  // Metric diag(36, 1, 1): unit length is 1/6 along x.
+  Eigen::Matrix3d s = Eigen::Matrix3d::Identity();
+  s(0, 0) = 6.0;
+  av::MetricField metric;
+  for (std::size_t i = 0; i < m.NumPoints(); ++i)
+    metric.Values.insert(metric.Values.end(), { 36.0, 1.0, 1.0, 0.0, 0.0, 0.0 });
+  const std::size_t before = NonDelaunayFaces(m, s);
+  const double volBefore = TotalVolume(m);
+  const auto sharingBefore = FaceSharing(m);
+  const av::MetricDelaunayFlipResult r = av::FlipTowardsMetricDelaunay(m, metric);
+  const std::size_t after = NonDelaunayFaces(m, s);
+  std::cout << "constant metric: non-Delaunay faces " << before << " -> " << after << " (2-3 "
+            << r.NumFlips23 << ", 3-2 " << r.NumFlips32 << ")" << std::endl;
+  AV_CHECK(before > 100);
+  AV_CHECK_MSG(after * 10 < before, "flips left " << after << " of " << before);
+  AV_CHECK(!r.Capped);
+  std::size_t nonPositive = 0;
+  for (std::size_t t = 0; t < m.NumCells(); ++t)
+    nonPositive += !(SignedVolume(m, t) > 0.0);
+  AV_CHECK_MSG(nonPositive == 0, nonPositive << " tet(s) not positive");
+  AV_CHECK_NEAR(TotalVolume(m), volBefore, 1e-12 * volBefore);
+  const auto sharing = FaceSharing(m);
+  AV_CHECK(sharing[3] == 0);
+  AV_CHECK_MSG(sharing[1] == sharingBefore[1], "boundary faces " << sharingBefore[1] << " -> " << sharing[1]);
+}
+
+} // namespace
+
+int TestValidDualMesh(int, char*[])
+{
+  TestFoldedCubeGetsValidMesh();
+  TestFlipsTowardsConstantMetric();
+  return AV_TEST_RESULT();
+}

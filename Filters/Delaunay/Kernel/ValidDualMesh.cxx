@@ -1,0 +1,204 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "ValidDualMesh.h"
+
+#include "ElementLocator.h"
+#include "MeshTopology.h"
+#include "RestrictedDelaunayRefinement.h"
+#include "TetMesher.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace av
+{
+namespace
+{
+// Relative volume below which a simplex counts as flat (the value of ComputeRestrictedDelaunay).
+constexpr double kFlatTolerance = 1e-7;
+// Boundary tets flatter than this (a regular tet: 0.048) are peeled: four nearly coplanar sites
+// on a boundary face give a sliver the mesh improvement cannot remove (boundary faces are
+// never flipped), and peeling it loses almost no volume.
+constexpr double kPeelTolerance = 1e-3;
+
+/// Whether k! times the signed measure of cell c is below `tolerance` times the bound of its
+/// edges, (sum of squared edge lengths)^(k/2).
+bool IsFlatOrInverted(const SimplexMesh& m, std::size_t c, double tolerance = kFlatTolerance)
+{
+  const int k = m.SimplexDim;
+  const std::int32_t* v = m.Cell(c);
+  double l2 = 0.0;
+  for (int i = 0; i <= k; ++i)
+    for (int j = i + 1; j <= k; ++j)
+      for (int d = 0; d < m.AmbientDim; ++d)
+      {
+        const double e = m.Point(v[i])[d] - m.Point(v[j])[d];
+        l2 += e * e;
+      }
+  const double measure = (k == 3 ? 6.0 : 2.0) * CellMeasure(m, c);
+  return !(measure > tolerance * std::pow(l2, 0.5 * k));
+}
+
+SimplexMesh AsMesh(const RestrictedDelaunayMesh& rdt)
+{
+  SimplexMesh m;
+  m.AmbientDim = rdt.AmbientDim;
+  m.SimplexDim = rdt.SimplexDim;
+  m.Points = rdt.Points;
+  m.Cells = rdt.Cells;
+  return m;
+}
+
+/// Whether the centroid of tet c of `dt` (whose points are the sites) lies in the input domain.
+bool CentroidInDomain(const SimplexMesh& mesh, const std::vector<std::int32_t>& adjacency,
+  const SiteSet& sites, const SimplexMesh& dt, std::size_t c)
+{
+  const std::int32_t* v = dt.Cell(c);
+  double x[3] = { 0, 0, 0 };
+  for (int a = 0; a < 4; ++a)
+    for (int d = 0; d < 3; ++d)
+      x[d] += 0.25 * dt.Point(v[a])[d];
+  double lambda[4];
+  // From each site's element in turn: a walk may stop at a concave part of the boundary that
+  // lies between one site and the centroid but not another.
+  for (int a = 0; a < 4; ++a)
+  {
+    std::int32_t cell = sites.CellIds[static_cast<std::size_t>(v[a])];
+    if (LocateInMesh(mesh, adjacency, cell, x, lambda))
+      return true;
+  }
+  return false;
+}
+
+/// Faces (sorted vertex triples) of the kept tets that belong to one kept tet only.
+std::vector<std::uint8_t> OnBoundary(const SimplexMesh& dt, const std::vector<std::uint8_t>& keep)
+{
+  std::vector<std::pair<std::array<std::int32_t, 3>, std::int32_t>> faces;
+  for (std::size_t c = 0; c < dt.NumCells(); ++c)
+  {
+    if (!keep[c])
+      continue;
+    const std::int32_t* v = dt.Cell(c);
+    for (int skip = 0; skip < 4; ++skip)
+    {
+      std::array<std::int32_t, 3> f;
+      int n = 0;
+      for (int a = 0; a < 4; ++a)
+        if (a != skip)
+          f[n++] = v[a];
+      std::sort(f.begin(), f.end());
+      faces.push_back({ f, static_cast<std::int32_t>(c) });
+    }
+  }
+  std::sort(faces.begin(), faces.end());
+  std::vector<std::uint8_t> boundary(dt.NumCells(), 0);
+  for (std::size_t i = 0; i < faces.size();)
+  {
+    std::size_t j = i + 1;
+    while (j < faces.size() && faces[j].first == faces[i].first)
+      ++j;
+    if (j - i == 1)
+      boundary[static_cast<std::size_t>(faces[i].second)] = 1;
+    i = j;
+  }
+  return boundary;
+}
+
+} // namespace
+
+void RecountFinalDual(RestrictedDelaunayMesh& rdt, const SiteSet& sites)
+{
+  const SimplexMesh dual = AsMesh(rdt);
+  rdt.Inverted.assign(dual.NumCells(), 0);
+  rdt.CellElement.assign(dual.NumCells(), 0);
+  rdt.NumInverted = 0;
+  std::vector<std::uint8_t> used(dual.NumPoints(), 0);
+  for (std::size_t c = 0; c < dual.NumCells(); ++c)
+  {
+    const std::int32_t* v = dual.Cell(c);
+    rdt.Inverted[c] = IsFlatOrInverted(dual, c) ? 1 : 0;
+    rdt.NumInverted += rdt.Inverted[c];
+    rdt.CellElement[c] = sites.CellIds[static_cast<std::size_t>(v[0])];
+    for (int a = 0; a <= dual.SimplexDim; ++a)
+      used[static_cast<std::size_t>(v[a])] = 1;
+  }
+  const std::vector<std::uint8_t> nm = NonManifoldCells(rdt);
+  rdt.NumNonManifoldFaces = 0;
+  {
+    // Faces shared by more than two cells (NonManifoldCells flags their cells).
+    std::vector<std::array<std::int32_t, 3>> faces;
+    const int nv = dual.SimplexDim + 1;
+    for (std::size_t c = 0; c < dual.NumCells(); ++c)
+    {
+      if (!nm[c])
+        continue;
+      const std::int32_t* v = dual.Cell(c);
+      for (int skip = 0; skip < nv; ++skip)
+      {
+        std::array<std::int32_t, 3> f{ -1, -1, -1 };
+        int n = 0;
+        for (int a = 0; a < nv; ++a)
+          if (a != skip)
+            f[n++] = v[a];
+        std::sort(f.begin(), f.begin() + n);
+        faces.push_back(f);
+      }
+    }
+    std::sort(faces.begin(), faces.end());
+    for (std::size_t i = 0; i < faces.size();)
+    {
+      std::size_t j = i + 1;
+      while (j < faces.size() && faces[j] == faces[i])
+        ++j;
+      rdt.NumNonManifoldFaces += j - i > 2;
+      i = j;
+    }
+  }
+  rdt.NumUnusedSites = static_cast<std::size_t>(std::count(used.begin(), used.end(), 0));
+}
+
+ValidDualResult MakeDualValid(const SimplexMesh& mesh, const std::vector<std::int32_t>& adjacency,
+  const SiteSet& sites, const MetricField* siteMetric, RestrictedDelaunayMesh& rdt)
+{
+  ValidDualResult r;
+  r.InvalidCells = rdt.NumInverted;
+  r.NonManifoldFaces = rdt.NumNonManifoldFaces;
+  if (mesh.SimplexDim != 3 || mesh.AmbientDim != 3 || rdt.SimplexDim != 3 ||
+    (rdt.NumInverted == 0 && rdt.NumNonManifoldFaces == 0) || rdt.Points.size() < 12)
+    return r;
+
+  SimplexMesh dt = DelaunayOfPoints(rdt.Points);
+  r.DelaunayCells = dt.NumCells();
+  std::vector<std::uint8_t> keep(dt.NumCells(), 0);
+  for (std::size_t c = 0; c < dt.NumCells(); ++c)
+  {
+    keep[c] = CentroidInDomain(mesh, adjacency, sites, dt, c) ? 1 : 0;
+    r.OutsideCells += !keep[c];
+  }
+  for (bool changed = true; changed;)
+  {
+    changed = false;
+    const std::vector<std::uint8_t> boundary = OnBoundary(dt, keep);
+    for (std::size_t c = 0; c < dt.NumCells(); ++c)
+      if (keep[c] && boundary[c] && IsFlatOrInverted(dt, c, kPeelTolerance))
+      {
+        keep[c] = 0;
+        ++r.FlatBoundaryCells;
+        changed = true;
+      }
+  }
+  std::vector<std::int32_t> kept;
+  for (std::size_t c = 0; c < dt.NumCells(); ++c)
+    if (keep[c])
+      kept.insert(kept.end(), dt.Cell(c), dt.Cell(c) + 4);
+  dt.Cells = std::move(kept);
+  if (siteMetric && siteMetric->NumPoints() == dt.NumPoints())
+    r.Flips = FlipTowardsMetricDelaunay(dt, *siteMetric);
+  rdt.Cells = std::move(dt.Cells);
+  r.Replaced = true;
+  RecountFinalDual(rdt, sites);
+  rdt.NumOpenInteriorFaces = 0; // not dual to the RVD: no Voronoi face to compare with
+  return r;
+}
+
+} // namespace av

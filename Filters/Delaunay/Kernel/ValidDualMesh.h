@@ -1,0 +1,58 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// ValidDualMesh: a final tet mesh that is valid by construction where the repaired restricted
+// Delaunay dual is not (inverted or flat cells, faces shared by more than two cells).
+#ifndef av_ValidDualMesh_h
+#define av_ValidDualMesh_h
+
+#include "MetricDelaunayFlips.h"
+#include "RestrictedDelaunay.h"
+#include "SimplexMesh.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace av
+{
+
+/// Counts of MakeDualValid.
+struct ValidDualResult
+{
+  bool Replaced = false;             ///< the dual was invalid and its cells were replaced
+  std::size_t InvalidCells = 0;      ///< inverted / flat cells of the dual before
+  std::size_t NonManifoldFaces = 0;  ///< its faces shared by more than two cells before
+  std::size_t DelaunayCells = 0;     ///< tets of the Delaunay tetrahedralization of the sites
+  std::size_t OutsideCells = 0;      ///< of those, removed: centroid outside the input domain
+  std::size_t FlatBoundaryCells = 0; ///< removed: flat, on the boundary of what is kept
+  MetricDelaunayFlipResult Flips;    ///< towards the metric's Delaunay criterion
+};
+
+/**
+ * Recounts the cells of a final dual whose cells were changed (improved or replaced):
+ * Inverted (the signed input-space measure not above 1e-7 (sum of squared edge lengths)^(k/2),
+ * the flat rule of ComputeRestrictedDelaunay), NumInverted, CellElement (the element of each
+ * cell's first site), NumNonManifoldFaces and NumUnusedSites (NumOpenInteriorFaces is left).
+ */
+void RecountFinalDual(RestrictedDelaunayMesh& rdt, const SiteSet& sites);
+
+/**
+ * When `rdt` (tets of a volume mesh, AmbientDim 3) has inverted or flat cells or non-manifold
+ * faces, replaces its cells by a mesh of the same sites that is valid by construction: the
+ * Delaunay tetrahedralization of the sites' input positions (TetGen, no new points), without
+ * the tets whose centroid lies outside the input domain (a walk in `mesh` from the elements of
+ * the tet's sites, `adjacency` as from ComputeElementAdjacency), then without the flat tets
+ * or nearly flat tets on the boundary of what is left (peeled until none is), then, with
+ * `siteMetric` (one per site; nullptr: none), flipped towards the metric's Delaunay criterion
+ * (FlipTowardsMetricDelaunay), which the restricted Delaunay dual approximates where it is
+ * valid. Every tet of it is positive and every face is shared by at most two: no inverted cell
+ * (but an interior flat one, rare) and no non-manifold face. The mesh improvement
+ * (FinalMeshImprovement) then works on its worst elements. A valid dual (and any other kind of
+ * mesh) is left as it is. Recounts `rdt` (RecountFinalDual) when replaced, and sets
+ * NumOpenInteriorFaces to 0: a cell not dual to the RVD has no Voronoi face to compare with.
+ */
+ValidDualResult MakeDualValid(const SimplexMesh& mesh, const std::vector<std::int32_t>& adjacency,
+  const SiteSet& sites, const MetricField* siteMetric, RestrictedDelaunayMesh& rdt);
+
+} // namespace av
+
+#endif
