@@ -45,6 +45,9 @@ struct MeshImprovementOptions
   /// Surfaces: an edge is flipped only where its two triangles meet at most at this dihedral
   /// angle (degrees), so that the flip moves the surface by a second-order amount.
   double SurfaceFlipMaxDihedral = 20.0;
+  /// Surfaces: a collapse must leave the removed vertex within this fraction of the collapsed
+  /// edge's length from the triangles that replace its star (flat: 0; a thin tube: large).
+  double SurfaceCollapseMaxDeviation = 0.05;
   /// Triangles: places a trial position x (3 values, z = 0 in 2D) of a vertex near vertex
   /// `near` on the domain: writes the point (surfaces: on the input surface), the domain's unit
   /// normal there and the metric there (6 packed values). False: x is outside the domain. Needed

@@ -3,6 +3,7 @@
 
 #include "MetricAlgebra.h"
 #include "MetricSimplexQuality.h"
+#include "TriangleBvh.h"
 
 #include <algorithm>
 #include <cmath>
@@ -514,6 +515,27 @@ bool TriangleMeshImprover::CollapseInto(std::int32_t keep, std::int32_t remove)
   // collapse keeps the mesh a manifold with the same topology.
   if (common.size() != 4)
     return false;
+  if (Surface)
+  {
+    // The removed vertex must stay close to the fan that replaces its star, or the collapse
+    // would cut into a strongly curved part (a thin tube) of the surface.
+    double distance = std::numeric_limits<double>::infinity();
+    for (std::int32_t t : Star[remove])
+      if (IndexIn(Tris[t], keep) < 0)
+      {
+        Tri nt = Tris[t];
+        nt[IndexIn(nt, remove)] = keep;
+        distance = std::min(distance,
+          (ClosestPointOnTriangle(P[remove], P[nt[0]], P[nt[1]], P[nt[2]]) - P[remove]).norm());
+        // Each new triangle also keeps the orientation of the one it replaces, as a flip.
+        const Eigen::Vector3d n0 = (P[Tris[t][1]] - P[Tris[t][0]]).cross(P[Tris[t][2]] - P[Tris[t][0]]);
+        const Eigen::Vector3d n1 = (P[nt[1]] - P[nt[0]]).cross(P[nt[2]] - P[nt[0]]);
+        if (!(n0.dot(n1) >= CosFlipDihedral * n0.norm() * n1.norm()))
+          return false;
+      }
+    if (!(distance <= Options.SurfaceCollapseMaxDeviation * (P[keep] - P[remove]).norm()))
+      return false;
+  }
   Begin();
   const std::vector<std::int32_t> star = Star[remove];
   for (std::int32_t t : star)
