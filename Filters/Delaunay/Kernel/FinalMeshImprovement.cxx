@@ -190,8 +190,8 @@ void RecountInverted(const SimplexMesh& input, RestrictedDelaunayMesh& rdt, cons
       for (int i = 0; i < 3; ++i)
       {
         const std::int32_t* e = input.Cell(static_cast<std::size_t>(sites.CellIds[v[i]]));
-        ref += (at(input, e[1]) - at(input, e[0])).cross(at(input, e[2]) - at(input, e[0]))
-                 .normalized();
+        ref +=
+          (at(input, e[1]) - at(input, e[0])).cross(at(input, e[2]) - at(input, e[0])).normalized();
       }
       const Eigen::Vector3d n =
         (at(dual, v[1]) - at(dual, v[0])).cross(at(dual, v[2]) - at(dual, v[0]));
@@ -237,8 +237,12 @@ MeshImprovementResult ImproveFinalMesh(const SimplexMesh& mesh,
     bvh = std::make_unique<TriangleBvh>(mesh);
   // Where x lands: the input element, barycentric coordinates and the point (on a surface the
   // closest point of the input surface, else x itself) and unit normal.
-  auto locate = [&](std::int32_t near, const double* x, std::int32_t& cell, double* lambda,
-                  Eigen::Vector3d& placed, Eigen::Vector3d& normal)
+  auto locate = [&](std::int32_t near,
+                  const double* x,
+                  std::int32_t& cell,
+                  double* lambda,
+                  Eigen::Vector3d& placed,
+                  Eigen::Vector3d& normal)
   {
     cell = sites.CellIds[near];
     lambda[3] = 0.0;
@@ -263,8 +267,8 @@ MeshImprovementResult ImproveFinalMesh(const SimplexMesh& mesh,
   };
   if (dual.SimplexDim == 2)
   {
-    o.PlacePoint = [&](std::int32_t near, const double* x, double* placed, double* normal,
-                     double* m)
+    o.PlacePoint = [&](
+                     std::int32_t near, const double* x, double* placed, double* normal, double* m)
     {
       std::int32_t cell = -1;
       double lambda[4] = { 0, 0, 0, 0 };

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // MeshImprovement: flips and vertex smoothing that raise the worst element of a simplicial mesh,
 // measured in the metric (Klingner & Shewchuk 2007, "Aggressive tetrahedral mesh improvement",
-// without vertex insertion). Runs on the final dual mesh of the meshing pipeline.
+// tets without vertex insertion; triangles also collapse and split edges). Runs on the final
+// dual mesh of the meshing pipeline.
 #ifndef av_MeshImprovement_h
 #define av_MeshImprovement_h
 
@@ -54,8 +55,8 @@ struct MeshImprovementOptions
   /// for surfaces (without it they are left unchanged, Supported false); in 2D without it,
   /// positions are taken as given and a moved vertex keeps its metric, a new one gets the mean
   /// square root of its edge's ends.
-  std::function<bool(std::int32_t near, const double* x, double* placed, double* normal,
-    double* metric)>
+  std::function<
+    bool(std::int32_t near, const double* x, double* placed, double* normal, double* metric)>
     PlacePoint;
   /// Triangles: called when a new vertex is committed (its id is the point count before it),
   /// with a known vertex near it (as PlacePoint's) and its position; false refuses the operation.
@@ -65,7 +66,7 @@ struct MeshImprovementOptions
 /// Counts of ImproveMesh.
 struct MeshImprovementResult
 {
-  bool Supported = true; ///< false for surface triangles without PlacePoint: left unchanged
+  bool Supported = true;      ///< false for surface triangles without PlacePoint: left unchanged
   double WorstBefore = 0.0;   ///< smallest element quality angle before, degrees (< 0: inverted)
   double WorstAfter = 0.0;    ///< the same after
   std::size_t NumFlips23 = 0; ///< tets: 2-3 flips
@@ -91,10 +92,10 @@ double MetricSimplexQuality(int simplexDim,
   const double* const* sqrtMetrics);
 
 /**
- * Improves `mesh` (tets in 3D, triangles in 2D or on a surface) in place against `metric` (one per point, the
- * MetricField order): repeatedly, for each element below TargetAngle, the best of edge removal
- * (n <= MaxEdgeRemovalRing tets around an edge, the optimal triangulation of its ring by dynamic
- * programming), 2-3 flips (tets), 2-2 flips (triangles) and moves of its interior vertices
+ * Improves `mesh` (tets in 3D, triangles in 2D or on a surface) in place against `metric` (one per
+ * point, the MetricField order): repeatedly, for each element below TargetAngle, the best of edge
+ * removal (n <= MaxEdgeRemovalRing tets around an edge, the optimal triangulation of its ring by
+ * dynamic programming), 2-3 flips (tets), 2-2 flips (triangles) and moves of its interior vertices
  * (steepest ascent of the worst incident element with a line search), then for triangles edge
  * collapses and splits, is applied when it raises the worst quality among the elements it
  * touches. Nothing inverts: an element's quality must

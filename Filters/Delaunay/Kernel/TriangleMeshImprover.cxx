@@ -148,8 +148,10 @@ bool TriangleMeshImprover::HasEdge(std::int32_t a, std::int32_t b) const
   return false;
 }
 
-std::int32_t TriangleMeshImprover::OtherTriangle(
-  std::int32_t tri, std::int32_t a, std::int32_t b, int* count) const
+std::int32_t TriangleMeshImprover::OtherTriangle(std::int32_t tri,
+  std::int32_t a,
+  std::int32_t b,
+  int* count) const
 {
   std::int32_t other = -1;
   *count = 0;
@@ -243,8 +245,10 @@ void TriangleMeshImprover::SaveVertex(std::int32_t v)
     Touch(t);
 }
 
-std::int32_t TriangleMeshImprover::AddVertex(
-  const Eigen::Vector3d& p, const Eigen::Matrix3d& s, const Eigen::Vector3d& n, bool fixed,
+std::int32_t TriangleMeshImprover::AddVertex(const Eigen::Vector3d& p,
+  const Eigen::Matrix3d& s,
+  const Eigen::Vector3d& n,
+  bool fixed,
   std::int32_t hint)
 {
   Hint.push_back(hint);
@@ -477,7 +481,9 @@ bool TriangleMeshImprover::TryCollapse(std::int32_t tri)
 {
   const Tri t = Tris[tri];
   int order[3] = { 0, 1, 2 };
-  std::sort(order, order + 3, [&](int i, int j)
+  std::sort(order,
+    order + 3,
+    [&](int i, int j)
     { return EdgeLength(t[i], t[(i + 1) % 3]) < EdgeLength(t[j], t[(j + 1) % 3]); });
   for (int k = 0; k < 2; ++k)
   {
@@ -509,7 +515,10 @@ bool TriangleMeshImprover::CollapseInto(std::int32_t keep, std::int32_t remove)
   ringKeep.erase(std::unique(ringKeep.begin(), ringKeep.end()), ringKeep.end());
   ringRemove.erase(std::unique(ringRemove.begin(), ringRemove.end()), ringRemove.end());
   std::vector<std::int32_t> common;
-  std::set_intersection(ringKeep.begin(), ringKeep.end(), ringRemove.begin(), ringRemove.end(),
+  std::set_intersection(ringKeep.begin(),
+    ringKeep.end(),
+    ringRemove.begin(),
+    ringRemove.end(),
     std::back_inserter(common));
   // Link condition: only the two opposite vertices (and the edge's ends) are shared, so the
   // collapse keeps the mesh a manifold with the same topology.
@@ -528,7 +537,8 @@ bool TriangleMeshImprover::CollapseInto(std::int32_t keep, std::int32_t remove)
         distance = std::min(distance,
           (ClosestPointOnTriangle(P[remove], P[nt[0]], P[nt[1]], P[nt[2]]) - P[remove]).norm());
         // Each new triangle also keeps the orientation of the one it replaces, as a flip.
-        const Eigen::Vector3d n0 = (P[Tris[t][1]] - P[Tris[t][0]]).cross(P[Tris[t][2]] - P[Tris[t][0]]);
+        const Eigen::Vector3d n0 =
+          (P[Tris[t][1]] - P[Tris[t][0]]).cross(P[Tris[t][2]] - P[Tris[t][0]]);
         const Eigen::Vector3d n1 = (P[nt[1]] - P[nt[0]]).cross(P[nt[2]] - P[nt[0]]);
         if (!(n0.dot(n1) >= CosFlipDihedral * n0.norm() * n1.norm()))
           return false;
@@ -566,7 +576,9 @@ bool TriangleMeshImprover::TrySplit(std::int32_t tri)
 {
   const Tri t = Tris[tri];
   int order[3] = { 0, 1, 2 };
-  std::sort(order, order + 3, [&](int i, int j)
+  std::sort(order,
+    order + 3,
+    [&](int i, int j)
     { return EdgeLength(t[i], t[(i + 1) % 3]) > EdgeLength(t[j], t[(j + 1) % 3]); });
   for (int k = 0; k < 2; ++k)
   {

@@ -67,8 +67,11 @@ private:
   void StarErase(std::int32_t v, std::int32_t t);
   void StarAdd(std::int32_t v, std::int32_t t);
   void SaveVertex(std::int32_t v);
-  std::int32_t AddVertex(const Eigen::Vector3d& p, const Eigen::Matrix3d& s,
-    const Eigen::Vector3d& n, bool fixed, std::int32_t hint);
+  std::int32_t AddVertex(const Eigen::Vector3d& p,
+    const Eigen::Matrix3d& s,
+    const Eigen::Vector3d& n,
+    bool fixed,
+    std::int32_t hint);
   void Begin();
   void Rollback();
   bool Commit();

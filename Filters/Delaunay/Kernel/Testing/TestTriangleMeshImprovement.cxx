@@ -127,7 +127,8 @@ Checks CheckPlanarRun(const av::SimplexMesh& before,
     {
       const double l = (q - p).norm();
       onOld = onOld ||
-        ((a - p).norm() + (a - q).norm() < l + 1e-12 && (b - p).norm() + (b - q).norm() < l + 1e-12);
+        ((a - p).norm() + (a - q).norm() < l + 1e-12 &&
+          (b - p).norm() + (b - q).norm() < l + 1e-12);
     }
     c.Expect(onOld, "each boundary edge lies on a boundary edge of the input");
   }
@@ -175,8 +176,8 @@ av::SimplexMesh LatLongSphere(int nlat, int nlon)
   m.SimplexDim = 2;
   auto add = [&](double theta, double phi)
   {
-    m.Points.insert(m.Points.end(), { std::sin(theta) * std::cos(phi),
-                                      std::sin(theta) * std::sin(phi), std::cos(theta) });
+    m.Points.insert(m.Points.end(),
+      { std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta) });
   };
   add(0.0, 0.0); // north pole 0
   for (int i = 1; i < nlat; ++i)
@@ -219,8 +220,8 @@ Checks CheckSphereRun(const av::SimplexMesh& after, const av::MeshImprovementRes
   const auto use = EdgeUse(after);
   for (const auto& [e, n] : use)
     c.Expect(n == 2, "every edge shared by exactly two triangles");
-  c.Expect(static_cast<long>(nv) - static_cast<long>(use.size()) +
-        static_cast<long>(after.NumCells()) ==
+  c.Expect(
+    static_cast<long>(nv) - static_cast<long>(use.size()) + static_cast<long>(after.NumCells()) ==
       2,
     "Euler characteristic 2");
   c.Expect(r.WorstAfter >= r.WorstBefore, "the worst quality never drops");
@@ -354,7 +355,8 @@ void TestSphere()
             << ", collapses " << r.NumCollapses << std::endl;
   AV_CHECK(r.Supported);
   AV_CHECK(CheckSphereRun(m, r).Ok);
-  AV_CHECK_MSG(WorstAngle(m) > WorstAngle(start) + 5.0, WorstAngle(start) << " -> " << WorstAngle(m));
+  AV_CHECK_MSG(
+    WorstAngle(m) > WorstAngle(start) + 5.0, WorstAngle(start) << " -> " << WorstAngle(m));
   AV_CHECK(r.NumSmoothed > 0);
 
   // Without the surface, surface triangles are left alone.
