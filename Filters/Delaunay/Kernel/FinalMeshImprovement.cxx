@@ -6,13 +6,102 @@
 
 #include "MeshQuality.h"
 #include "MeshTopology.h"
+#include "TriangleBvh.h"
 
 #include <Eigen/Dense>
 
 #include <cmath>
+#include <memory>
 
 namespace av
 {
+namespace
+{
+/// Closest point of the surface `mesh` to x (through `bvh`): its triangle, barycentric
+/// coordinates and unit normal. False when that triangle faces away from `hintCell`'s (x would
+/// jump to another sheet of a thin part).
+bool LocateOnSurface(const SimplexMesh& mesh,
+  const TriangleBvh& bvh,
+  std::int32_t hintCell,
+  const double* x,
+  std::int32_t& cell,
+  double* lambda,
+  Eigen::Vector3d& placed,
+  Eigen::Vector3d& normal)
+{
+  auto corner = [&](std::int32_t c, int i)
+  { return Eigen::Map<const Eigen::Vector3d>(mesh.Point(mesh.Cell(c)[i])); };
+  auto unitNormal = [&](std::int32_t c)
+  { return (corner(c, 1) - corner(c, 0)).cross(corner(c, 2) - corner(c, 0)).normalized(); };
+  const Eigen::Vector3d p(x[0], x[1], x[2]);
+  cell = -1;
+  bvh.ClosestDistance2(p, &cell);
+  if (cell < 0)
+    return false;
+  normal = unitNormal(cell);
+  if (hintCell >= 0 && normal.dot(unitNormal(hintCell)) < 0.5)
+    return false;
+  const Eigen::Vector3d a = corner(cell, 0), b = corner(cell, 1), c = corner(cell, 2);
+  placed = ClosestPointOnTriangle(p, a, b, c);
+  // Barycentric coordinates of the closest point from the 2x2 normal equations.
+  const Eigen::Vector3d e1 = b - a, e2 = c - a, r = placed - a;
+  Eigen::Matrix2d g;
+  g << e1.dot(e1), e1.dot(e2), e1.dot(e2), e2.dot(e2);
+  const Eigen::Vector2d l = g.ldlt().solve(Eigen::Vector2d(e1.dot(r), e2.dot(r)));
+  lambda[0] = std::max(0.0, 1.0 - l[0] - l[1]);
+  lambda[1] = std::max(0.0, l[0]);
+  lambda[2] = std::max(0.0, l[1]);
+  lambda[3] = 0.0;
+  const double sum = lambda[0] + lambda[1] + lambda[2];
+  for (int i = 0; i < 3; ++i)
+    lambda[i] /= sum;
+  return true;
+}
+
+/// The metric (6 packed values) at barycentric `lambda` of `cell`, as InterpolateMetricAtSites.
+void MetricAt(const SimplexMesh& mesh,
+  const MetricField& metric,
+  std::int32_t cell,
+  const double* lambda,
+  double* out)
+{
+  const std::int32_t* e = mesh.Cell(static_cast<std::size_t>(cell));
+  for (int j = 0; j < 6; ++j)
+    out[j] = 0.0;
+  for (int i = 0; i <= mesh.SimplexDim; ++i)
+    for (int j = 0; j < 6; ++j)
+      out[j] += lambda[i] * metric.At(static_cast<std::size_t>(e[i]))[j];
+}
+
+/// Site `v` (v == NumSites(): a new one) at barycentric `lambda` of `cell`.
+void SetSite(const SimplexMesh& mesh,
+  const Embedding& embedding,
+  std::int32_t cell,
+  const double* lambda,
+  std::size_t v,
+  SiteSet& sites)
+{
+  const int dim = embedding.Dim;
+  if (v == sites.NumSites())
+  {
+    sites.CellIds.push_back(cell);
+    sites.Coords.resize(sites.Coords.size() + static_cast<std::size_t>(dim));
+    sites.Bary.resize(sites.Bary.size() + 4);
+  }
+  sites.CellIds[v] = cell;
+  const std::int32_t* e = mesh.Cell(static_cast<std::size_t>(cell));
+  for (int d = 0; d < dim; ++d)
+  {
+    double s = 0.0;
+    for (int i = 0; i <= mesh.SimplexDim; ++i)
+      s += lambda[i] * embedding.At(e[i])[d];
+    sites.Coords[v * dim + d] = s;
+  }
+  for (int i = 0; i < 4; ++i)
+    sites.Bary[v * 4 + i] = lambda[i];
+}
+
+} // namespace
 
 MeshImprovementResult ImproveFinalMesh(const SimplexMesh& mesh,
   const Embedding& embedding,
@@ -30,7 +119,8 @@ MeshImprovementResult ImproveFinalMesh(const SimplexMesh& mesh,
   dual.SimplexDim = rdt.SimplexDim;
   dual.Points = rdt.Points;
   dual.Cells = rdt.Cells;
-  if (dual.AmbientDim != dual.SimplexDim || dual.NumCells() == 0)
+  const bool surface = dual.SimplexDim == 2 && dual.AmbientDim == 3 && mesh.SimplexDim == 2;
+  if ((dual.AmbientDim != dual.SimplexDim && !surface) || dual.NumCells() == 0)
   {
     MeshImprovementResult none;
     none.Supported = dual.NumCells() == 0;
@@ -42,34 +132,75 @@ MeshImprovementResult ImproveFinalMesh(const SimplexMesh& mesh,
     for (std::size_t i = 0; i < fixedSites->size() && i < fixed.size(); ++i)
       fixed[i] = (*fixedSites)[i];
 
-  const int nv = mesh.SimplexDim + 1;
-  const int dim = embedding.Dim;
+  std::unique_ptr<TriangleBvh> bvh;
+  if (surface)
+    bvh = std::make_unique<TriangleBvh>(mesh);
+  // Where x lands: the input element, barycentric coordinates and the point (on a surface the
+  // closest point of the input surface, else x itself) and unit normal.
+  auto locate = [&](std::int32_t near,
+                  const double* x,
+                  std::int32_t& cell,
+                  double* lambda,
+                  Eigen::Vector3d& placed,
+                  Eigen::Vector3d& normal)
+  {
+    cell = sites.CellIds[near];
+    lambda[3] = 0.0;
+    if (surface)
+      return LocateOnSurface(mesh, *bvh, cell, x, cell, lambda, placed, normal);
+    placed = Eigen::Vector3d(x[0], x[1], dual.AmbientDim == 3 ? x[2] : 0.0);
+    normal = Eigen::Vector3d::UnitZ();
+    return LocateInMesh(mesh, adjacency, cell, x, lambda);
+  };
   MeshImprovementOptions o = options;
   o.AcceptMove = [&](std::int32_t v, const double* x)
   {
-    std::int32_t cell = sites.CellIds[v];
+    std::int32_t cell = -1;
     double lambda[4] = { 0, 0, 0, 0 };
-    if (!LocateInMesh(mesh, adjacency, cell, x, lambda))
+    Eigen::Vector3d placed, normal;
+    if (!locate(v, x, cell, lambda, placed, normal))
       return false;
-    sites.CellIds[v] = cell;
-    const std::int32_t* e = mesh.Cell(static_cast<std::size_t>(cell));
-    for (int d = 0; d < dim; ++d)
-    {
-      double s = 0.0;
-      for (int i = 0; i < nv; ++i)
-        s += lambda[i] * embedding.At(e[i])[d];
-      sites.Coords[static_cast<std::size_t>(v) * dim + d] = s;
-    }
-    for (int i = 0; i < 4; ++i)
-      sites.Bary[static_cast<std::size_t>(v) * 4 + i] = lambda[i];
+    SetSite(mesh, embedding, cell, lambda, static_cast<std::size_t>(v), sites);
     if (static_cast<std::size_t>(v) < moved.size())
       moved[v] = 1;
     return true;
   };
+  if (dual.SimplexDim == 2)
+  {
+    o.PlacePoint = [&](
+                     std::int32_t near, const double* x, double* placed, double* normal, double* m)
+    {
+      std::int32_t cell = -1;
+      double lambda[4] = { 0, 0, 0, 0 };
+      Eigen::Vector3d p, n;
+      if (!locate(near, x, cell, lambda, p, n))
+        return false;
+      for (int d = 0; d < 3; ++d)
+      {
+        placed[d] = p[d];
+        normal[d] = n[d];
+      }
+      MetricAt(mesh, metric, cell, lambda, m);
+      return true;
+    };
+    // A split's vertex becomes an inserted site (after the repair's, before nothing else).
+    o.AddPoint = [&](std::int32_t v, std::int32_t near, const double* x)
+    {
+      std::int32_t cell = -1;
+      double lambda[4] = { 0, 0, 0, 0 };
+      Eigen::Vector3d placed, normal;
+      if (static_cast<std::size_t>(v) != sites.NumSites() ||
+        !locate(near, x, cell, lambda, placed, normal))
+        return false;
+      SetSite(mesh, embedding, cell, lambda, static_cast<std::size_t>(v), sites);
+      ++repaired.NumInserted;
+      return true;
+    };
+  }
   MeshImprovementResult result = ImproveMesh(dual, siteMetric, &fixed, o);
   rdt.Points = std::move(dual.Points);
   rdt.Cells = std::move(dual.Cells);
-  RecountFinalDual(rdt, sites);
+  RecountFinalDual(mesh, rdt, sites);
   return result;
 }
 

@@ -81,16 +81,19 @@ MeshImprovementResult ImproveMesh(SimplexMesh& mesh,
       roots[i] = SymmetricSqrt(UnpackSymmetric(metric.At(i)));
     TetMeshImprover(mesh, std::move(roots), fixedPoints, options).Run(result);
   }
-  else if (mesh.AmbientDim == 2)
+  else if (mesh.AmbientDim == 2 || options.PlacePoint)
   {
-    std::vector<Eigen::Matrix2d> roots(np);
+    std::vector<Eigen::Matrix3d> roots(np, Eigen::Matrix3d::Zero());
     for (std::size_t i = 0; i < np; ++i)
-      roots[i] = SymmetricSqrt(UnpackSymmetric2(metric.At(i)));
+      if (mesh.AmbientDim == 2)
+        roots[i].topLeftCorner<2, 2>() = SymmetricSqrt(UnpackSymmetric2(metric.At(i)));
+      else
+        roots[i] = SymmetricSqrt(UnpackSymmetric(metric.At(i)));
     TriangleMeshImprover(mesh, std::move(roots), fixedPoints, options).Run(result);
   }
   else
   {
-    result.Supported = false; // moving surface vertices would need the surface itself
+    result.Supported = false; // moving surface vertices needs the surface (PlacePoint)
     result.Moved.assign(np, 0);
   }
   return result;

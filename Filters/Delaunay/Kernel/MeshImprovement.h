@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // MeshImprovement: flips and vertex smoothing that raise the worst element of a simplicial mesh,
 // measured in the metric (Klingner & Shewchuk 2007, "Aggressive tetrahedral mesh improvement",
-// without vertex insertion). Runs on the final dual mesh of the meshing pipeline.
+// tets without vertex insertion; triangles also collapse and split edges). Runs on the final
+// dual mesh of the meshing pipeline.
 #ifndef av_MeshImprovement_h
 #define av_MeshImprovement_h
 
@@ -37,20 +38,45 @@ struct MeshImprovementOptions
   /// (AmbientDim values); false refuses the move. The meshing pipeline locates the moved site
   /// on the input mesh here.
   std::function<bool(std::int32_t, const double*)> AcceptMove;
+  /// Triangles: edge splits (a vertex at the middle of a bad triangle's longest metric edge)
+  /// and edge collapses (removal of an end of its shortest), each followed by smoothing of the
+  /// vertex left and flips around it, where flips and smoothing alone fail.
+  bool Splits = true;
+  bool Collapses = true;
+  /// Surfaces: an edge is flipped only where its two triangles meet at most at this dihedral
+  /// angle (degrees), so that the flip moves the surface by a second-order amount.
+  double SurfaceFlipMaxDihedral = 20.0;
+  /// Surfaces: a collapse must leave the removed vertex within this fraction of the collapsed
+  /// edge's length from the triangles that replace its star (flat: 0; a thin tube: large).
+  double SurfaceCollapseMaxDeviation = 0.05;
+  /// Triangles: places a trial position x (3 values, z = 0 in 2D) of a vertex near vertex
+  /// `near` on the domain: writes the point (surfaces: on the input surface), the domain's unit
+  /// normal there and the metric there (6 packed values). False: x is outside the domain. Needed
+  /// for surfaces (without it they are left unchanged, Supported false); in 2D without it,
+  /// positions are taken as given and a moved vertex keeps its metric, a new one gets the mean
+  /// square root of its edge's ends.
+  std::function<
+    bool(std::int32_t near, const double* x, double* placed, double* normal, double* metric)>
+    PlacePoint;
+  /// Triangles: called when a new vertex is committed (its id is the point count before it),
+  /// with a known vertex near it (as PlacePoint's) and its position; false refuses the operation.
+  std::function<bool(std::int32_t id, std::int32_t near, const double* x)> AddPoint;
 };
 
 /// Counts of ImproveMesh.
 struct MeshImprovementResult
 {
-  bool Supported = true;      ///< false for triangles on a surface (AmbientDim 3): left unchanged
+  bool Supported = true;      ///< false for surface triangles without PlacePoint: left unchanged
   double WorstBefore = 0.0;   ///< smallest element quality angle before, degrees (< 0: inverted)
   double WorstAfter = 0.0;    ///< the same after
   std::size_t NumFlips23 = 0; ///< tets: 2-3 flips
   std::size_t NumEdgeRemovals = 0; ///< tets: edge removals (3-2 flips included)
   std::size_t NumFlips22 = 0;      ///< triangles: edge flips
   std::size_t NumSmoothed = 0;     ///< accepted vertex moves
+  std::size_t NumSplits = 0;       ///< triangles: edge splits (new vertices appended)
+  std::size_t NumCollapses = 0;    ///< triangles: edge collapses (the removed vertex is unused)
   int Passes = 0;
-  std::vector<std::uint8_t> Moved; ///< per point, 1 where the position changed
+  std::vector<std::uint8_t> Moved; ///< per point (new ones included), 1 where it changed
 };
 
 /**
@@ -66,18 +92,21 @@ double MetricSimplexQuality(int simplexDim,
   const double* const* sqrtMetrics);
 
 /**
- * Improves `mesh` (tets in 3D, triangles in 2D) in place against `metric` (one per point, the
- * MetricField order): repeatedly, for each element below TargetAngle, the best of edge removal
- * (n <= MaxEdgeRemovalRing tets around an edge, the optimal triangulation of its ring by dynamic
- * programming), 2-3 flips (tets), 2-2 flips (triangles) and moves of its interior vertices
- * (steepest ascent of the worst incident element with a line search) is applied when it raises
- * the worst quality among the elements it touches. Nothing inverts: an element's quality must
+ * Improves `mesh` (tets in 3D, triangles in 2D or on a surface) in place against `metric` (one per
+ * point, the MetricField order): repeatedly, for each element below TargetAngle, the best of edge
+ * removal (n <= MaxEdgeRemovalRing tets around an edge, the optimal triangulation of its ring by
+ * dynamic programming), 2-3 flips (tets), 2-2 flips (triangles) and moves of its interior vertices
+ * (steepest ascent of the worst incident element with a line search), then for triangles edge
+ * collapses and splits, is applied when it raises the worst quality among the elements it
+ * touches. Nothing inverts: an element's quality must
  * stay positive. The boundary and the domain are preserved exactly: boundary faces (edges) are
  * never flipped, vertices on them, vertices of faces shared by more than two elements, and those
  * flagged in `fixedPoints` (nullptr: none) never move. Vertex metrics stay those given (a move
- * is small against the metric's variation). Unreferenced points are untouched. The cell count
- * may change; the point count does not. Triangles on a surface are left unchanged (Supported
- * false). Throws InputError on wrong sizes, bad ids or non-finite values.
+ * is small against the metric's variation) unless PlacePoint gives them. Unreferenced points are
+ * untouched. The cell count may change; the point count only grows by splits (new points are
+ * appended; a collapsed vertex stays as an unreferenced point). Surface triangles need
+ * PlacePoint: a triangle's orientation is that of the sum of its vertices' normals, and no
+ * operation may flip one. Throws InputError on wrong sizes, bad ids or non-finite values.
  */
 MeshImprovementResult ImproveMesh(SimplexMesh& mesh,
   const MetricField& metric,

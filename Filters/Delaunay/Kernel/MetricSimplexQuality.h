@@ -60,6 +60,29 @@ inline double TriangleMetricQuality(const Eigen::Vector2d& a,
   return a2 * std::min(std::min(lab, lac), lbc) / p;
 }
 
+/// Triangle (a, b, c) in 3D (a surface, or a plane at z = 0) mapped by (Sa + Sb + Sc) / 3:
+/// smallest sine of its angles, negative when its input-space normal opposes `up` (the sum of
+/// its vertices' surface normals). Equals TriangleMetricQuality for a plane and up = +z.
+inline double OrientedTriangleMetricQuality(const Eigen::Vector3d& a,
+  const Eigen::Vector3d& b,
+  const Eigen::Vector3d& c,
+  const Eigen::Matrix3d& sa,
+  const Eigen::Matrix3d& sb,
+  const Eigen::Matrix3d& sc,
+  const Eigen::Vector3d& up)
+{
+  const Eigen::Matrix3d m = (sa + sb + sc) / 3.0;
+  const Eigen::Vector3d ab = m * (b - a), ac = m * (c - a), bc = ac - ab;
+  const double a2 = ab.cross(ac).norm(); // doubled mapped area
+  const bool positive = (b - a).cross(c - a).dot(up) > 0.0;
+  const double lab = ab.norm(), lac = ac.norm(), lbc = bc.norm();
+  const double p = lab * lac * lbc;
+  if (p <= 1e-300)
+    return positive ? 0.0 : -1.0;
+  const double q = a2 * std::min(std::min(lab, lac), lbc) / p;
+  return positive ? q : -q;
+}
+
 /// Elements at or below this quality count as inverted or degenerate: no operation may make one.
 constexpr double kMinImprovementQuality = 1e-6;
 

@@ -6,6 +6,8 @@
 #include "RestrictedDelaunayRefinement.h"
 #include "TetMesher.h"
 
+#include <Eigen/Dense>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -37,6 +39,23 @@ bool IsFlatOrInverted(const SimplexMesh& m, std::size_t c, double tolerance = kF
       }
   const double measure = (k == 3 ? 6.0 : 2.0) * CellMeasure(m, c);
   return !(measure > tolerance * std::pow(l2, 0.5 * k));
+}
+
+/// Surfaces: triangle v of `dual` against the sum of the normals of the input triangles that
+/// hold its sites (a flip across a strongly curved region).
+bool FlippedOnSurface(const SimplexMesh& input, const SimplexMesh& dual, const SiteSet& sites,
+  const std::int32_t* v)
+{
+  auto at = [](const SimplexMesh& m, std::int32_t p)
+  { return Eigen::Map<const Eigen::Vector3d>(m.Point(static_cast<std::size_t>(p))); };
+  Eigen::Vector3d ref = Eigen::Vector3d::Zero();
+  for (int i = 0; i < 3; ++i)
+  {
+    const std::int32_t* e = input.Cell(static_cast<std::size_t>(sites.CellIds[v[i]]));
+    ref += (at(input, e[1]) - at(input, e[0])).cross(at(input, e[2]) - at(input, e[0])).normalized();
+  }
+  const Eigen::Vector3d n = (at(dual, v[1]) - at(dual, v[0])).cross(at(dual, v[2]) - at(dual, v[0]));
+  return !(n.dot(ref) > 0.0);
 }
 
 SimplexMesh AsMesh(const RestrictedDelaunayMesh& rdt)
@@ -106,7 +125,7 @@ std::vector<std::uint8_t> OnBoundary(const SimplexMesh& dt, const std::vector<st
 
 } // namespace
 
-void RecountFinalDual(RestrictedDelaunayMesh& rdt, const SiteSet& sites)
+void RecountFinalDual(const SimplexMesh& input, RestrictedDelaunayMesh& rdt, const SiteSet& sites)
 {
   const SimplexMesh dual = AsMesh(rdt);
   rdt.Inverted.assign(dual.NumCells(), 0);
@@ -117,6 +136,8 @@ void RecountFinalDual(RestrictedDelaunayMesh& rdt, const SiteSet& sites)
   {
     const std::int32_t* v = dual.Cell(c);
     rdt.Inverted[c] = IsFlatOrInverted(dual, c) ? 1 : 0;
+    if (dual.AmbientDim == 3 && dual.SimplexDim == 2 && !rdt.Inverted[c])
+      rdt.Inverted[c] = FlippedOnSurface(input, dual, sites, v) ? 1 : 0;
     rdt.NumInverted += rdt.Inverted[c];
     rdt.CellElement[c] = sites.CellIds[static_cast<std::size_t>(v[0])];
     for (int a = 0; a <= dual.SimplexDim; ++a)
@@ -196,7 +217,7 @@ ValidDualResult MakeDualValid(const SimplexMesh& mesh, const std::vector<std::in
     r.Flips = FlipTowardsMetricDelaunay(dt, *siteMetric);
   rdt.Cells = std::move(dt.Cells);
   r.Replaced = true;
-  RecountFinalDual(rdt, sites);
+  RecountFinalDual(mesh, rdt, sites);
   rdt.NumOpenInteriorFaces = 0; // not dual to the RVD: no Voronoi face to compare with
   return r;
 }

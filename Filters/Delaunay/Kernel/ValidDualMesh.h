@@ -30,10 +30,11 @@ struct ValidDualResult
 /**
  * Recounts the cells of a final dual whose cells were changed (improved or replaced):
  * Inverted (the signed input-space measure not above 1e-7 (sum of squared edge lengths)^(k/2),
- * the flat rule of ComputeRestrictedDelaunay), NumInverted, CellElement (the element of each
+ * the flat rule of ComputeRestrictedDelaunay; on a surface (`input` triangles in 3D) also a
+ * triangle whose normal opposes the sum of the normals of the input triangles of its sites), NumInverted, CellElement (the element of each
  * cell's first site), NumNonManifoldFaces and NumUnusedSites (NumOpenInteriorFaces is left).
  */
-void RecountFinalDual(RestrictedDelaunayMesh& rdt, const SiteSet& sites);
+void RecountFinalDual(const SimplexMesh& input, RestrictedDelaunayMesh& rdt, const SiteSet& sites);
 
 /**
  * When `rdt` (tets of a volume mesh, AmbientDim 3) has inverted or flat cells or non-manifold
