@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "FrdReader.h"
 
+#include "FileBytes.h"
+
 #include <algorithm>
 #include <charconv>
 #include <cmath>
-#include <fstream>
 #include <limits>
-#include <sstream>
 #include <string_view>
 #include <unordered_map>
 
@@ -715,14 +715,7 @@ FrdData ParseFrd(const std::string& text, const std::string& sourceName)
 
 FrdData ReadFrd(const std::string& fileName)
 {
-  std::ifstream in(fileName, std::ios::binary);
-  if (!in)
-  {
-    throw InputError("cannot open '" + fileName + "' for reading");
-  }
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ParseFrd(ss.str(), fileName);
+  return ParseFrd(ReadFileBytes(fileName), fileName);
 }
 
 } // namespace av

@@ -1,15 +1,15 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "MeditBinaryIO.h"
 
+#include "FileBytes.h"
 #include "InputError.h"
+#include "MeditSectionCount.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <fstream>
 #include <limits>
-#include <sstream>
 
 namespace av
 {
@@ -56,18 +56,45 @@ public:
   std::int64_t Position() { return this->Version >= 3 ? this->Int64() : this->Int32(); }
   double Real() { return this->Version == 1 ? this->Word<float>() : this->Word<double>(); }
 
-  /// A line count, checked against the bytes left (each line needs `lineBytes`).
+  /// A line count that the bytes left can hold (MeditSectionCountError), each line
+  /// `lineBytes` bytes.
   std::size_t Count(std::size_t lineBytes, const char* what)
   {
     const std::int64_t n = this->Int();
-    const std::size_t left = this->Bytes.size() - this->Pos;
-    if (n < 0 || static_cast<std::uint64_t>(n) > left / std::max<std::size_t>(lineBytes, 1))
-      this->Fail(std::string("bad ") + what + " count " + std::to_string(n));
+    this->CheckCount(n, lineBytes, what);
     return static_cast<std::size_t>(n);
+  }
+  /// Fails unless the bytes left can hold `n` lines of `lineBytes` bytes.
+  void CheckCount(std::int64_t n, std::size_t lineBytes, const std::string& what) const
+  {
+    const std::string error = MeditSectionCountError(what, n, lineBytes, this->BytesLeft());
+    if (!error.empty())
+      this->Fail(error);
+  }
+  /// The Dimension keyword's value, 2 or 3.
+  int Dimension()
+  {
+    const int dim = this->Int32();
+    if (dim != 2 && dim != 3)
+      this->Fail("Dimension must be 2 or 3, got " + std::to_string(dim));
+    return dim;
   }
   std::size_t IntBytes() const { return this->Version >= 4 ? 8 : 4; }
   std::size_t RealBytes() const { return this->Version == 1 ? 4 : 8; }
   bool AtEnd() const { return this->Pos >= this->Bytes.size(); }
+  /// Reads the next keyword's code and the position of the one after it; false at End or at
+  /// the end of the bytes.
+  bool NextKeyword(int& code, std::int64_t& next)
+  {
+    if (this->AtEnd())
+      return false;
+    code = this->Int32();
+    if (code == KwEnd)
+      return false;
+    next = this->Position();
+    return true;
+  }
+  std::size_t BytesLeft() const { return this->Bytes.size() - this->Pos; }
   void Seek(std::int64_t pos)
   {
     if (pos <= static_cast<std::int64_t>(this->Pos) ||
@@ -194,27 +221,6 @@ int VersionFor(std::size_t estimatedBytes)
   return estimatedBytes < (std::size_t(1) << 31) - 4096 ? 2 : 3;
 }
 
-std::string ReadBytes(const std::string& fileName)
-{
-  std::ifstream in(fileName, std::ios::binary);
-  if (!in)
-    throw InputError("cannot open '" + fileName + "' for reading");
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-void WriteBytes(const std::string& fileName, const std::string& bytes)
-{
-  std::ofstream out(fileName, std::ios::binary);
-  if (!out)
-    throw InputError("cannot open '" + fileName + "' for writing");
-  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-  out.close();
-  if (!out)
-    throw InputError("error while writing '" + fileName + "' (disk full?)");
-}
-
 bool EndsWith(const std::string& s, const char* suffix)
 {
   const std::size_t n = std::strlen(suffix);
@@ -246,17 +252,13 @@ MeditMesh ParseMeditMeshBinary(const std::string& bytes, const std::string& sour
   std::vector<double> points;
   std::vector<std::int32_t> tris, triRefs, tets, tetRefs;
   bool haveTris = false, haveTets = false;
-  while (!in.AtEnd())
+  int code = 0;
+  std::int64_t next = 0;
+  while (in.NextKeyword(code, next))
   {
-    const int code = in.Int32();
-    if (code == KwEnd)
-      break;
-    const std::int64_t next = in.Position();
     if (code == KwDimension)
     {
-      dim = in.Int32();
-      if (dim != 2 && dim != 3)
-        in.Fail("Dimension must be 2 or 3, got " + std::to_string(dim));
+      dim = in.Dimension();
     }
     else if (code == KwVertices)
     {
@@ -370,17 +372,13 @@ MeditSol ParseMeditSolBinary(const std::string& bytes, const std::string& source
   MeditSol sol;
   int dim = 0;
   bool found = false;
-  while (!in.AtEnd() && !found)
+  int code = 0;
+  std::int64_t next = 0;
+  while (!found && in.NextKeyword(code, next))
   {
-    const int code = in.Int32();
-    if (code == KwEnd)
-      break;
-    const std::int64_t next = in.Position();
     if (code == KwDimension)
     {
-      dim = in.Int32();
-      if (dim != 2 && dim != 3)
-        in.Fail("Dimension must be 2 or 3, got " + std::to_string(dim));
+      dim = in.Dimension();
     }
     else if (code == KwSolAtVertices)
     {
@@ -402,8 +400,9 @@ MeditSol ParseMeditSolBinary(const std::string& bytes, const std::string& source
         sol.FieldTypes.push_back(type);
         realsPerLine += type == 1 ? 1 : (type == 2 ? dim : SymmetricSize(dim));
       }
-      if (n < 0 || static_cast<std::uint64_t>(n) > bytes.size() / (realsPerLine * in.RealBytes()))
-        in.Fail("bad SolAtVertices count " + std::to_string(n));
+      in.CheckCount(n,
+        realsPerLine * in.RealBytes(),
+        "SolAtVertices (" + std::to_string(realsPerLine) + " values per vertex)");
       sol.NumVertices = static_cast<std::size_t>(n);
       sol.Fields.resize(numTypes);
       for (int f = 0; f < numTypes; ++f)
@@ -472,27 +471,27 @@ std::string FormatMeditSolBinary(const MeditSol& sol)
 
 MeditMesh ReadMeditMeshFile(const std::string& fileName)
 {
-  const std::string bytes = ReadBytes(fileName);
+  const std::string bytes = ReadFileBytes(fileName);
   return IsMeditBinary(bytes) ? ParseMeditMeshBinary(bytes, fileName)
                               : ParseMeditMesh(bytes, fileName);
 }
 
 MeditSol ReadMeditSolFile(const std::string& fileName)
 {
-  const std::string bytes = ReadBytes(fileName);
+  const std::string bytes = ReadFileBytes(fileName);
   return IsMeditBinary(bytes) ? ParseMeditSolBinary(bytes, fileName)
                               : ParseMeditSol(bytes, fileName);
 }
 
 void WriteMeditMeshFile(const std::string& fileName, const MeditMesh& mesh)
 {
-  WriteBytes(
+  WriteFileBytes(
     fileName, EndsWith(fileName, ".meshb") ? FormatMeditMeshBinary(mesh) : FormatMeditMesh(mesh));
 }
 
 void WriteMeditSolFile(const std::string& fileName, const MeditSol& sol)
 {
-  WriteBytes(
+  WriteFileBytes(
     fileName, EndsWith(fileName, ".solb") ? FormatMeditSolBinary(sol) : FormatMeditSol(sol));
 }
 

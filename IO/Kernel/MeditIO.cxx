@@ -1,13 +1,15 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "MeditIO.h"
 
+#include "FileBytes.h"
+#include "MeditBinaryIO.h"
+#include "MeditSectionCount.h"
+
 #include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstring>
-#include <fstream>
 #include <limits>
-#include <sstream>
 #include <string_view>
 
 namespace av
@@ -139,20 +141,18 @@ public:
     return v;
   }
 
-  /// Reads a section count and checks the file can hold `count` entries of `tokensEach`
-  /// tokens, so a corrupted header cannot make us allocate huge arrays.
+  /// Reads a section count that the rest of the file can hold (MeditSectionCountError), each
+  /// entry `tokensEach` tokens.
   std::size_t Count(const char* section, std::size_t tokensEach)
   {
     const std::int64_t n = this->Int((std::string("the number of ") + section).c_str(),
                                      0,
                                      std::numeric_limits<std::int32_t>::max());
-    const std::size_t left = this->Text.size() - this->Pos;
-    // every token takes at least 2 bytes (one character and one separator), minus the last one
-    if (static_cast<std::size_t>(n) > (left + 1) / 2 / std::max<std::size_t>(tokensEach, 1))
+    const std::string error = MeditSectionCountError(
+      section, n, MeditTextEntryBytes(tokensEach), this->BytesLeft(), /*lastEntrySlack=*/1);
+    if (!error.empty())
     {
-      this->Fail(std::string(section) + ": the header announces " + std::to_string(n) +
-                 " entries but only " + std::to_string(left) +
-                 " bytes are left in the file (truncated?)");
+      this->Fail(error);
     }
     return static_cast<std::size_t>(n);
   }
@@ -201,39 +201,9 @@ private:
   std::size_t Line = 1;
 };
 
-std::string ReadWholeFile(const std::string& fileName)
-{
-  std::ifstream in(fileName, std::ios::binary);
-  if (!in)
-  {
-    throw InputError("cannot open '" + fileName + "' for reading");
-  }
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-void WriteWholeFile(const std::string& fileName, const std::string& text)
-{
-  std::ofstream out(fileName, std::ios::binary);
-  if (!out)
-  {
-    throw InputError("cannot open '" + fileName + "' for writing");
-  }
-  out.write(text.data(), static_cast<std::streamsize>(text.size()));
-  out.close();
-  if (!out)
-  {
-    throw InputError("error while writing '" + fileName + "' (disk full?)");
-  }
-}
-
 void RejectBinary(const std::string& text, const std::string& fileName)
 {
-  // .meshb/.solb start with the int32 code 1 (little or big endian)
-  if (text.size() >= 4 &&
-      (text.compare(0, 4, std::string("\1\0\0\0", 4)) == 0 ||
-       text.compare(0, 4, std::string("\0\0\0\1", 4)) == 0))
+  if (IsMeditBinary(text))
   {
     throw InputError(fileName +
                      ": binary Medit files (.meshb/.solb) are not supported; "
@@ -545,7 +515,7 @@ MeditMesh ParseMeditMesh(const std::string& text, const std::string& sourceName)
 
 MeditMesh ReadMeditMesh(const std::string& fileName)
 {
-  const std::string text = ReadWholeFile(fileName);
+  const std::string text = ReadFileBytes(fileName);
   RejectBinary(text, fileName);
   return ParseMeditMesh(text, fileName);
 }
@@ -674,7 +644,7 @@ std::string FormatMeditMesh(const SimplexMesh& mesh,
 
 void WriteMeditMesh(const std::string& fileName, const MeditMesh& mesh)
 {
-  WriteWholeFile(fileName, FormatMeditMesh(mesh));
+  WriteFileBytes(fileName, FormatMeditMesh(mesh));
 }
 
 MeditSol ParseMeditSol(const std::string& text, const std::string& sourceName)
@@ -715,12 +685,15 @@ MeditSol ParseMeditSol(const std::string& text, const std::string& sourceName)
         sol.FieldTypes.push_back(type);
         perVertex += type == 1 ? 1 : (type == 2 ? dim : dim * (dim + 1) / 2);
       }
-      // bound the allocation by the bytes left, as Tokenizer::Count does
-      const std::size_t left = tok.BytesLeft();
-      if (static_cast<std::size_t>(n) > (left + 1) / 2 / perVertex)
+      const std::string error = MeditSectionCountError(
+        "SolAtVertices (" + std::to_string(perVertex) + " values per vertex)",
+        n,
+        MeditTextEntryBytes(perVertex),
+        tok.BytesLeft(),
+        /*lastEntrySlack=*/1);
+      if (!error.empty())
       {
-        tok.Fail("SolAtVertices announces " + std::to_string(n) + " vertices x " +
-                 std::to_string(perVertex) + " values, more than the file can hold (truncated?)");
+        tok.Fail(error);
       }
       sol.NumVertices = static_cast<std::size_t>(n);
       sol.Fields.resize(nf);
@@ -786,7 +759,7 @@ MeditSol ParseMeditSol(const std::string& text, const std::string& sourceName)
 
 MeditSol ReadMeditSol(const std::string& fileName)
 {
-  const std::string text = ReadWholeFile(fileName);
+  const std::string text = ReadFileBytes(fileName);
   RejectBinary(text, fileName);
   return ParseMeditSol(text, fileName);
 }
@@ -864,7 +837,7 @@ std::string FormatMeditSol(const MeditSol& sol)
 
 void WriteMeditSol(const std::string& fileName, const MeditSol& sol)
 {
-  WriteWholeFile(fileName, FormatMeditSol(sol));
+  WriteFileBytes(fileName, FormatMeditSol(sol));
 }
 
 MetricField MetricFromMeditSol(const MeditSol& sol, std::size_t field)
