@@ -6,6 +6,7 @@
 
 #include "RestrictedVoronoi.h"
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -30,6 +31,7 @@ struct Chunk
   std::vector<std::int32_t> ElemNearest, ElemPieces, ElemVV, ElemBD;
   std::vector<std::uint8_t> ElemEmptyVisit; // a visited site had an empty piece
   std::vector<float> PieceRadius2, PieceLastCut; // rounded up
+  std::size_t NumWholeElements = 0;              // emitted by the fast path
 };
 
 } // namespace rvd
