@@ -101,7 +101,8 @@ VoronoiStageResult RunVoronoiStage(const av::SimplexMesh& mesh,
   const av::Embedding& embedding,
   const MeshStageOptions& options,
   int repeats,
-  bool geometry)
+  bool geometry,
+  bool embeddedPoints)
 {
   VoronoiStageResult result;
   const av::Stopwatch sampleWatch;
@@ -130,6 +131,7 @@ VoronoiStageResult RunVoronoiStage(const av::SimplexMesh& mesh,
       run.FastPath = fast != 0;
       av::RestrictedVoronoiOptions o;
       o.ComputeGeometry = run.Geometry;
+      o.KeepEmbeddedPoints = embeddedPoints;
       o.WholeElementFastPath = run.FastPath;
       o.ElementAdjacency = &adjacency;
       av::RestrictedVoronoiDiagram r;

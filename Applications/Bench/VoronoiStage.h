@@ -39,12 +39,14 @@ struct VoronoiStageResult
 };
 
 /// Samples options.Sites sites as the mesh stage does (no Lloyd), then times the RVD without /
-/// with geometry (when `geometry`), each without / with the fast path, best of `repeats`.
+/// with geometry (when `geometry`; with the R^Dim vertices when `embeddedPoints`), each without
+/// / with the fast path, best of `repeats`.
 VoronoiStageResult RunVoronoiStage(const av::SimplexMesh& mesh,
   const av::Embedding& embedding,
   const MeshStageOptions& options,
   int repeats,
-  bool geometry);
+  bool geometry,
+  bool embeddedPoints);
 
 } // namespace avbench
 

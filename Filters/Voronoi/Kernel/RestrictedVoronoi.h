@@ -29,7 +29,10 @@ struct RestrictedVoronoiOptions
   /// false: only measures and the dual (Voronoi vertex) records, no vertices/faces (saves memory).
   bool ComputeGeometry = true;
   /// Store every vertex in R^Dim as well (EmbeddedPoints); input-space points are always kept.
-  bool KeepEmbeddedPoints = true;
+  /// Off by default: nothing downstream reads them (they are Sum lambda x embedded vertex of
+  /// the piece's element), and they are most of the geometry's memory (Dim of AmbientDim +
+  /// Dim doubles per vertex).
+  bool KeepEmbeddedPoints = false;
   /// Per-site cells: drop internal element faces and sort pieces by site (then by element).
   /// What renders a Voronoi cell with its bisector and boundary faces.
   bool MergeBySite = false;
