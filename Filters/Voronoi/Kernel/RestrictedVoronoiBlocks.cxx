@@ -39,16 +39,20 @@ void RunBlocks(const SimplexMesh& mesh, const Embedding& emb, const SiteSet& sit
   const std::int32_t* vs = opt.WholeElementFastPath ? vertexSites.data() : nullptr;
 
   tbb::enumerable_thread_specific<Context<K>> contexts;
+  tbb::enumerable_thread_specific<Chunk> scratch;
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, chunks.size()),
     [&](const tbb::blocked_range<std::size_t>& r) {
       Context<K>& C = contexts.local();
       C.Init(sites.NumSites());
+      Chunk& out = scratch.local();
       ElementWorker<K, DIM> w(mesh, emb, sites, opt, tree, adj, nbr, vs);
       for (std::size_t b = r.begin(); b != r.end(); ++b)
       {
         const std::size_t e0 = first + b * blockSize, e1 = std::min(last, e0 + blockSize);
+        out.Clear();
         for (std::size_t e = e0; e < e1; ++e)
-          w.ProcessElement(C, list ? list[e] : static_cast<std::int32_t>(e), chunks[b]);
+          w.ProcessElement(C, list ? list[e] : static_cast<std::int32_t>(e), out);
+        chunks[b] = out; // a copy at the exact sizes: the chunks are held until the assembly
       }
     });
 }
