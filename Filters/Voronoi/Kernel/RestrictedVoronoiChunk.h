@@ -37,9 +37,18 @@ struct Chunk
   /// (a block's chunk is then copied from it at its exact size, without growth slack).
   void Clear()
   {
-    for (auto* v : { &PieceSite, &PieceElement, &FaceVertices, &FaceNeighbor,
-           &VoronoiVertexSites, &VoronoiVertexElement, &BoundaryDualFaces, &VertexPlanes,
-           &ElemNearest, &ElemPieces, &ElemVV, &ElemBD })
+    for (auto* v : { &PieceSite,
+           &PieceElement,
+           &FaceVertices,
+           &FaceNeighbor,
+           &VoronoiVertexSites,
+           &VoronoiVertexElement,
+           &BoundaryDualFaces,
+           &VertexPlanes,
+           &ElemNearest,
+           &ElemPieces,
+           &ElemVV,
+           &ElemBD })
       v->clear();
     for (auto* v : { &PieceMeasure, &PieceEmbeddedMeasure, &Points, &EmbeddedPoints })
       v->clear();
