@@ -19,6 +19,7 @@
 #include "StructuredMeshes.h"
 #include "SurfaceCases.h"
 #include "TetMesher.h"
+#include "VoronoiStage.h"
 
 #include <Eigen/Eigenvalues>
 
@@ -90,6 +91,9 @@ struct Args
   av::MetricPreparationOptions Preparation;
   double MaxStretch = 0.0;    // surface cases: curvature metric cap (0: the case's own)
   double Adapt = 0.0;        // L_bg of the adapted background mesh (0 = the preset's grid)
+  int RvdRepeats = 3;        // voronoi stage: best of N
+  bool RvdGeometry = true;   // voronoi stage: also the runs with ComputeGeometry
+  bool RvdEmbeddedPoints = false; // voronoi stage: geometry runs keep the R^Dim vertices
 };
 
 /// Paper values (Tab. 5 and Fig. 4); NaN where the paper gives none.
@@ -618,12 +622,49 @@ void StageMesh(const Args& a, const Case& c, JsonLine& out)
   ReportMesh(c, o, avbench::RunMeshStage(c.Mesh, c.Metric, embedded, o), out);
 }
 
+/// Stage "voronoi": sampling as "mesh" does, then the RVD alone, timed without / with
+/// geometry and without / with its whole-element fast path (keys rvd_<geom|lean>_<fast|full>_*).
+void StageVoronoi(const Args& a, const Case& c, JsonLine& out)
+{
+  const av::Embedding embedded = EmbedForMesh(a, c, out);
+  const avbench::MeshStageOptions o = MeshStageOptionsFor(a, c);
+  const avbench::VoronoiStageResult r =
+    avbench::RunVoronoiStage(
+      c.Mesh, embedded, o, a.RvdRepeats, a.RvdGeometry, a.RvdEmbeddedPoints);
+  out.Set("sites", r.Sites);
+  out.Set("elements", r.Elements);
+  out.Set("sample_seconds", r.SampleSeconds);
+  out.Set("rvd_repeats", a.RvdRepeats);
+  out.Set("rvd_embedded_points", a.RvdEmbeddedPoints);
+  out.Set("rvd_peak_rss", r.PeakIsReset ? "VmHWM reset per run" : "getrusage maxrss delta");
+  for (const avbench::VoronoiRun& run : r.Runs)
+  {
+    const std::string p =
+      std::string("rvd_") + (run.Geometry ? "geom_" : "lean_") + (run.FastPath ? "fast_" : "full_");
+    out.Set(p + "seconds", run.BestSeconds);
+    out.Set(p + "cpu_seconds", run.BestCpuSeconds);
+    out.Set(p + "peak_rss_mb", run.PeakRssMb);
+    out.Set(p + "output_mb", run.OutputMb);
+    out.Set(p + "pieces", run.Pieces);
+    if (run.Geometry)
+      out.Set(p + "vertices", run.Vertices);
+    if (run.FastPath)
+    {
+      out.Set(p + "whole_elements", run.WholeElements);
+      out.Set(p + "whole_fraction",
+        r.Elements ? static_cast<double>(run.WholeElements) / static_cast<double>(r.Elements)
+                   : 0.0);
+      out.Set(p + "same_as_full", run.SameAsNoFastPath);
+    }
+  }
+}
+
 using StageFn = std::function<void(const Args&, const Case&, JsonLine&)>;
 const std::map<std::string, StageFn>& Stages()
 {
   static const std::map<std::string, StageFn> stages = {
     { "embed", [](const Args& a, const Case& c, JsonLine& o) { StageEmbed(a, c, o); } },
-    { "mesh", StageMesh }, { "all", StageMesh } };
+    { "mesh", StageMesh }, { "all", StageMesh }, { "voronoi", StageVoronoi } };
   return stages;
 }
 
@@ -642,7 +683,13 @@ void Usage(std::ostream& os)
         "                    metric options of the anisovoronoi tool (defaults 1e-3, 25, 0)\n"
 
         "  --stage S         embed | mesh (embedding, then sampling + RVD + RDT + quality) | all\n"
-        "                    (both reports); default embed\n"
+        "                    (both reports) | voronoi (embedding, sampling, then the RVD alone:\n"
+        "                    best-of-N times and peak RSS without / with geometry and without /\n"
+        "                    with the whole-element fast path); default embed\n"
+        "  --rvd-repeats N   voronoi: runs per configuration, the best time is kept (default 3)\n"
+        "  --no-rvd-geometry voronoi: only the runs without geometry\n"
+        "  --rvd-embedded-points  voronoi: the geometry runs keep the vertices in R^Dim too\n"
+        "                    (KeepEmbeddedPoints, off by default)\n"
         "  --dim D           target dimension (default 3 for gaussian2d, else 8)\n"
         "  --iterations N    solver iterations (default 20 for gaussian2d as Fig. 4, else 50)\n"
         "  --resolution N    N vertices per side (cube2/3 keep 5:1:1, spheres ~pi/6 N^3 vertices);\n"
@@ -804,6 +851,12 @@ bool Parse(int argc, char** argv, Args& a)
       a.Lloyd = std::stoi(next());
     else if (k == "--no-repair")
       a.Repair = false;
+    else if (k == "--rvd-repeats")
+      a.RvdRepeats = std::stoi(next());
+    else if (k == "--no-rvd-geometry")
+      a.RvdGeometry = false;
+    else if (k == "--rvd-embedded-points")
+      a.RvdEmbeddedPoints = true;
     else if (k == "--no-mesh-improvement")
       a.ImproveMesh = false;
     else if (k == "--repair-rounds")

@@ -53,6 +53,8 @@ RestrictedVoronoiDiagram ComputeRestrictedVoronoi(const SimplexMesh& mesh,
 
   RestrictedVoronoiDiagram out = rvd::NewDiagram(mesh, embedding, sites.NumSites());
   out.NumRecomputedElements = last - first;
+  for (const rvd::Chunk& ch : chunks)
+    out.NumWholeElements += ch.NumWholeElements;
   if (first == 0 && last == nc && !options.MergeBySite)
     rvd::FillElementRecords(chunks, adj, nc, out); // for UpdateRestrictedVoronoi
   rvd::ConcatenateChunks(chunks, options, out);

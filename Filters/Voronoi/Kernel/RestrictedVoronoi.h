@@ -29,7 +29,10 @@ struct RestrictedVoronoiOptions
   /// false: only measures and the dual (Voronoi vertex) records, no vertices/faces (saves memory).
   bool ComputeGeometry = true;
   /// Store every vertex in R^Dim as well (EmbeddedPoints); input-space points are always kept.
-  bool KeepEmbeddedPoints = true;
+  /// Off by default: nothing downstream reads them (they are Sum lambda x embedded vertex of
+  /// the piece's element), and they are most of the geometry's memory (Dim of AmbientDim +
+  /// Dim doubles per vertex).
+  bool KeepEmbeddedPoints = false;
   /// Per-site cells: drop internal element faces and sort pieces by site (then by element).
   /// What renders a Voronoi cell with its bisector and boundary faces.
   bool MergeBySite = false;
@@ -44,6 +47,10 @@ struct RestrictedVoronoiOptions
   /// ComputeElementAdjacency(mesh) computed once by a caller that runs several diagrams on
   /// the same mesh (nullptr: computed here; about 20 ms for 240k tets). Must outlive the call.
   const std::vector<std::int32_t>* ElementAdjacency = nullptr;
+  /// An element whose K+1 vertices all have the same nearest site n (by a clear margin) lies
+  /// in n's convex cell: it is emitted as one whole piece without candidates or clipping.
+  /// The output is the same with it off (kept for tests and benchmarks).
+  bool WholeElementFastPath = true;
 };
 
 /**
@@ -125,6 +132,8 @@ struct RestrictedVoronoiDiagram
   /// Elements clipped by the call that produced this diagram (all of the range for
   /// ComputeRestrictedVoronoi, only the affected ones for UpdateRestrictedVoronoi).
   std::size_t NumRecomputedElements = 0;
+  /// Of those, the elements emitted whole by the fast path (WholeElementFastPath).
+  std::size_t NumWholeElements = 0;
 
   std::size_t NumPieces() const { return PieceSite.size(); }
   std::size_t NumVertices() const { return Points.size() / static_cast<std::size_t>(AmbientDim); }

@@ -5,6 +5,7 @@
 
 #include "RestrictedVoronoiContext.h"
 #include "RestrictedVoronoiSiteTree.h"
+#include "RestrictedVoronoiVertexSites.h"
 #include "RestrictedVoronoiWorker.h"
 
 #include <tbb/blocked_range.h>
@@ -32,18 +33,26 @@ void RunBlocks(const SimplexMesh& mesh, const Embedding& emb, const SiteSet& sit
   int nbrk = opt.NumNeighbors > 0 ? opt.NumNeighbors : (K == 2 ? 32 : 64);
   nbrk = static_cast<int>(std::min<std::size_t>(nbrk, ns - 1));
   const SiteNeighbors nbr = PrefetchNeighbors<DIM>(tree, sites, nbrk);
+  const std::vector<std::int32_t> vertexSites = opt.WholeElementFastPath
+    ? ClearNearestSites<DIM>(tree, nbr, mesh, emb, sites, first, last, list)
+    : std::vector<std::int32_t>();
+  const std::int32_t* vs = opt.WholeElementFastPath ? vertexSites.data() : nullptr;
 
   tbb::enumerable_thread_specific<Context<K>> contexts;
+  tbb::enumerable_thread_specific<Chunk> scratch;
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, chunks.size()),
     [&](const tbb::blocked_range<std::size_t>& r) {
       Context<K>& C = contexts.local();
       C.Init(sites.NumSites());
-      ElementWorker<K, DIM> w(mesh, emb, sites, opt, tree, adj, nbr);
+      Chunk& out = scratch.local();
+      ElementWorker<K, DIM> w(mesh, emb, sites, opt, tree, adj, nbr, vs);
       for (std::size_t b = r.begin(); b != r.end(); ++b)
       {
         const std::size_t e0 = first + b * blockSize, e1 = std::min(last, e0 + blockSize);
+        out.Clear();
         for (std::size_t e = e0; e < e1; ++e)
-          w.ProcessElement(C, list ? list[e] : static_cast<std::int32_t>(e), chunks[b]);
+          w.ProcessElement(C, list ? list[e] : static_cast<std::int32_t>(e), out);
+        chunks[b] = out; // a copy at the exact sizes: the chunks are held until the assembly
       }
     });
 }

@@ -6,6 +6,7 @@
 
 #include "RestrictedVoronoi.h"
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -30,6 +31,35 @@ struct Chunk
   std::vector<std::int32_t> ElemNearest, ElemPieces, ElemVV, ElemBD;
   std::vector<std::uint8_t> ElemEmptyVisit; // a visited site had an empty piece
   std::vector<float> PieceRadius2, PieceLastCut; // rounded up
+  std::size_t NumWholeElements = 0;              // emitted by the fast path
+
+  /// Empties every array but keeps its capacity: a thread's scratch, reused block after block
+  /// (a block's chunk is then copied from it at its exact size, without growth slack).
+  void Clear()
+  {
+    for (auto* v : { &PieceSite,
+           &PieceElement,
+           &FaceVertices,
+           &FaceNeighbor,
+           &VoronoiVertexSites,
+           &VoronoiVertexElement,
+           &BoundaryDualFaces,
+           &VertexPlanes,
+           &ElemNearest,
+           &ElemPieces,
+           &ElemVV,
+           &ElemBD })
+      v->clear();
+    for (auto* v : { &PieceMeasure, &PieceEmbeddedMeasure, &Points, &EmbeddedPoints })
+      v->clear();
+    for (auto* v : { &PieceVertexCount, &PieceFaceCount, &FaceSize })
+      v->clear();
+    for (auto* v : { &PieceRadius2, &PieceLastCut })
+      v->clear();
+    FaceKind.clear();
+    ElemEmptyVisit.clear();
+    NumWholeElements = 0;
+  }
 };
 
 } // namespace rvd

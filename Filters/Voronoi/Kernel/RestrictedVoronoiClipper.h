@@ -82,6 +82,22 @@ public:
     return true;
   }
 
+  /// The piece of `site` when it is the whole element (no candidate can cut it), with the
+  /// C.PieceR2 / C.PieceLastCut that ComputePiece would leave. Needs only the frame's
+  /// vertices (LoadVertices).
+  void WholeElement(Context<K>& C, std::int32_t site) const
+  {
+    InitPolytope(C);
+    // Radius2 of the unit lambdas, without L: each vertex's sum is 1 x D[b] plus exact zeros
+    // (0 x D[a], 0 x 0 x L), so it is D[b] to the bit and the maximum is the same.
+    const double* di = F.DRow(C, site);
+    double r2 = 0.0;
+    for (int b = 0; b < NV; ++b)
+      r2 = std::max(r2, di[b]);
+    C.PieceR2 = r2;
+    C.PieceLastCut = -1.0;
+  }
+
   /// The whole element: its K+1 vertices, facets as planes.
   void InitPolytope(Context<K>& C) const
   {

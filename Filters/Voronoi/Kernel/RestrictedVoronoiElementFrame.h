@@ -46,8 +46,9 @@ struct ElementFrame
   {
   }
 
-  /// Makes element e the current one.
-  void Load(std::int32_t e)
+  /// Makes element e the current one: what a whole-element piece needs (vertices, measures);
+  /// LoadClipping adds the rest.
+  void LoadVertices(std::int32_t e)
   {
     Elem = e;
     const std::int32_t* cell = Mesh.Cell(e);
@@ -56,6 +57,13 @@ struct ElementFrame
       EV[a] = Emb.At(cell[a]);
       XV[a] = Mesh.Point(cell[a]);
     }
+    ElemMeasure = SimplexMeasure(XV, K, Mesh.AmbientDim);
+    ElemEmbMeasure = SimplexMeasureT<DIM>(EV, K, Dim);
+  }
+
+  /// The rest of Load for the clipping: edge lengths, centroid, bounding radius.
+  void LoadClipping()
+  {
     for (int a = 0; a < NV; ++a)
       for (int b = 0; b < NV; ++b)
         L[a][b] = Dist2<DIM>(EV[a], EV[b], Dim);
@@ -67,8 +75,6 @@ struct ElementFrame
     for (int a = 0; a < NV; ++a)
       Rho = std::max(Rho, std::sqrt(Dist2<DIM>(EV[a], Centroid.data(), Dim)));
     Rho *= 1.0 + 1e-12;
-    ElemMeasure = SimplexMeasure(XV, K, Mesh.AmbientDim);
-    ElemEmbMeasure = SimplexMeasureT<DIM>(EV, K, Dim);
   }
 
   const double* SiteP(std::int32_t s) const { return Sites.Coords.data() + std::size_t(s) * Dim; }

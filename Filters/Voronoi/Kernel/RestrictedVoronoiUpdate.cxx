@@ -419,6 +419,8 @@ RestrictedVoronoiDiagram UpdateRestrictedVoronoi(const SimplexMesh& mesh,
   const SpliceSources src(chunks, list, nc, blockSize);
   RestrictedVoronoiDiagram out = rvd::NewDiagram(mesh, embedding, ns);
   out.NumRecomputedElements = list.size();
+  for (const rvd::Chunk& ch : chunks)
+    out.NumWholeElements += ch.NumWholeElements;
   SpliceElementRecords(previous, chunks, src, nc, out);
   SplicePieces(previous, chunks, src, nc, out);
   rvd::SumSiteMeasures(out); // same summation order as ComputeRestrictedVoronoi

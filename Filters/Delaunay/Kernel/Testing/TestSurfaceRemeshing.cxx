@@ -102,6 +102,7 @@ void CheckRemeshing(const char* name,
   AV_CHECK_MSG(h.MaxPercent < 0.5, name << ": Hausdorff " << h.MaxPercent << " % of the diagonal");
 
   av::RestrictedVoronoiOptions vo;
+  vo.KeepEmbeddedPoints = true; // FartherThanAnotherSite reads them
   const av::RestrictedVoronoiDiagram geometry =
     av::ComputeRestrictedVoronoi(mesh, embedded, r.Repaired.Sites, vo);
   AV_CHECK_MSG(FartherThanAnotherSite(geometry, r.Repaired.Sites) == 0,

@@ -19,6 +19,14 @@ using namespace av_test;
 namespace
 {
 
+// The diagram with its vertices in R^Dim too (CheckNearestSite reads them; off by default).
+av::RestrictedVoronoiDiagram Rvd(const av::SimplexMesh& m, const av::Embedding& e,
+  const av::SiteSet& s, av::RestrictedVoronoiOptions o = av::RestrictedVoronoiOptions())
+{
+  o.KeepEmbeddedPoints = true;
+  return av::ComputeRestrictedVoronoi(m, e, s, o);
+}
+
 double MeshMeasure(const av::SimplexMesh& m, const double* pts, int dim)
 {
   // Sum of element measures through the Gram determinant, independent of the RVD code.
@@ -214,7 +222,7 @@ void TestSquareIdentity()
   const av::SimplexMesh m = TriGrid(13, 13, 0, 0, 1, 1);
   const av::Embedding e = MakeEmbedding(m, 2, nullptr);
   const av::SiteSet s = RandomSites(m, e, 40, 1);
-  const av::RestrictedVoronoiDiagram r = av::ComputeRestrictedVoronoi(m, e, s);
+  const av::RestrictedVoronoiDiagram r = Rvd(m, e, s);
   CheckPartition(m, e, r, "square");
   CheckNearestSite(r, s, "square");
   CheckBisectorSymmetry(r, "square");
@@ -239,7 +247,7 @@ void TestSquareIdentity()
   for (std::size_t i = 0; i < s.NumSites(); ++i)
     for (int d = 0; d < 8; ++d)
       s8.Coords.push_back(d < 2 ? s.At(i)[d] : 0.0);
-  const av::RestrictedVoronoiDiagram r8 = av::ComputeRestrictedVoronoi(m, e8, s8);
+  const av::RestrictedVoronoiDiagram r8 = Rvd(m, e8, s8);
   double diff = 0.0;
   for (std::size_t i = 0; i < s.NumSites(); ++i)
     diff = std::max(diff, std::abs(r8.SiteMeasure[i] - r.SiteMeasure[i]));
@@ -254,7 +262,7 @@ void TestHeightField()
     return 0.4 * std::exp(-8.0 * ((x[0] - 0.5) * (x[0] - 0.5) + (x[1] - 0.4) * (x[1] - 0.4)));
   });
   const av::SiteSet s3 = RandomSites(m, e3, 60, 2);
-  const auto r3 = av::ComputeRestrictedVoronoi(m, e3, s3);
+  const auto r3 = Rvd(m, e3, s3);
   CheckPartition(m, e3, r3, "height field");
   CheckNearestSite(r3, s3, "height field");
   CheckBisectorSymmetry(r3, "height field");
@@ -262,7 +270,7 @@ void TestHeightField()
 
   const av::Embedding e8 = MakeEmbedding(m, 8, SmoothExtra);
   const av::SiteSet s8 = RandomSites(m, e8, 80, 3);
-  const auto r8 = av::ComputeRestrictedVoronoi(m, e8, s8);
+  const auto r8 = Rvd(m, e8, s8);
   CheckPartition(m, e8, r8, "2D smooth 8D");
   CheckNearestSite(r8, s8, "2D smooth 8D");
 
@@ -277,7 +285,7 @@ void TestHeightField()
   }
   const av::Embedding es = MakeEmbedding(surf, 5, SmoothExtra3);
   const av::SiteSet ss = RandomSites(surf, es, 50, 4);
-  const auto rs = av::ComputeRestrictedVoronoi(surf, es, ss);
+  const auto rs = Rvd(surf, es, ss);
   CheckPartition(surf, es, rs, "surface");
   CheckNearestSite(rs, ss, "surface");
 }
@@ -288,7 +296,7 @@ void TestCube()
   const av::SimplexMesh m = KuhnGrid(7, 7, 7, lo, hi);
   const av::Embedding e = MakeEmbedding(m, 3, nullptr);
   const av::SiteSet s = RandomSites(m, e, 60, 5);
-  const auto r = av::ComputeRestrictedVoronoi(m, e, s);
+  const auto r = Rvd(m, e, s);
   CheckPartition(m, e, r, "cube");
   CheckNearestSite(r, s, "cube");
   CheckBisectorSymmetry(r, "cube");
@@ -325,7 +333,7 @@ void TestCube()
   const av::SimplexMesh m2 = KuhnGrid(11, 5, 5, lo, hi2);
   const av::Embedding e8 = MakeEmbedding(m2, 8, SmoothExtra3);
   const av::SiteSet s8 = RandomSites(m2, e8, 50, 6);
-  const auto r8 = av::ComputeRestrictedVoronoi(m2, e8, s8);
+  const auto r8 = Rvd(m2, e8, s8);
   CheckPartition(m2, e8, r8, "box 8D");
   CheckNearestSite(r8, s8, "box 8D");
   CheckBisectorSymmetry(r8, "box 8D");
@@ -333,7 +341,7 @@ void TestCube()
   // Per-site cells: no internal element faces, pieces grouped by site, same measures.
   av::RestrictedVoronoiOptions opt;
   opt.MergeBySite = true;
-  const auto rm = av::ComputeRestrictedVoronoi(m2, e8, s8, opt);
+  const auto rm = Rvd(m2, e8, s8, opt);
   bool sorted = true, noInternal = true;
   for (std::size_t p = 1; p < rm.NumPieces(); ++p)
     sorted = sorted && rm.PieceSite[p - 1] <= rm.PieceSite[p];
@@ -347,15 +355,21 @@ void TestCube()
     AV_CHECK_NEAR(rm.SiteMeasure[i], r8.SiteMeasure[i], 1e-15);
 
   // Deterministic output.
-  const auto r8b = av::ComputeRestrictedVoronoi(m2, e8, s8);
+  const auto r8b = Rvd(m2, e8, s8);
   AV_CHECK(r8b.PieceSite == r8.PieceSite && r8b.PieceMeasure == r8.PieceMeasure &&
     r8b.FaceVertices == r8.FaceVertices);
 
   // Measures only: same numbers, no geometry.
   av::RestrictedVoronoiOptions lean;
   lean.ComputeGeometry = false;
-  const auto rl = av::ComputeRestrictedVoronoi(m2, e8, s8, lean);
+  const auto rl = Rvd(m2, e8, s8, lean);
   AV_CHECK(rl.PieceMeasure == r8.PieceMeasure && rl.Points.empty());
+
+  // Default options: no copies in R^Dim, the rest unchanged.
+  const auto rd = av::ComputeRestrictedVoronoi(m2, e8, s8);
+  AV_CHECK(rd.EmbeddedPoints.empty() && !r8.EmbeddedPoints.empty());
+  AV_CHECK(rd.Points == r8.Points && rd.VertexPlanes == r8.VertexPlanes &&
+    rd.FaceVertices == r8.FaceVertices && rd.PieceMeasure == r8.PieceMeasure);
 }
 
 void TestDegenerateSites()
@@ -377,7 +391,7 @@ void TestDegenerateSites()
       }
   const double mid[3] = { 1.0, 0.0, 1.0 / 3.0 }; // on a cube edge, between two vertices
   AV_CHECK(SiteAt(s, m, e, mid));
-  const auto r = av::ComputeRestrictedVoronoi(m, e, s);
+  const auto r = Rvd(m, e, s);
   std::size_t nonFinite = 0;
   for (double v : r.Points)
     nonFinite += std::isfinite(v) ? 0 : 1;
@@ -394,18 +408,18 @@ void TestFewSites()
   const av::SimplexMesh m = TriGrid(6, 6, 0, 0, 1, 1);
   const av::Embedding e = MakeEmbedding(m, 2, nullptr);
   av::SiteSet s = RandomSites(m, e, 1, 8);
-  auto r = av::ComputeRestrictedVoronoi(m, e, s);
+  auto r = Rvd(m, e, s);
   AV_CHECK_NEAR(r.SiteMeasure[0], 1.0, 1e-12);
   s = RandomSites(m, e, 3, 9);
-  r = av::ComputeRestrictedVoronoi(m, e, s);
+  r = Rvd(m, e, s);
   CheckPartition(m, e, r, "three sites");
   CheckNearestSite(r, s, "three sites");
   // Small prefetch: the on-demand neighbor fetch must give the same result.
   const av::SiteSet s2 = RandomSites(m, e, 30, 10);
   av::RestrictedVoronoiOptions o;
   o.NumNeighbors = 2;
-  const auto ra = av::ComputeRestrictedVoronoi(m, e, s2, o);
-  const auto rb = av::ComputeRestrictedVoronoi(m, e, s2);
+  const auto ra = Rvd(m, e, s2, o);
+  const auto rb = Rvd(m, e, s2);
   for (std::size_t i = 0; i < s2.NumSites(); ++i)
     AV_CHECK_NEAR(ra.SiteMeasure[i], rb.SiteMeasure[i], 1e-12);
 }
@@ -417,33 +431,33 @@ void TestBadInput()
   const av::SiteSet s = RandomSites(m, e, 10, 11);
   av::SiteSet none;
   none.Dim = 4;
-  AV_CHECK_THROWS(av::ComputeRestrictedVoronoi(m, e, none));
+  AV_CHECK_THROWS(Rvd(m, e, none));
   av::SiteSet b = s;
   b.CellIds[3] = static_cast<std::int32_t>(m.NumCells());
-  AV_CHECK_THROWS(av::ComputeRestrictedVoronoi(m, e, b));
+  AV_CHECK_THROWS(Rvd(m, e, b));
   b = s;
   b.Bary[4 * 2] += 0.1;
-  AV_CHECK_THROWS(av::ComputeRestrictedVoronoi(m, e, b));
+  AV_CHECK_THROWS(Rvd(m, e, b));
   b = s;
   b.Coords[5 * 4 + 2] += 0.5; // not on the embedded mesh
-  AV_CHECK_THROWS(av::ComputeRestrictedVoronoi(m, e, b));
+  AV_CHECK_THROWS(Rvd(m, e, b));
   b = s;
   b.Coords[1] = std::nan("");
-  AV_CHECK_THROWS(av::ComputeRestrictedVoronoi(m, e, b));
+  AV_CHECK_THROWS(Rvd(m, e, b));
   b = s;
   b.Dim = 3;
-  AV_CHECK_THROWS(av::ComputeRestrictedVoronoi(m, e, b));
+  AV_CHECK_THROWS(Rvd(m, e, b));
   av::Embedding eb = e;
   eb.Coords.pop_back();
-  AV_CHECK_THROWS(av::ComputeRestrictedVoronoi(m, eb, s));
+  AV_CHECK_THROWS(Rvd(m, eb, s));
   av::SimplexMesh mb = m;
   mb.Cells[7] = 1000;
-  AV_CHECK_THROWS(av::ComputeRestrictedVoronoi(mb, e, s));
+  AV_CHECK_THROWS(Rvd(mb, e, s));
   // Degenerate element (two vertices at the same place).
   av::Embedding ed = e;
   for (int d = 0; d < 4; ++d)
     ed.Coords[1 * 4 + d] = ed.Coords[0 * 4 + d];
-  AV_CHECK_THROWS(av::ComputeRestrictedVoronoi(m, ed, av_test::RandomSites(m, ed, 5, 3)));
+  AV_CHECK_THROWS(Rvd(m, ed, av_test::RandomSites(m, ed, 5, 3)));
 }
 
 int Bench()
@@ -459,7 +473,7 @@ int Bench()
       o.ComputeGeometry = geom != 0;
       const av::Stopwatch wall;
       const std::clock_t c0 = std::clock();
-      const auto r = av::ComputeRestrictedVoronoi(m, e, s, o);
+      const auto r = Rvd(m, e, s, o);
       const std::clock_t c1 = std::clock();
       const double wallSeconds = wall.Seconds();
       std::cout << "cells " << m.NumCells() << " sites " << s.NumSites() << " geometry " << geom
@@ -479,7 +493,7 @@ void TestElementRange()
   const av::SimplexMesh m = KuhnGrid(6, 6, 6, lo, hi);
   const av::Embedding e = MakeEmbedding(m, 3, nullptr);
   const av::SiteSet s = RandomSites(m, e, 40, 7);
-  const auto full = av::ComputeRestrictedVoronoi(m, e, s);
+  const auto full = Rvd(m, e, s);
   const std::int64_t nc = static_cast<std::int64_t>(m.NumCells());
   const std::int64_t cuts[4] = { 0, 300, 301, nc }; // uneven, one single-element block
   std::size_t p = 0;
@@ -489,7 +503,7 @@ void TestElementRange()
     av::RestrictedVoronoiOptions o;
     o.ElementBegin = cuts[b];
     o.ElementEnd = cuts[b + 1];
-    const auto r = av::ComputeRestrictedVoronoi(m, e, s, o);
+    const auto r = Rvd(m, e, s, o);
     AV_CHECK(r.NumPieces() > 0);
     for (std::size_t q = 0; q < r.NumPieces(); ++q, ++p)
     {
@@ -509,13 +523,13 @@ void TestElementRange()
   av::RestrictedVoronoiOptions bad;
   bad.ElementBegin = 5;
   bad.ElementEnd = 4;
-  AV_CHECK_THROWS(av::ComputeRestrictedVoronoi(m, e, s, bad));
+  AV_CHECK_THROWS(Rvd(m, e, s, bad));
   bad.ElementBegin = 0;
   bad.ElementEnd = nc + 1;
-  AV_CHECK_THROWS(av::ComputeRestrictedVoronoi(m, e, s, bad));
+  AV_CHECK_THROWS(Rvd(m, e, s, bad));
   av::RestrictedVoronoiOptions none; // empty range: no pieces, no error
   none.ElementBegin = none.ElementEnd = 10;
-  AV_CHECK(av::ComputeRestrictedVoronoi(m, e, s, none).NumPieces() == 0);
+  AV_CHECK(Rvd(m, e, s, none).NumPieces() == 0);
 }
 
 } // namespace
