@@ -219,6 +219,9 @@ void AddRunFieldData(const av::MeshingPipelineResult& result, double seconds, vt
   AddFieldValue(fd, "NumImprovementFlips",
     static_cast<double>(im.NumFlips23 + im.NumEdgeRemovals + im.NumFlips22));
   AddFieldValue(fd, "NumImprovementMoves", static_cast<double>(im.NumSmoothed));
+  // Triangles: a split appends a site, a collapse leaves its vertex as an unused point.
+  AddFieldValue(fd, "NumImprovementSplits", static_cast<double>(im.NumSplits));
+  AddFieldValue(fd, "NumImprovementCollapses", static_cast<double>(im.NumCollapses));
   AddFieldValue(fd, "MeshImprovementSeconds", result.MeshImprovementSeconds);
 }
 
