@@ -13,9 +13,6 @@ namespace av
 namespace
 {
 constexpr double Pi = 3.14159265358979323846;
-// No operation may leave an element below this quality (sine of 0.00006 degrees): a flat
-// element's sign is round-off.
-constexpr double kMinQuality = kMinImprovementQuality;
 
 // Index orders that put vertex m last by an even permutation: the face opposite m, in this
 // order, is counterclockwise seen from m in a positive tet.
@@ -30,13 +27,7 @@ bool IsEvenPermutation(const int* idx) // positions of 4 distinct values 0..3
   return inversions % 2 == 0;
 }
 
-int IndexIn(const std::array<std::int32_t, 4>& t, std::int32_t v)
-{
-  for (int i = 0; i < 4; ++i)
-    if (t[i] == v)
-      return i;
-  return -1;
-}
+constexpr auto IndexIn = &SimplexStarMesh<3>::IndexIn;
 } // namespace
 
 TetMeshImprover::TetMeshImprover(SimplexMesh& mesh,
@@ -44,25 +35,20 @@ TetMeshImprover::TetMeshImprover(SimplexMesh& mesh,
   const std::vector<std::uint8_t>* fixed,
   const MeshImprovementOptions& options)
   : Mesh(mesh)
-  , S(std::move(sqrtMetrics))
   , Options(options)
+  , Work(mesh, std::move(sqrtMetrics), fixed)
+  , P(Work.Points)
+  , Tets(Work.Simplices)
+  , Star(Work.Stars)
+  // Only the tets keep the edge-length rule and refuse an ascent that ends where it began.
+  , Smoother(Work,
+      Options,
+      true,
+      {},
+      Options.KeepEdgeLengths && !Options.AcceptWorsening
+        ? VertexStarSmoother<3>::EdgeCount([this](std::int32_t v) { return OutOfRangeAround(v); })
+        : VertexStarSmoother<3>::EdgeCount())
 {
-  const std::size_t np = mesh.NumPoints();
-  P.resize(np);
-  for (std::size_t i = 0; i < np; ++i)
-    P[i] = Eigen::Vector3d(mesh.Point(i)[0], mesh.Point(i)[1], mesh.Point(i)[2]);
-  Star.resize(np);
-  Fixed.assign(np, 0);
-  if (fixed)
-    for (std::size_t i = 0; i < np; ++i)
-      Fixed[i] = (*fixed)[i] ? 1 : 0;
-  Moved.assign(np, 0);
-  Tets.reserve(mesh.NumCells() + mesh.NumCells() / 4);
-  for (std::size_t c = 0; c < mesh.NumCells(); ++c)
-  {
-    const std::int32_t* v = mesh.Cell(c);
-    AddTet({ v[0], v[1], v[2], v[3] });
-  }
   MarkBoundaryAndNonManifold();
   if (Options.KeepEdgeLengths)
     ComputeMedianEdgeLength();
@@ -82,7 +68,7 @@ void TetMeshImprover::ComputeMedianEdgeLength()
   for (std::size_t e = 0; e < edges.size(); ++e)
   {
     const auto [a, b] = edges[e];
-    lengths[e] = (0.5 * (S[a] + S[b]) * (P[b] - P[a])).norm();
+    lengths[e] = Work.EdgeLength(a, b);
   }
   if (lengths.empty())
     return;
@@ -95,7 +81,7 @@ bool TetMeshImprover::OutOfRange(std::int32_t a, std::int32_t b) const
 {
   if (!(MedianEdge > 0.0))
     return false;
-  const double l = (0.5 * (S[a] + S[b]) * (P[b] - P[a])).norm() / MedianEdge;
+  const double l = Work.EdgeLength(a, b) / MedianEdge;
   return l < std::sqrt(0.5) || l > std::sqrt(2.0);
 }
 
@@ -107,38 +93,6 @@ int TetMeshImprover::OutOfRangeAround(std::int32_t v) const
       if (w != v)
         n += OutOfRange(v, w) ? 1 : 0;
   return n;
-}
-
-double TetMeshImprover::Quality(const Tet& t) const
-{
-  return TetMetricQuality(P[t[0]], P[t[1]], P[t[2]], P[t[3]], S[t[0]], S[t[1]], S[t[2]], S[t[3]]);
-}
-
-void TetMeshImprover::AddTet(const Tet& t)
-{
-  const auto id = static_cast<std::int32_t>(Tets.size());
-  Tets.push_back(t);
-  Alive.push_back(1);
-  for (std::int32_t v : t)
-    Star[v].push_back(id);
-}
-
-void TetMeshImprover::KillTet(std::int32_t id)
-{
-  Alive[id] = 0;
-  for (std::int32_t v : Tets[id])
-  {
-    std::vector<std::int32_t>& s = Star[v];
-    s.erase(std::find(s.begin(), s.end(), id));
-  }
-}
-
-bool TetMeshImprover::HasEdge(std::int32_t a, std::int32_t b) const
-{
-  for (std::int32_t t : Star[a])
-    if (IndexIn(Tets[t], b) >= 0)
-      return true;
-  return false;
 }
 
 // Vertices on faces of one tet (the boundary) or of more than two (non-manifold) never move:
@@ -164,26 +118,9 @@ void TetMeshImprover::MarkBoundaryAndNonManifold()
       ++j;
     if (j - i != 2)
       for (std::int32_t v : faces[i])
-        Fixed[v] = 1;
+        Work.Fixed[v] = 1;
     i = j;
   }
-}
-
-double TetMeshImprover::WorstQuality() const
-{
-  double worst = std::numeric_limits<double>::infinity();
-  for (std::size_t t = 0; t < Tets.size(); ++t)
-    if (Alive[t])
-      worst = std::min(worst, Quality(Tets[t]));
-  return worst;
-}
-
-double TetMeshImprover::StarWorst(std::int32_t v) const
-{
-  double worst = std::numeric_limits<double>::infinity();
-  for (std::int32_t t : Star[v])
-    worst = std::min(worst, Quality(Tets[t]));
-  return worst;
 }
 
 bool TetMeshImprover::Accepts(double after, double before) const
@@ -294,7 +231,7 @@ bool TetMeshImprover::TryEdgeRemoval(std::int32_t a, std::int32_t b)
     {
       const int u = t[e], w = t[(e + 1) % 3];
       const bool ringEdge = std::abs(u - w) == 1 || std::abs(u - w) == n - 1;
-      if (!ringEdge && HasEdge(Ring[u], Ring[w]))
+      if (!ringEdge && Work.HasEdge(Ring[u], Ring[w]))
         return false;
     }
   if (Options.KeepEdgeLengths && !Options.AcceptWorsening)
@@ -312,11 +249,11 @@ bool TetMeshImprover::TryEdgeRemoval(std::int32_t a, std::int32_t b)
   }
   const std::vector<std::int32_t> old = EdgeTets;
   for (std::int32_t t : old)
-    KillTet(t);
+    Work.Kill(t);
   for (const auto& t : tris)
   {
-    AddTet({ a, Ring[t[0]], Ring[t[1]], Ring[t[2]] });
-    AddTet({ b, Ring[t[2]], Ring[t[1]], Ring[t[0]] });
+    Work.Add({ a, Ring[t[0]], Ring[t[1]], Ring[t[2]] });
+    Work.Add({ b, Ring[t[2]], Ring[t[1]], Ring[t[0]] });
   }
   ++EdgeRemovals;
   return true;
@@ -341,7 +278,7 @@ bool TetMeshImprover::TryFlip23(std::int32_t tet, int apexIndex, double worst)
   for (std::int32_t v : t2)
     if (v != x && v != y && v != z)
       e = v;
-  if (e < 0 || e == d || HasEdge(d, e))
+  if (e < 0 || e == d || Work.HasEdge(d, e))
     return false;
   if (Options.KeepEdgeLengths && !Options.AcceptWorsening && OutOfRange(d, e))
     return false;
@@ -350,86 +287,19 @@ bool TetMeshImprover::TryFlip23(std::int32_t tet, int apexIndex, double worst)
   const double after = std::min(std::min(Quality(n0), Quality(n1)), Quality(n2));
   if (!Accepts(after, before))
     return false;
-  KillTet(tet);
-  KillTet(other);
-  AddTet(n0);
-  AddTet(n1);
-  AddTet(n2);
+  Work.Kill(tet);
+  Work.Kill(other);
+  Work.Add(n0);
+  Work.Add(n1);
+  Work.Add(n2);
   ++Flips23;
   return true;
 }
 
-// Steepest ascent of the worst tet of v's star (numerical gradient of that tet's quality),
-// with a halving line search; a step is kept only if the star's worst rises.
 bool TetMeshImprover::TrySmooth(std::int32_t v)
 {
-  if (Fixed[v] || Star[v].empty())
+  if (!Smoother.TrySmooth(v, false))
     return false;
-  const Eigen::Vector3d start = P[v];
-  double scale = std::numeric_limits<double>::infinity();
-  for (std::int32_t t : Star[v])
-    for (std::int32_t w : Tets[t])
-      if (w != v)
-        scale = std::min(scale, (P[w] - start).norm());
-  const double before = StarWorst(v);
-  double current = before;
-  const bool keepLengths = Options.KeepEdgeLengths && !Options.AcceptWorsening;
-  const int outBefore = keepLengths ? OutOfRangeAround(v) : 0;
-  for (int iter = 0; iter < 8; ++iter)
-  {
-    std::int32_t worstTet = -1;
-    double wq = std::numeric_limits<double>::infinity();
-    for (std::int32_t t : Star[v])
-    {
-      const double q = Quality(Tets[t]);
-      if (q < wq)
-      {
-        wq = q;
-        worstTet = t;
-      }
-    }
-    const double h = 1e-6 * scale;
-    Eigen::Vector3d g;
-    const Eigen::Vector3d here = P[v];
-    for (int k = 0; k < 3; ++k)
-    {
-      P[v] = here;
-      P[v][k] += h;
-      const double qp = Quality(Tets[worstTet]);
-      P[v][k] -= 2.0 * h;
-      const double qm = Quality(Tets[worstTet]);
-      g[k] = (qp - qm) / (2.0 * h);
-    }
-    P[v] = here;
-    const double gn = g.norm();
-    if (!(gn > 0.0) || !std::isfinite(gn))
-      break;
-    bool stepped = false;
-    for (double alpha = 0.2 * scale; alpha > 1e-4 * scale; alpha *= 0.5)
-    {
-      P[v] = here + (alpha / gn) * g;
-      const double q = StarWorst(v);
-      if (q > current + 1e-12 && (!keepLengths || OutOfRangeAround(v) <= outBefore))
-      {
-        current = q;
-        stepped = true;
-        break;
-      }
-    }
-    if (!stepped)
-    {
-      P[v] = here;
-      break;
-    }
-  }
-  const bool accept =
-    Options.AcceptWorsening ? current > kMinQuality && P[v] != start : Accepts(current, before);
-  if (!accept || (Options.AcceptMove && !Options.AcceptMove(v, P[v].data())))
-  {
-    P[v] = start;
-    return false;
-  }
-  Moved[v] = 1;
   ++Smoothed;
   return true;
 }
@@ -462,42 +332,16 @@ void TetMeshImprover::Run(MeshImprovementResult& result)
 {
   const double toDeg = 180.0 / Pi;
   auto angle = [&](double q) { return std::asin(std::max(-1.0, std::min(1.0, q))) * toDeg; };
-  result.WorstBefore = Tets.empty() ? 0.0 : angle(WorstQuality());
+  result.WorstBefore = Tets.empty() ? 0.0 : angle(Work.WorstQuality());
   const double target = std::sin(Options.TargetAngle * Pi / 180.0);
-  std::vector<std::pair<double, std::int32_t>> bad;
-  for (int pass = 0; pass < Options.MaxPasses; ++pass)
-  {
-    bad.clear();
-    for (std::size_t t = 0; t < Tets.size(); ++t)
-      if (Alive[t])
-      {
-        const double q = Quality(Tets[t]);
-        if (q < target)
-          bad.emplace_back(q, static_cast<std::int32_t>(t));
-      }
-    std::sort(bad.begin(), bad.end());
-    std::size_t changes = 0;
-    for (const auto& [q, t] : bad)
-      if (Alive[t] && Improve(t))
-        ++changes;
-    ++result.Passes;
-    if (changes == 0)
-      break;
-  }
-  result.WorstAfter = Tets.empty() ? 0.0 : angle(WorstQuality());
-  // Write back: alive tets in creation order, moved points.
-  Mesh.Cells.clear();
-  for (std::size_t t = 0; t < Tets.size(); ++t)
-    if (Alive[t])
-      Mesh.Cells.insert(Mesh.Cells.end(), Tets[t].begin(), Tets[t].end());
-  for (std::size_t i = 0; i < P.size(); ++i)
-    if (Moved[i])
-      for (int d = 0; d < 3; ++d)
-        Mesh.Points[i * 3 + d] = P[i][d];
+  result.Passes += Work.ImproveWorstFirst(
+    target, Options.MaxPasses, [this](std::int32_t t) { return Work.IsAlive(t) && Improve(t); });
+  result.WorstAfter = Tets.empty() ? 0.0 : angle(Work.WorstQuality());
+  Work.WriteBack(Mesh);
   result.NumFlips23 = Flips23;
   result.NumEdgeRemovals = EdgeRemovals;
   result.NumSmoothed = Smoothed;
-  result.Moved = std::move(Moved);
+  result.Moved = std::move(Work.Moved);
 }
 
 } // namespace av

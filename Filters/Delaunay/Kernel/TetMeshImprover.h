@@ -1,10 +1,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // TetMeshImprover: the tetrahedral half of ImproveMesh (edge removal, 2-3 flips, smoothing) on a
-// mutable tet list with vertex-to-tet stars.
+// SimplexStarMesh<3> (mutable tet list with vertex-to-tet stars).
 #ifndef av_TetMeshImprover_h
 #define av_TetMeshImprover_h
 
 #include "MeshImprovement.h"
+#include "SimplexStarMesh.h"
+#include "VertexStarSmoother.h"
 
 #include <Eigen/Dense>
 
@@ -27,34 +29,28 @@ public:
   void Run(MeshImprovementResult& result);
 
 private:
-  using Tet = std::array<std::int32_t, 4>;
+  using Tet = SimplexStarMesh<3>::Simplex;
 
-  double Quality(const Tet& t) const;
-  double WorstQuality() const;
-  void AddTet(const Tet& t);
-  void KillTet(std::int32_t id);
-  bool HasEdge(std::int32_t a, std::int32_t b) const;
+  double Quality(const Tet& t) const { return Work.Quality(t); }
   void MarkBoundaryAndNonManifold();
   bool Improve(std::int32_t tet); // best operation on one bad tet, true if applied
   bool TryEdgeRemoval(std::int32_t a, std::int32_t b);
   bool BuildRing(std::int32_t a, std::int32_t b);
   bool TryFlip23(std::int32_t tet, int apexIndex, double worst);
   bool TrySmooth(std::int32_t v);
-  double StarWorst(std::int32_t v) const;
   bool Accepts(double after, double before) const;
   bool OutOfRange(std::int32_t a, std::int32_t b) const; // metric length vs the median
   int OutOfRangeAround(std::int32_t v) const;            // among v's edges (with repeats)
   void ComputeMedianEdgeLength();
 
   SimplexMesh& Mesh;
-  std::vector<Eigen::Vector3d> P;
-  std::vector<Eigen::Matrix3d> S;
-  std::vector<Tet> Tets;
-  std::vector<char> Alive;
-  std::vector<std::vector<std::int32_t>> Star; // vertex -> alive tets
-  std::vector<char> Fixed;
   MeshImprovementOptions Options;
-  std::vector<std::uint8_t> Moved;
+  SimplexStarMesh<3> Work;
+  // Short names for the working mesh's arrays (changed only through Work.Add and Work.Kill).
+  const std::vector<Eigen::Vector3d>& P;
+  const std::vector<Tet>& Tets;
+  const std::vector<std::vector<std::int32_t>>& Star; // vertex -> alive tets
+  VertexStarSmoother<3> Smoother;
   // Scratch of the edge removal (no allocation per operation once grown).
   std::vector<std::int32_t> EdgeTets, Ring, Next;
   std::vector<double> Best;

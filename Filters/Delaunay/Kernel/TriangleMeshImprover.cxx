@@ -15,24 +15,8 @@ namespace av
 namespace
 {
 constexpr double Pi = 3.14159265358979323846;
-constexpr std::int32_t kDead = -1;
-
-int IndexIn(const std::array<std::int32_t, 3>& t, std::int32_t v)
-{
-  for (int i = 0; i < 3; ++i)
-    if (t[i] == v)
-      return i;
-  return -1;
-}
-
-/// Two unit vectors orthogonal to n (and to each other): the plane a vertex moves in.
-void TangentBasis(const Eigen::Vector3d& n, Eigen::Vector3d& t1, Eigen::Vector3d& t2)
-{
-  Eigen::Index axis = 0;
-  n.cwiseAbs().minCoeff(&axis);
-  t1 = Eigen::Vector3d::Unit(axis).cross(n).normalized();
-  t2 = n.cross(t1).normalized();
-}
+constexpr std::int32_t kDead = SimplexStarMesh<2>::kDead;
+constexpr auto IndexIn = &SimplexStarMesh<2>::IndexIn;
 } // namespace
 
 TriangleMeshImprover::TriangleMeshImprover(SimplexMesh& mesh,
@@ -41,34 +25,26 @@ TriangleMeshImprover::TriangleMeshImprover(SimplexMesh& mesh,
   const MeshImprovementOptions& options)
   : Mesh(mesh)
   , Surface(mesh.AmbientDim == 3)
-  , S(std::move(sqrtMetrics))
   , Options(options)
+  , Work(mesh, std::move(sqrtMetrics), fixed)
+  , P(Work.Points)
+  , N(Work.Normals)
+  , S(Work.SqrtMetrics)
+  , Tris(Work.Simplices)
+  , Star(Work.Stars)
+  , Fixed(Work.Fixed)
+  , Moved(Work.Moved)
+  , Smoother(Work,
+      Options,
+      false,
+      [this](std::int32_t v, const Eigen::Vector3d& x) { return Place(v, Hint[v], x); })
 {
   const std::size_t np = mesh.NumPoints();
-  const int dim = mesh.AmbientDim;
-  P.resize(np);
-  for (std::size_t i = 0; i < np; ++i)
-    P[i] = Eigen::Vector3d(mesh.Point(i)[0], mesh.Point(i)[1], dim == 3 ? mesh.Point(i)[2] : 0.0);
-  Star.resize(np);
-  Fixed.assign(np, 0);
-  if (fixed)
-    for (std::size_t i = 0; i < np; ++i)
-      Fixed[i] = (*fixed)[i] ? 1 : 0;
-  Moved.assign(np, 0);
   Hint.resize(np);
   for (std::size_t i = 0; i < np; ++i)
     Hint[i] = static_cast<std::int32_t>(i);
-  Tris.resize(mesh.NumCells());
-  for (std::size_t c = 0; c < mesh.NumCells(); ++c)
-  {
-    const std::int32_t* v = mesh.Cell(c);
-    Tris[c] = { v[0], v[1], v[2] };
-    for (int i = 0; i < 3; ++i)
-      Star[v[i]].push_back(static_cast<std::int32_t>(c));
-  }
   // Orientation reference: +z in 2D; on a surface the domain's normal at the vertex, else the
   // area-weighted normal of its triangles.
-  N.assign(np, Eigen::Vector3d::UnitZ());
   if (Surface)
     for (std::size_t i = 0; i < np; ++i)
     {
@@ -84,35 +60,6 @@ TriangleMeshImprover::TriangleMeshImprover(SimplexMesh& mesh,
     }
   CosFlipDihedral = std::cos(Options.SurfaceFlipMaxDihedral * Pi / 180.0);
   MarkBoundaryAndNonManifold();
-}
-
-double TriangleMeshImprover::Quality(const Tri& t) const
-{
-  return OrientedTriangleMetricQuality(
-    P[t[0]], P[t[1]], P[t[2]], S[t[0]], S[t[1]], S[t[2]], N[t[0]] + N[t[1]] + N[t[2]]);
-}
-
-double TriangleMeshImprover::WorstQuality() const
-{
-  double worst = std::numeric_limits<double>::infinity();
-  for (const Tri& t : Tris)
-    if (t[0] != kDead)
-      worst = std::min(worst, Quality(t));
-  return worst;
-}
-
-double TriangleMeshImprover::StarWorst(std::int32_t v) const
-{
-  double worst = std::numeric_limits<double>::infinity();
-  for (std::int32_t t : Star[v])
-    worst = std::min(worst, Quality(Tris[t]));
-  return worst;
-}
-
-// §5.1 edge length: Q_ab = (S_a + S_b) / 2.
-double TriangleMeshImprover::EdgeLength(std::int32_t a, std::int32_t b) const
-{
-  return (0.5 * (S[a] + S[b]) * (P[b] - P[a])).norm();
 }
 
 bool TriangleMeshImprover::Accepts(double after, double before) const
@@ -138,14 +85,6 @@ void TriangleMeshImprover::MarkBoundaryAndNonManifold()
       Fixed[edges[i].first] = Fixed[edges[i].second] = 1;
     i = j;
   }
-}
-
-bool TriangleMeshImprover::HasEdge(std::int32_t a, std::int32_t b) const
-{
-  for (std::int32_t t : Star[a])
-    if (IndexIn(Tris[t], b) >= 0)
-      return true;
-  return false;
 }
 
 std::int32_t TriangleMeshImprover::OtherTriangle(std::int32_t tri,
@@ -376,7 +315,7 @@ bool TriangleMeshImprover::TryFlip(std::int32_t tri, int edge)
   const Tri t2 = Tris[other];
   const std::int32_t d =
     t2[0] != a && t2[0] != b ? t2[0] : (t2[1] != a && t2[1] != b ? t2[1] : t2[2]);
-  if (d == c || HasEdge(c, d))
+  if (d == c || Work.HasEdge(c, d))
     return false;
   if (Surface)
   {
@@ -401,76 +340,15 @@ bool TriangleMeshImprover::TryFlip(std::int32_t tri, int edge)
   return true;
 }
 
-// Steepest ascent of the worst triangle of v's star in the domain's tangent plane at v, each
-// trial placed on the domain (on a surface: projected onto it), as TetMeshImprover::TrySmooth.
+// In the domain's tangent plane at v, each trial placed on the domain (on a surface: projected
+// onto it); inside a compound operation the journal's Commit asks AcceptMove and marks moves.
 bool TriangleMeshImprover::TrySmooth(std::int32_t v)
 {
-  if (Fixed[v] || Star[v].empty() || (Surface && !Options.PlacePoint))
+  if (!Work.CanMove(v) || (Surface && !Options.PlacePoint))
     return false;
   SaveVertex(v);
-  const Eigen::Vector3d startP = P[v], startN = N[v];
-  const Eigen::Matrix3d startS = S[v];
-  double scale = std::numeric_limits<double>::infinity();
-  for (std::int32_t t : Star[v])
-    for (std::int32_t w : Tris[t])
-      if (w != v)
-        scale = std::min(scale, (P[w] - startP).norm());
-  const double before = StarWorst(v);
-  double current = before;
-  for (int iter = 0; iter < 8; ++iter)
-  {
-    std::int32_t worstTri = Star[v][0];
-    for (std::int32_t t : Star[v])
-      if (Quality(Tris[t]) < Quality(Tris[worstTri]))
-        worstTri = t;
-    const double h = 1e-6 * scale;
-    const Eigen::Vector3d hereP = P[v], hereN = N[v];
-    const Eigen::Matrix3d hereS = S[v];
-    Eigen::Vector3d t[2];
-    TangentBasis(hereN, t[0], t[1]);
-    Eigen::Vector3d g = Eigen::Vector3d::Zero();
-    for (int k = 0; k < 2; ++k)
-    {
-      P[v] = hereP + h * t[k];
-      const double qp = Quality(Tris[worstTri]);
-      P[v] = hereP - h * t[k];
-      const double qm = Quality(Tris[worstTri]);
-      g += (qp - qm) / (2.0 * h) * t[k];
-    }
-    P[v] = hereP;
-    const double gn = g.norm();
-    if (!(gn > 0.0) || !std::isfinite(gn))
-      break;
-    bool stepped = false;
-    for (double alpha = 0.2 * scale; alpha > 1e-4 * scale; alpha *= 0.5)
-    {
-      if (Place(v, Hint[v], hereP + (alpha / gn) * g))
-      {
-        const double q = StarWorst(v);
-        if (q > current + 1e-12)
-        {
-          current = q;
-          stepped = true;
-          break;
-        }
-      }
-      P[v] = hereP;
-      N[v] = hereN;
-      S[v] = hereS;
-    }
-    if (!stepped)
-      break;
-  }
-  if (!Accepts(current, before) ||
-    (!Undo.Active && Options.AcceptMove && !Options.AcceptMove(v, P[v].data())))
-  {
-    P[v] = startP;
-    N[v] = startN;
-    S[v] = startS;
+  if (!Smoother.TrySmooth(v, Undo.Active))
     return false;
-  }
-  if (!Undo.Active)
-    Moved[v] = 1;
   ++Smoothed;
   return true;
 }
@@ -484,7 +362,7 @@ bool TriangleMeshImprover::TryCollapse(std::int32_t tri)
   std::sort(order,
     order + 3,
     [&](int i, int j)
-    { return EdgeLength(t[i], t[(i + 1) % 3]) < EdgeLength(t[j], t[(j + 1) % 3]); });
+    { return Work.EdgeLength(t[i], t[(i + 1) % 3]) < Work.EdgeLength(t[j], t[(j + 1) % 3]); });
   for (int k = 0; k < 2; ++k)
   {
     const std::int32_t a = t[order[k]], b = t[(order[k] + 1) % 3];
@@ -579,7 +457,7 @@ bool TriangleMeshImprover::TrySplit(std::int32_t tri)
   std::sort(order,
     order + 3,
     [&](int i, int j)
-    { return EdgeLength(t[i], t[(i + 1) % 3]) > EdgeLength(t[j], t[(j + 1) % 3]); });
+    { return Work.EdgeLength(t[i], t[(i + 1) % 3]) > Work.EdgeLength(t[j], t[(j + 1) % 3]); });
   for (int k = 0; k < 2; ++k)
   {
     const int e = order[k];
@@ -650,39 +528,12 @@ bool TriangleMeshImprover::Improve(std::int32_t tri, double target)
 void TriangleMeshImprover::Run(MeshImprovementResult& result)
 {
   auto angle = [](double q) { return std::asin(std::max(-1.0, std::min(1.0, q))) * 180.0 / Pi; };
-  result.WorstBefore = Tris.empty() ? 0.0 : angle(WorstQuality());
+  result.WorstBefore = Tris.empty() ? 0.0 : angle(Work.WorstQuality());
   const double target = std::sin(Options.TargetAngle * Pi / 180.0);
-  std::vector<std::pair<double, std::int32_t>> bad;
-  for (int pass = 0; pass < Options.MaxPasses; ++pass)
-  {
-    bad.clear();
-    for (std::size_t t = 0; t < Tris.size(); ++t)
-      if (Alive(static_cast<std::int32_t>(t)))
-      {
-        const double q = Quality(Tris[t]);
-        if (q < target)
-          bad.emplace_back(q, static_cast<std::int32_t>(t));
-      }
-    std::sort(bad.begin(), bad.end());
-    std::size_t changes = 0;
-    for (const auto& item : bad)
-      if (Improve(item.second, target))
-        ++changes;
-    ++result.Passes;
-    if (changes == 0)
-      break;
-  }
-  result.WorstAfter = Tris.empty() ? 0.0 : angle(WorstQuality());
-  Mesh.Cells.clear();
-  for (const Tri& t : Tris)
-    if (t[0] != kDead)
-      Mesh.Cells.insert(Mesh.Cells.end(), t.begin(), t.end());
-  const int dim = Mesh.AmbientDim;
-  Mesh.Points.resize(P.size() * static_cast<std::size_t>(dim));
-  for (std::size_t i = 0; i < P.size(); ++i)
-    if (Moved[i])
-      for (int d = 0; d < dim; ++d)
-        Mesh.Points[i * dim + d] = P[i][d];
+  result.Passes += Work.ImproveWorstFirst(
+    target, Options.MaxPasses, [&](std::int32_t t) { return Improve(t, target); });
+  result.WorstAfter = Tris.empty() ? 0.0 : angle(Work.WorstQuality());
+  Work.WriteBack(Mesh);
   result.NumFlips22 = Flips;
   result.NumSmoothed = Smoothed;
   result.NumSplits = Splits;

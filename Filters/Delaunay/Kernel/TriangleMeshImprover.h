@@ -1,11 +1,13 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // TriangleMeshImprover: the triangle half of ImproveMesh (2-2 edge flips, smoothing, edge
-// collapses and splits) for flat 2D domains and surfaces, on a mutable triangle list with
-// vertex-to-triangle stars and an undo journal for compound operations.
+// collapses and splits) for flat 2D domains and surfaces, on a SimplexStarMesh<2> (mutable
+// triangle list with vertex-to-triangle stars) with an undo journal for compound operations.
 #ifndef av_TriangleMeshImprover_h
 #define av_TriangleMeshImprover_h
 
 #include "MeshImprovement.h"
+#include "SimplexStarMesh.h"
+#include "VertexStarSmoother.h"
 
 #include <Eigen/Dense>
 
@@ -29,7 +31,7 @@ public:
   void Run(MeshImprovementResult& result);
 
 private:
-  using Tri = std::array<std::int32_t, 3>;
+  using Tri = SimplexStarMesh<2>::Simplex;
 
   /// What a compound operation (collapse or split, then smoothing and flips) changed, so that
   /// it can be undone when the worst quality it touches does not rise.
@@ -50,13 +52,9 @@ private:
     std::size_t NumTris = 0, NumPoints = 0, Flips = 0, Smoothed = 0;
   };
 
-  double Quality(const Tri& t) const;
-  bool Alive(std::int32_t t) const { return Tris[t][0] >= 0; }
-  double WorstQuality() const;
-  double StarWorst(std::int32_t v) const;
-  double EdgeLength(std::int32_t a, std::int32_t b) const;
+  double Quality(const Tri& t) const { return Work.Quality(t); }
+  bool Alive(std::int32_t t) const { return Work.IsAlive(t); }
   void MarkBoundaryAndNonManifold();
-  bool HasEdge(std::int32_t a, std::int32_t b) const;
   std::int32_t OtherTriangle(std::int32_t tri, std::int32_t a, std::int32_t b, int* count) const;
   bool Place(std::int32_t v, std::int32_t near, const Eigen::Vector3d& x);
 
@@ -87,15 +85,18 @@ private:
 
   SimplexMesh& Mesh;
   bool Surface;
-  std::vector<Eigen::Vector3d> P;
-  std::vector<Eigen::Vector3d> N; // unit domain normals (2D: +z), orient the triangles
-  std::vector<Eigen::Matrix3d> S;
-  std::vector<Tri> Tris; // in place; a removed triangle is {-1, -1, -1}
-  std::vector<std::vector<std::int32_t>> Star;
-  std::vector<char> Fixed;
-  std::vector<std::int32_t> Hint; // a vertex the caller knows, near each one (PlacePoint's near)
   MeshImprovementOptions Options;
-  std::vector<std::uint8_t> Moved;
+  SimplexStarMesh<2> Work;
+  // Short names for the working mesh's arrays, which the journal saves and restores.
+  std::vector<Eigen::Vector3d>& P;
+  std::vector<Eigen::Vector3d>& N; // unit domain normals (2D: +z), orient the triangles
+  std::vector<Eigen::Matrix3d>& S;
+  std::vector<Tri>& Tris; // in place; a removed triangle is {-1, -1, -1}
+  std::vector<std::vector<std::int32_t>>& Star;
+  std::vector<char>& Fixed;
+  std::vector<std::uint8_t>& Moved;
+  std::vector<std::int32_t> Hint; // a vertex the caller knows, near each one (PlacePoint's near)
+  VertexStarSmoother<2> Smoother;
   Journal Undo;
   double CosFlipDihedral = 0.0;
   std::size_t Flips = 0, Smoothed = 0, Splits = 0, Collapses = 0;

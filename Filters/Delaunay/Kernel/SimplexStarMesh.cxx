@@ -1,0 +1,164 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "SimplexStarMesh.h"
+
+#include <algorithm>
+#include <limits>
+#include <utility>
+
+namespace av
+{
+
+template <int K>
+SimplexStarMesh<K>::SimplexStarMesh(const SimplexMesh& mesh,
+  std::vector<Eigen::Matrix3d> sqrtMetrics,
+  const std::vector<std::uint8_t>* fixed)
+  : SqrtMetrics(std::move(sqrtMetrics))
+{
+  const std::size_t np = mesh.NumPoints();
+  const bool z = mesh.AmbientDim == 3;
+  Points.resize(np);
+  for (std::size_t i = 0; i < np; ++i)
+    Points[i] = Eigen::Vector3d(mesh.Point(i)[0], mesh.Point(i)[1], z ? mesh.Point(i)[2] : 0.0);
+  if constexpr (K == 2)
+    Normals.assign(np, Eigen::Vector3d::UnitZ());
+  Stars.resize(np);
+  Fixed.assign(np, 0);
+  if (fixed)
+    for (std::size_t i = 0; i < np; ++i)
+      Fixed[i] = (*fixed)[i] ? 1 : 0;
+  Moved.assign(np, 0);
+  // Tet flips add cells: room for a quarter more before the first reallocation.
+  Simplices.reserve(mesh.NumCells() + mesh.NumCells() / 4);
+  for (std::size_t c = 0; c < mesh.NumCells(); ++c)
+  {
+    Simplex t;
+    std::copy(mesh.Cell(c), mesh.Cell(c) + K + 1, t.begin());
+    Add(t);
+  }
+}
+
+template <int K>
+double SimplexStarMesh<K>::WorstQuality() const
+{
+  double worst = std::numeric_limits<double>::infinity();
+  for (const Simplex& t : Simplices)
+    if (t[0] != kDead)
+      worst = std::min(worst, Quality(t));
+  return worst;
+}
+
+template <int K>
+double SimplexStarMesh<K>::StarWorst(std::int32_t v) const
+{
+  double worst = std::numeric_limits<double>::infinity();
+  for (std::int32_t t : Stars[v])
+    worst = std::min(worst, Quality(Simplices[t]));
+  return worst;
+}
+
+// Seeded with the first simplex, as the triangle copy was; the tet copy started from +inf,
+// which differs only when the first quality is NaN (and found none when all were).
+template <int K>
+std::int32_t SimplexStarMesh<K>::WorstInStar(std::int32_t v) const
+{
+  std::int32_t worst = Stars[v][0];
+  double worstQuality = Quality(Simplices[worst]);
+  for (std::int32_t t : Stars[v])
+  {
+    const double q = Quality(Simplices[t]);
+    if (q < worstQuality)
+    {
+      worstQuality = q;
+      worst = t;
+    }
+  }
+  return worst;
+}
+
+template <int K>
+bool SimplexStarMesh<K>::HasEdge(std::int32_t a, std::int32_t b) const
+{
+  for (std::int32_t t : Stars[a])
+    if (IndexIn(Simplices[t], b) >= 0)
+      return true;
+  return false;
+}
+
+template <int K>
+int SimplexStarMesh<K>::IndexIn(const Simplex& t, std::int32_t v)
+{
+  for (int i = 0; i <= K; ++i)
+    if (t[i] == v)
+      return i;
+  return -1;
+}
+
+template <int K>
+std::int32_t SimplexStarMesh<K>::Add(const Simplex& t)
+{
+  const auto id = static_cast<std::int32_t>(Simplices.size());
+  Simplices.push_back(t);
+  for (std::int32_t v : t)
+    Stars[v].push_back(id);
+  return id;
+}
+
+template <int K>
+void SimplexStarMesh<K>::Kill(std::int32_t id)
+{
+  for (std::int32_t v : Simplices[id])
+  {
+    std::vector<std::int32_t>& s = Stars[v];
+    s.erase(std::find(s.begin(), s.end(), id));
+  }
+  Simplices[id].fill(kDead);
+}
+
+template <int K>
+int SimplexStarMesh<K>::ImproveWorstFirst(double target,
+  int maxPasses,
+  const std::function<bool(std::int32_t)>& improve)
+{
+  std::vector<std::pair<double, std::int32_t>> bad;
+  int passes = 0;
+  while (passes < maxPasses)
+  {
+    bad.clear();
+    for (std::size_t t = 0; t < Simplices.size(); ++t)
+      if (Simplices[t][0] != kDead)
+      {
+        const double q = Quality(Simplices[t]);
+        if (q < target)
+          bad.emplace_back(q, static_cast<std::int32_t>(t));
+      }
+    std::sort(bad.begin(), bad.end());
+    std::size_t changes = 0;
+    for (const auto& item : bad)
+      if (improve(item.second))
+        ++changes;
+    ++passes;
+    if (changes == 0)
+      break;
+  }
+  return passes;
+}
+
+template <int K>
+void SimplexStarMesh<K>::WriteBack(SimplexMesh& mesh) const
+{
+  mesh.Cells.clear();
+  for (const Simplex& t : Simplices)
+    if (t[0] != kDead)
+      mesh.Cells.insert(mesh.Cells.end(), t.begin(), t.end());
+  const int dim = mesh.AmbientDim;
+  mesh.Points.resize(Points.size() * static_cast<std::size_t>(dim));
+  for (std::size_t i = 0; i < Points.size(); ++i)
+    if (Moved[i])
+      for (int d = 0; d < dim; ++d)
+        mesh.Points[i * dim + d] = Points[i][d];
+}
+
+template class SimplexStarMesh<2>;
+template class SimplexStarMesh<3>;
+
+} // namespace av

@@ -1,0 +1,159 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "VertexStarSmoother.h"
+
+#include "MetricSimplexQuality.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <utility>
+
+namespace av
+{
+namespace
+{
+/// Two unit vectors orthogonal to n (and to each other): the plane a vertex moves in.
+void TangentBasis(const Eigen::Vector3d& n, Eigen::Vector3d& t1, Eigen::Vector3d& t2)
+{
+  Eigen::Index axis = 0;
+  n.cwiseAbs().minCoeff(&axis);
+  t1 = Eigen::Vector3d::Unit(axis).cross(n).normalized();
+  t2 = n.cross(t1).normalized();
+}
+} // namespace
+
+template <int K>
+VertexStarSmoother<K>::VertexStarSmoother(SimplexStarMesh<K>& mesh,
+  const MeshImprovementOptions& options,
+  bool requireMove,
+  PlaceVertex place,
+  EdgeCount outOfRangeEdges)
+  : Mesh(mesh)
+  , Options(options)
+  , RequireMove(requireMove)
+  , Place(std::move(place))
+  , OutOfRangeEdges(std::move(outOfRangeEdges))
+{
+}
+
+template <int K>
+typename VertexStarSmoother<K>::VertexState VertexStarSmoother<K>::Save(std::int32_t v) const
+{
+  VertexState s{ Mesh.Points[v], Eigen::Vector3d::Zero(), Mesh.SqrtMetrics[v] };
+  if constexpr (K == 2)
+    s.Normal = Mesh.Normals[v];
+  return s;
+}
+
+template <int K>
+void VertexStarSmoother<K>::Restore(std::int32_t v, const VertexState& state)
+{
+  Mesh.Points[v] = state.Point;
+  Mesh.SqrtMetrics[v] = state.SqrtMetric;
+  if constexpr (K == 2)
+    Mesh.Normals[v] = state.Normal;
+}
+
+// Central differences of the worst simplex's quality. Tets move freely (along the axes);
+// triangles in the domain's tangent plane at v (2D: the plane itself). The two probe
+// formulas are the ones each copy had: their rounding differs.
+template <int K>
+Eigen::Vector3d VertexStarSmoother<K>::WorstGradient(std::int32_t v, double h)
+{
+  const auto& worst = Mesh.Simplices[Mesh.WorstInStar(v)];
+  Eigen::Vector3d& p = Mesh.Points[v];
+  const Eigen::Vector3d here = p;
+  Eigen::Vector3d g = Eigen::Vector3d::Zero();
+  if constexpr (K == 3)
+    for (int k = 0; k < 3; ++k)
+    {
+      p = here;
+      p[k] += h;
+      const double qp = Mesh.Quality(worst);
+      p[k] -= 2.0 * h;
+      const double qm = Mesh.Quality(worst);
+      g[k] = (qp - qm) / (2.0 * h);
+    }
+  else
+  {
+    Eigen::Vector3d t[2];
+    TangentBasis(Mesh.Normals[v], t[0], t[1]);
+    for (int k = 0; k < 2; ++k)
+    {
+      p = here + h * t[k];
+      const double qp = Mesh.Quality(worst);
+      p = here - h * t[k];
+      const double qm = Mesh.Quality(worst);
+      g += (qp - qm) / (2.0 * h) * t[k];
+    }
+  }
+  p = here;
+  return g;
+}
+
+// Steepest ascent of the worst simplex of v's star, with a halving line search; a step is
+// kept only if the star's worst rises (and the edge rule holds).
+template <int K>
+bool VertexStarSmoother<K>::TrySmooth(std::int32_t v, bool deferCommit)
+{
+  if (!Mesh.CanMove(v))
+    return false;
+  const VertexState start = Save(v);
+  // Steps are scaled by the shortest edge of the star.
+  double scale = std::numeric_limits<double>::infinity();
+  for (std::int32_t t : Mesh.Stars[v])
+    for (std::int32_t w : Mesh.Simplices[t])
+      if (w != v)
+        scale = std::min(scale, (Mesh.Points[w] - start.Point).norm());
+  const double before = Mesh.StarWorst(v);
+  double current = before;
+  const int outBefore = OutOfRangeEdges ? OutOfRangeEdges(v) : 0;
+  for (int iter = 0; iter < 8; ++iter)
+  {
+    const Eigen::Vector3d g = WorstGradient(v, 1e-6 * scale);
+    const double gn = g.norm();
+    if (!(gn > 0.0) || !std::isfinite(gn))
+      break;
+    const VertexState here = Save(v);
+    bool stepped = false;
+    for (double alpha = 0.2 * scale; alpha > 1e-4 * scale; alpha *= 0.5)
+    {
+      const Eigen::Vector3d x = here.Point + (alpha / gn) * g;
+      bool placed = true;
+      if (Place)
+        placed = Place(v, x);
+      else
+        Mesh.Points[v] = x;
+      if (placed)
+      {
+        const double q = Mesh.StarWorst(v);
+        if (q > current + 1e-12 && (!OutOfRangeEdges || OutOfRangeEdges(v) <= outBefore))
+        {
+          current = q;
+          stepped = true;
+          break;
+        }
+      }
+      Restore(v, here);
+    }
+    if (!stepped)
+      break;
+  }
+  const bool unmoved = Mesh.Points[v] == start.Point;
+  const bool accept = AcceptsImprovement(current, before, Options.AcceptWorsening) &&
+    !(RequireMove && Options.AcceptWorsening && unmoved);
+  if (!accept ||
+    (!deferCommit && Options.AcceptMove && !Options.AcceptMove(v, Mesh.Points[v].data())))
+  {
+    Restore(v, start);
+    return false;
+  }
+  if (!deferCommit)
+    Mesh.Moved[v] = 1;
+  return true;
+}
+
+template class VertexStarSmoother<2>;
+template class VertexStarSmoother<3>;
+
+} // namespace av

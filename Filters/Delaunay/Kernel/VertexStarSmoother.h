@@ -1,0 +1,63 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// VertexStarSmoother: the vertex move of mesh improvement, shared by tets and triangles:
+// steepest ascent of the worst simplex of a vertex's star with a halving line search.
+#ifndef av_VertexStarSmoother_h
+#define av_VertexStarSmoother_h
+
+#include "MeshImprovement.h"
+#include "SimplexStarMesh.h"
+
+#include <Eigen/Dense>
+
+#include <cstdint>
+#include <functional>
+
+namespace av
+{
+
+template <int K>
+class VertexStarSmoother
+{
+public:
+  /// Puts vertex v at (or, on a surface, near) x, with what goes with it there (normal,
+  /// metric); false if there is no such point. Empty: the point is just set to x.
+  using PlaceVertex = std::function<bool(std::int32_t v, const Eigen::Vector3d& x)>;
+  /// The number of out-of-range edges around a vertex; a step may not raise it. Empty: none.
+  using EdgeCount = std::function<int(std::int32_t v)>;
+
+  /// `requireMove`: under the AcceptWorsening test hook, an ascent that ends where it started
+  /// is refused (the tets always did this, the triangles never).
+  VertexStarSmoother(SimplexStarMesh<K>& mesh,
+    const MeshImprovementOptions& options,
+    bool requireMove,
+    PlaceVertex place = PlaceVertex(),
+    EdgeCount outOfRangeEdges = EdgeCount());
+
+  /// Moves free vertex v if that raises the worst quality of its star (AcceptsImprovement),
+  /// else leaves it where it was and returns false. Unless `deferCommit` (a journal asks later),
+  /// Options.AcceptMove must agree too and v is marked moved.
+  bool TrySmooth(std::int32_t v, bool deferCommit);
+
+private:
+  struct VertexState
+  {
+    Eigen::Vector3d Point, Normal;
+    Eigen::Matrix3d SqrtMetric;
+  };
+  VertexState Save(std::int32_t v) const;
+  void Restore(std::int32_t v, const VertexState& state);
+  Eigen::Vector3d WorstGradient(std::int32_t v, double h); ///< of the star's worst simplex
+
+  SimplexStarMesh<K>& Mesh;
+  const MeshImprovementOptions& Options;
+  bool RequireMove;
+  PlaceVertex Place;
+  EdgeCount OutOfRangeEdges;
+};
+
+extern template class VertexStarSmoother<2>;
+extern template class VertexStarSmoother<3>;
+
+} // namespace av
+
+#endif
