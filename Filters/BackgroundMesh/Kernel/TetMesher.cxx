@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <array>
+#include <map>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -423,10 +424,22 @@ SimplexMesh DelaunayOfPoints(const std::vector<double>& points)
   {
     throw InputError("DelaunayOfPoints: " + TetGenErrorText(code));
   }
-  if (out.numberoftetrahedra <= 0 || out.tetrahedronlist == nullptr ||
-    out.numberofpoints != static_cast<int>(np))
-    throw InputError("DelaunayOfPoints: TetGen produced no tetrahedron or new points (are the "
-                     "points coplanar?)");
+  if (out.numberoftetrahedra <= 0 || out.tetrahedronlist == nullptr)
+    throw InputError("DelaunayOfPoints: TetGen produced no tetrahedron (are the points "
+                     "coplanar?)");
+  // TetGen drops repeated points and numbers the rest anew: map its points back to the first
+  // input point at the same position.
+  std::map<std::array<double, 3>, std::int32_t> firstAt;
+  for (std::size_t i = np; i-- > 0;)
+    firstAt[{ points[3 * i], points[3 * i + 1], points[3 * i + 2] }] = static_cast<std::int32_t>(i);
+  std::vector<std::int32_t> inputOf(static_cast<std::size_t>(out.numberofpoints));
+  for (std::size_t i = 0; i < inputOf.size(); ++i)
+  {
+    const auto it = firstAt.find({ out.pointlist[3 * i], out.pointlist[3 * i + 1], out.pointlist[3 * i + 2] });
+    if (it == firstAt.end())
+      throw InputError("DelaunayOfPoints: TetGen added a point");
+    inputOf[i] = it->second;
+  }
   SimplexMesh m;
   m.AmbientDim = 3;
   m.SimplexDim = 3;
@@ -438,7 +451,7 @@ SimplexMesh DelaunayOfPoints(const std::vector<double>& points)
   {
     std::int32_t* t = m.Cells.data() + 4 * c;
     for (int k = 0; k < 4; ++k)
-      t[k] = out.tetrahedronlist[c * static_cast<std::size_t>(corners) + k];
+      t[k] = inputOf[static_cast<std::size_t>(out.tetrahedronlist[c * static_cast<std::size_t>(corners) + k])];
     const Eigen::Map<const Eigen::Vector3d> a(m.Point(t[0])), b(m.Point(t[1])),
       cc(m.Point(t[2])), d(m.Point(t[3]));
     if ((b - a).dot((cc - a).cross(d - a)) < 0.0)

@@ -74,8 +74,9 @@ SimplexMesh TetrahedralizeSphere(double radius, std::size_t targetVertices);
 /**
  * Delaunay tetrahedralization of the convex hull of `points` (NumPoints x 3) by TetGen, without
  * Steiner points: cell ids index `points` (the returned mesh holds a copy of them), every tet
- * positively oriented. Exactly repeated points are merged by TetGen: a repeated one is then in
- * no cell. Throws InputError when TetGen fails or all points are coplanar.
+ * positively oriented. Exactly repeated points are merged by TetGen: the cells use the first
+ * of them, the others are in no cell. Throws InputError when TetGen fails or all points are
+ * coplanar.
  */
 SimplexMesh DelaunayOfPoints(const std::vector<double>& points);
 

@@ -2,7 +2,9 @@
 #include "ValidDualMesh.h"
 
 #include "ElementLocator.h"
+#include "InputError.h"
 #include "MeshTopology.h"
+#include "MetricAlgebra.h"
 #include "RestrictedDelaunayRefinement.h"
 #include "TetMesher.h"
 
@@ -188,7 +190,34 @@ ValidDualResult MakeDualValid(const SimplexMesh& mesh, const std::vector<std::in
     (rdt.NumInverted == 0 && rdt.NumNonManifoldFaces == 0) || rdt.Points.size() < 12)
     return r;
 
-  SimplexMesh dt = DelaunayOfPoints(rdt.Points);
+  SimplexMesh dt;
+  try
+  {
+    // Delaunay in the mean metric (a linear map of positive determinant keeps orientations):
+    // nearer the metric Delaunay mesh than the Euclidean one when the metric's directions
+    // agree over the domain (a boundary layer), so the flips below have less to do.
+    std::vector<double> mapped = rdt.Points;
+    if (siteMetric && siteMetric->NumPoints() == rdt.Points.size() / 3)
+    {
+      Eigen::Matrix3d s = Eigen::Matrix3d::Zero();
+      for (std::size_t i = 0; i < siteMetric->NumPoints(); ++i)
+      {
+        const Eigen::Matrix3d root = SymmetricSqrt(UnpackSymmetric(siteMetric->At(i)));
+        s += root / std::cbrt(root.determinant()); // shape only: each site counts alike
+      }
+      for (std::size_t i = 0; i < mapped.size() / 3; ++i)
+      {
+        Eigen::Map<Eigen::Vector3d> x(mapped.data() + 3 * i);
+        x = (s * Eigen::Vector3d(x)).eval();
+      }
+    }
+    dt = DelaunayOfPoints(mapped);
+    dt.Points = rdt.Points;
+  }
+  catch (const InputError&)
+  {
+    return r; // coplanar sites, say: keep the dual (its counts say what is wrong with it)
+  }
   r.DelaunayCells = dt.NumCells();
   std::vector<std::uint8_t> keep(dt.NumCells(), 0);
   for (std::size_t c = 0; c < dt.NumCells(); ++c)

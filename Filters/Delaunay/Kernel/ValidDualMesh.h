@@ -39,7 +39,9 @@ void RecountFinalDual(const SimplexMesh& input, RestrictedDelaunayMesh& rdt, con
 /**
  * When `rdt` (tets of a volume mesh, AmbientDim 3) has inverted or flat cells or non-manifold
  * faces, replaces its cells by a mesh of the same sites that is valid by construction: the
- * Delaunay tetrahedralization of the sites' input positions (TetGen, no new points), without
+ * Delaunay tetrahedralization of the sites' input positions mapped by the mean of the sites'
+ * metric square roots, each scaled to determinant 1 (TetGen, no new points; the plain
+ * Euclidean one without `siteMetric`), without
  * the tets whose centroid lies outside the input domain (a walk in `mesh` from the elements of
  * the tet's sites, `adjacency` as from ComputeElementAdjacency), then without the flat tets
  * or nearly flat tets on the boundary of what is left (peeled until none is), then, with

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The valid final mesh where the restricted Delaunay dual is not (ValidDualMesh.h): on a
 // folded cube whose dual keeps inverted cells (repair off), the replaced mesh has every tet
-// positive, every face shared by at most two tets, each interior site face by exactly two, and
-// lies in the domain; the metric Delaunay flips (MetricDelaunayFlips.h) keep the mesh valid and
+// positive, every face shared by at most two tets, lies in the domain and, the metric being
+// constant, is the metric's Delaunay mesh (Delaunay in the mean metric); the metric Delaunay flips (MetricDelaunayFlips.h) keep the mesh valid and
 // its volume exactly, and remove most faces that violate the metric's Delaunay criterion.
 #include "FoldedTestCases.h"
 #include "MeshQuality.h"
@@ -72,6 +72,8 @@ av::SimplexMesh AsMesh(const av::RestrictedDelaunayMesh& d)
   return m;
 }
 
+std::size_t NonDelaunayFaces(const av::SimplexMesh& m, const Eigen::Matrix3d& s);
+
 void TestFoldedCubeGetsValidMesh()
 {
   const FoldedCase c = FoldedCube(0.2, 8.0, 150, 3);
@@ -113,7 +115,13 @@ void TestFoldedCubeGetsValidMesh()
   copy.NumInverted = 0;
   const av::ValidDualResult again = av::MakeDualValid(c.Mesh, {}, r.Repaired.Sites, nullptr, copy);
   AV_CHECK(!again.Replaced && copy.Cells == d.Cells);
-  AV_CHECK(r.ValidDual.Flips.NumFlips23 + r.ValidDual.Flips.NumFlips32 > 0);
+  // With a constant metric the Delaunay tetrahedralization in the mean metric is already the
+  // metric's Delaunay mesh: no face violates the criterion, no flip is needed.
+  Eigen::Matrix3d root = Eigen::Matrix3d::Identity();
+  root(0, 0) = 6.0;
+  const std::size_t nonDelaunay = NonDelaunayFaces(m, root);
+  AV_CHECK_MSG(nonDelaunay == 0, nonDelaunay << " face(s) not Delaunay in the metric");
+  AV_CHECK(r.ValidDual.Flips.NumFlips23 + r.ValidDual.Flips.NumFlips32 == 0);
 }
 
 /// Faces abc (apexes d, e) with e strictly in the circumsphere of abcd in the constant metric
