@@ -47,6 +47,29 @@ void CheckCellIds(const SimplexMesh& mesh, const std::string& who, const char* k
   }
 }
 
+std::vector<CellFacet> SortedCellFacets(const SimplexMesh& mesh)
+{
+  const int nv = mesh.SimplexDim + 1;
+  std::vector<CellFacet> facets;
+  facets.reserve(static_cast<std::size_t>(nv) * mesh.NumCells());
+  for (std::size_t c = 0; c < mesh.NumCells(); ++c)
+  {
+    const std::int32_t* cell = mesh.Cell(c);
+    for (int skip = 0; skip < nv; ++skip)
+    {
+      CellFacet f{ { -1, -1, -1 }, static_cast<std::int32_t>(c) };
+      int q = 0;
+      for (int a = 0; a < nv; ++a)
+        if (a != skip)
+          f.Vertices[q++] = cell[a];
+      std::sort(f.Vertices.begin(), f.Vertices.begin() + q);
+      facets.push_back(f);
+    }
+  }
+  std::sort(facets.begin(), facets.end());
+  return facets;
+}
+
 std::vector<std::int32_t> UniqueEdges(const SimplexMesh& mesh)
 {
   const int nv = mesh.VerticesPerCell();

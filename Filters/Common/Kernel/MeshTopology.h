@@ -6,6 +6,7 @@
 
 #include "SimplexMesh.h"
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -22,6 +23,22 @@ std::vector<std::int32_t> ComputeElementAdjacency(const SimplexMesh& mesh);
 /// Throws InputError("<who><kind> c references point p, outside [0, n)") for the first cell id
 /// out of range; `kind` names the cells in the message ("triangle", "cell").
 void CheckCellIds(const SimplexMesh& mesh, const std::string& who, const char* kind);
+
+/// A facet of a cell: its SimplexDim vertex ids sorted (-1 in the unused last entry of a
+/// triangle's edge) and the cell.
+struct CellFacet
+{
+  std::array<std::int32_t, 3> Vertices;
+  std::int32_t Cell;
+  bool operator<(const CellFacet& o) const
+  {
+    return Vertices != o.Vertices ? Vertices < o.Vertices : Cell < o.Cell;
+  }
+};
+
+/// Every facet of every cell, sorted by vertices then cell: the cells that share a facet are
+/// neighbors in the list (a run of one: boundary; of more than two: non-manifold).
+std::vector<CellFacet> SortedCellFacets(const SimplexMesh& mesh);
 
 /// Unique edges of the mesh as a flat list (a0, b0, a1, b1, ...) with a < b, sorted.
 std::vector<std::int32_t> UniqueEdges(const SimplexMesh& mesh);

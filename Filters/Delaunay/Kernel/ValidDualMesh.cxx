@@ -5,7 +5,6 @@
 #include "InputError.h"
 #include "MeshTopology.h"
 #include "MetricAlgebra.h"
-#include "RestrictedDelaunayRefinement.h"
 #include "TetMesher.h"
 
 #include <Eigen/Dense>
@@ -91,35 +90,28 @@ bool CentroidInDomain(const SimplexMesh& mesh, const std::vector<std::int32_t>& 
   return false;
 }
 
-/// Faces (sorted vertex triples) of the kept tets that belong to one kept tet only.
+/// Cells of `dt` flagged in `keep` with a face that no other kept cell has.
 std::vector<std::uint8_t> OnBoundary(const SimplexMesh& dt, const std::vector<std::uint8_t>& keep)
 {
-  std::vector<std::pair<std::array<std::int32_t, 3>, std::int32_t>> faces;
+  SimplexMesh kept;
+  kept.AmbientDim = dt.AmbientDim;
+  kept.SimplexDim = dt.SimplexDim;
+  std::vector<std::int32_t> id;
   for (std::size_t c = 0; c < dt.NumCells(); ++c)
-  {
-    if (!keep[c])
-      continue;
-    const std::int32_t* v = dt.Cell(c);
-    for (int skip = 0; skip < 4; ++skip)
+    if (keep[c])
     {
-      std::array<std::int32_t, 3> f;
-      int n = 0;
-      for (int a = 0; a < 4; ++a)
-        if (a != skip)
-          f[n++] = v[a];
-      std::sort(f.begin(), f.end());
-      faces.push_back({ f, static_cast<std::int32_t>(c) });
+      kept.Cells.insert(kept.Cells.end(), dt.Cell(c), dt.Cell(c) + 4);
+      id.push_back(static_cast<std::int32_t>(c));
     }
-  }
-  std::sort(faces.begin(), faces.end());
+  const std::vector<CellFacet> facets = SortedCellFacets(kept);
   std::vector<std::uint8_t> boundary(dt.NumCells(), 0);
-  for (std::size_t i = 0; i < faces.size();)
+  for (std::size_t i = 0; i < facets.size();)
   {
     std::size_t j = i + 1;
-    while (j < faces.size() && faces[j].first == faces[i].first)
+    while (j < facets.size() && facets[j].Vertices == facets[i].Vertices)
       ++j;
     if (j - i == 1)
-      boundary[static_cast<std::size_t>(faces[i].second)] = 1;
+      boundary[static_cast<std::size_t>(id[static_cast<std::size_t>(facets[i].Cell)])] = 1;
     i = j;
   }
   return boundary;
@@ -145,37 +137,16 @@ void RecountFinalDual(const SimplexMesh& input, RestrictedDelaunayMesh& rdt, con
     for (int a = 0; a <= dual.SimplexDim; ++a)
       used[static_cast<std::size_t>(v[a])] = 1;
   }
-  const std::vector<std::uint8_t> nm = NonManifoldCells(rdt);
+  // Faces shared by more than two cells.
+  const std::vector<CellFacet> facets = SortedCellFacets(dual);
   rdt.NumNonManifoldFaces = 0;
+  for (std::size_t i = 0; i < facets.size();)
   {
-    // Faces shared by more than two cells (NonManifoldCells flags their cells).
-    std::vector<std::array<std::int32_t, 3>> faces;
-    const int nv = dual.SimplexDim + 1;
-    for (std::size_t c = 0; c < dual.NumCells(); ++c)
-    {
-      if (!nm[c])
-        continue;
-      const std::int32_t* v = dual.Cell(c);
-      for (int skip = 0; skip < nv; ++skip)
-      {
-        std::array<std::int32_t, 3> f{ -1, -1, -1 };
-        int n = 0;
-        for (int a = 0; a < nv; ++a)
-          if (a != skip)
-            f[n++] = v[a];
-        std::sort(f.begin(), f.begin() + n);
-        faces.push_back(f);
-      }
-    }
-    std::sort(faces.begin(), faces.end());
-    for (std::size_t i = 0; i < faces.size();)
-    {
-      std::size_t j = i + 1;
-      while (j < faces.size() && faces[j] == faces[i])
-        ++j;
-      rdt.NumNonManifoldFaces += j - i > 2;
-      i = j;
-    }
+    std::size_t j = i + 1;
+    while (j < facets.size() && facets[j].Vertices == facets[i].Vertices)
+      ++j;
+    rdt.NumNonManifoldFaces += j - i > 2;
+    i = j;
   }
   rdt.NumUnusedSites = static_cast<std::size_t>(std::count(used.begin(), used.end(), 0));
 }

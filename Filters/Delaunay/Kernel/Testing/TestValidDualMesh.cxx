@@ -6,6 +6,7 @@
 // its volume exactly, and remove most faces that violate the metric's Delaunay criterion.
 #include "FoldedTestCases.h"
 #include "MeshQuality.h"
+#include "MeshTopology.h"
 #include "MeshingPipeline.h"
 #include "MetricDelaunayFlips.h"
 #include "TetMesher.h"
@@ -36,21 +37,16 @@ double SignedVolume(const av::SimplexMesh& m, std::size_t c)
 /// Faces by the number of tets that hold them: [1] boundary, [2] interior, [3] more.
 std::array<std::size_t, 4> FaceSharing(const av::SimplexMesh& m)
 {
-  std::map<std::array<std::int32_t, 3>, int> count;
-  for (std::size_t c = 0; c < m.NumCells(); ++c)
-    for (int skip = 0; skip < 4; ++skip)
-    {
-      std::array<std::int32_t, 3> f;
-      int n = 0;
-      for (int a = 0; a < 4; ++a)
-        if (a != skip)
-          f[n++] = m.Cell(c)[a];
-      std::sort(f.begin(), f.end());
-      ++count[f];
-    }
+  const std::vector<av::CellFacet> f = av::SortedCellFacets(m);
   std::array<std::size_t, 4> h{ 0, 0, 0, 0 };
-  for (const auto& kv : count)
-    ++h[std::min(kv.second, 3)];
+  for (std::size_t i = 0; i < f.size();)
+  {
+    std::size_t j = i + 1;
+    while (j < f.size() && f[j].Vertices == f[i].Vertices)
+      ++j;
+    ++h[std::min<std::size_t>(j - i, 3)];
+    i = j;
+  }
   return h;
 }
 
@@ -129,16 +125,12 @@ void TestFoldedCubeGetsValidMesh()
 std::size_t NonDelaunayFaces(const av::SimplexMesh& m, const Eigen::Matrix3d& s)
 {
   std::map<std::array<std::int32_t, 3>, std::vector<std::int32_t>> apex;
-  for (std::size_t c = 0; c < m.NumCells(); ++c)
-    for (int skip = 0; skip < 4; ++skip)
+  for (const av::CellFacet& f : av::SortedCellFacets(m))
+    for (int a = 0; a < 4; ++a)
     {
-      std::array<std::int32_t, 3> f;
-      int n = 0;
-      for (int a = 0; a < 4; ++a)
-        if (a != skip)
-          f[n++] = m.Cell(c)[a];
-      std::sort(f.begin(), f.end());
-      apex[f].push_back(m.Cell(c)[skip]);
+      const std::int32_t v = m.Cell(static_cast<std::size_t>(f.Cell))[a];
+      if (std::find(f.Vertices.begin(), f.Vertices.end(), v) == f.Vertices.end())
+        apex[f.Vertices].push_back(v);
     }
   std::size_t bad = 0;
   for (const auto& kv : apex)
