@@ -25,6 +25,9 @@ struct ValidDualResult
   std::size_t OutsideCells = 0;      ///< of those, removed: centroid outside the input domain
   std::size_t FlatBoundaryCells = 0; ///< removed: flat, on the boundary of what is kept
   MetricDelaunayFlipResult Flips;    ///< towards the metric's Delaunay criterion
+  std::size_t BoundarySlivers = 0;   ///< boundary tets below 10 deg in the metric, peeled after
+  double VolumeBeforePeel = 0.0;     ///< of the flipped mesh, before the sliver peel
+  double PeeledVolume = 0.0;         ///< what the peel removed (at most 0.2 % of it)
 };
 
 /**
@@ -47,7 +50,8 @@ void RecountFinalDual(const SimplexMesh& input, RestrictedDelaunayMesh& rdt, con
  * or nearly flat tets on the boundary of what is left (peeled until none is), then, with
  * `siteMetric` (one per site; nullptr: none), flipped towards the metric's Delaunay criterion
  * (FlipTowardsMetricDelaunay), which the restricted Delaunay dual approximates where it is
- * valid. Every tet of it is positive and every face is shared by at most two: no inverted cell
+ * valid, and rid of the boundary tets below 10 deg in the metric whose vertices are all on the
+ * boundary and in another tet (worst first, at most 0.2 % of the volume). Every tet of it is positive and every face is shared by at most two: no inverted cell
  * (but an interior flat one, rare) and no non-manifold face. The mesh improvement
  * (FinalMeshImprovement) then works on its worst elements. A valid dual (and any other kind of
  * mesh) is left as it is. Recounts `rdt` (RecountFinalDual) when replaced, and sets

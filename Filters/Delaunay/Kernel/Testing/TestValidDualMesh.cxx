@@ -106,6 +106,13 @@ void TestFoldedCubeGetsValidMesh()
             << m.NumCells() << " tets, volume " << vol << ", flips 2-3 " << r.ValidDual.Flips.NumFlips23
             << " 3-2 " << r.ValidDual.Flips.NumFlips32 << std::endl;
 
+  // The boundary sliver peel keeps the domain: it removes at most 0.2 % of the volume.
+  std::cout << "  peeled " << r.ValidDual.BoundarySlivers << " boundary sliver(s), "
+            << r.ValidDual.PeeledVolume << " of " << r.ValidDual.VolumeBeforePeel << std::endl;
+  AV_CHECK(r.ValidDual.PeeledVolume <= 2e-3 * r.ValidDual.VolumeBeforePeel);
+  AV_CHECK(r.ValidDual.BoundarySlivers == 0 || r.ValidDual.PeeledVolume > 0.0);
+  AV_CHECK_NEAR(vol, r.ValidDual.VolumeBeforePeel - r.ValidDual.PeeledVolume, 1e-12);
+
   // A valid dual is left as it is.
   av::RestrictedDelaunayMesh copy = d;
   copy.NumInverted = 0;
