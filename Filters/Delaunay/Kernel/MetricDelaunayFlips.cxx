@@ -145,7 +145,7 @@ private:
     return six > kFlatTolerance * std::pow(l2, 1.5);
   }
 
-  /// Positively ordered copy of (a, b, c, d), or an invalid marker (-1) if flat.
+  /// (a, b, c, d) ordered to be positive (a flat one is left to Valid to refuse).
   Tet Oriented(std::int32_t a, std::int32_t b, std::int32_t c, std::int32_t d) const
   {
     const double six = (P(b) - P(a)).dot((P(c) - P(a)).cross(P(d) - P(a)));
