@@ -57,15 +57,8 @@ av::SiteSet SampleSites(const av::SimplexMesh& mesh,
   MeshStageResult& r)
 {
   const av::Stopwatch sampleWatch;
-  av::ParticleSamplerOptions so;
-  so.NumSites = options.Sites;
-  so.Iterations = options.SampleIterations;
-  so.WarmupIterations = options.WarmupIterations;
-  so.Seed = options.Seed;
-  so.KernelWidthFactor = options.KernelWidthFactor;
-  so.PreserveSharpFeatures = options.PreserveSharpFeatures;
-  so.FeatureAngle = options.FeatureAngle;
-  av::ParticleSamplerResult sampled = av::SampleParticles(mesh, embedding, so);
+  av::ParticleSamplerResult sampled =
+    av::SampleParticles(mesh, embedding, SamplerOptionsOf(options));
   r.SampleSeconds = sampleWatch.Seconds();
   r.CornerSites = sampled.NumCornerSites;
   r.FeatureLineSites = sampled.NumFeatureLineSites;
@@ -258,6 +251,19 @@ std::size_t DefaultSitesFor(av::AnalyticPreset preset)
       return 4000;
   }
   return 1000;
+}
+
+av::ParticleSamplerOptions SamplerOptionsOf(const MeshStageOptions& options)
+{
+  av::ParticleSamplerOptions so;
+  so.NumSites = options.Sites;
+  so.Iterations = options.SampleIterations;
+  so.WarmupIterations = options.WarmupIterations;
+  so.Seed = options.Seed;
+  so.KernelWidthFactor = options.KernelWidthFactor;
+  so.PreserveSharpFeatures = options.PreserveSharpFeatures;
+  so.FeatureAngle = options.FeatureAngle;
+  return so;
 }
 
 MeshStageResult RunMeshStage(const av::SimplexMesh& mesh,

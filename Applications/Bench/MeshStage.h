@@ -5,6 +5,7 @@
 #define av_bench_MeshStage_h
 
 #include "AnalyticMetrics.h"
+#include "ParticleSampler.h"
 #include "SimplexMesh.h"
 
 #include <cstddef>
@@ -101,6 +102,9 @@ struct MeshStageResult
  * (options.Repair), and evaluates the dual against `metric` interpolated at the final sites.
  * Throws what the kernels throw.
  */
+/// The particle sampler's options of a mesh (or Voronoi) stage.
+av::ParticleSamplerOptions SamplerOptionsOf(const MeshStageOptions& options);
+
 MeshStageResult RunMeshStage(const av::SimplexMesh& mesh, const av::MetricField& metric,
   const av::Embedding& embedding, const MeshStageOptions& options);
 

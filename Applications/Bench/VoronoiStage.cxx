@@ -106,15 +106,7 @@ VoronoiStageResult RunVoronoiStage(const av::SimplexMesh& mesh,
 {
   VoronoiStageResult result;
   const av::Stopwatch sampleWatch;
-  av::ParticleSamplerOptions so;
-  so.NumSites = options.Sites;
-  so.Iterations = options.SampleIterations;
-  so.WarmupIterations = options.WarmupIterations;
-  so.Seed = options.Seed;
-  so.KernelWidthFactor = options.KernelWidthFactor;
-  so.PreserveSharpFeatures = options.PreserveSharpFeatures;
-  so.FeatureAngle = options.FeatureAngle;
-  const av::SiteSet sites = av::SampleParticles(mesh, embedding, so).Sites;
+  const av::SiteSet sites = av::SampleParticles(mesh, embedding, SamplerOptionsOf(options)).Sites;
   result.SampleSeconds = sampleWatch.Seconds();
   result.Sites = sites.NumSites();
   result.Elements = mesh.NumCells();
