@@ -6,6 +6,7 @@
 // nearest (brute force) to its site. Also: the same output on 1 and on all threads.
 #include "AnisoTestChecks.h"
 #include "RestrictedVoronoi.h"
+#include "VoronoiDiagramCompare.h"
 #include "VoronoiTestMeshes.h"
 
 #include <tbb/global_control.h>
@@ -20,62 +21,6 @@ using namespace av_test;
 namespace
 {
 
-template <class T>
-bool Same(const std::vector<T>& a, const std::vector<T>& b, const std::string& what)
-{
-  if (a.size() != b.size())
-  {
-    std::cerr << what << ": sizes " << a.size() << " vs " << b.size() << "\n";
-    return false;
-  }
-  for (std::size_t i = 0; i < a.size(); ++i)
-    if (!(a[i] == b[i]))
-    {
-      std::cerr << what << ": first difference at " << i << "\n";
-      return false;
-    }
-  return true;
-}
-
-// Every output field, exactly.
-bool SameDiagram(const av::RestrictedVoronoiDiagram& u,
-  const av::RestrictedVoronoiDiagram& f,
-  const std::string& name)
-{
-  bool ok = true;
-  ok = Same(u.PieceSite, f.PieceSite, name + " PieceSite") && ok;
-  ok = Same(u.PieceElement, f.PieceElement, name + " PieceElement") && ok;
-  ok = Same(u.PieceMeasure, f.PieceMeasure, name + " PieceMeasure") && ok;
-  ok = Same(u.PieceEmbeddedMeasure, f.PieceEmbeddedMeasure, name + " PieceEmbeddedMeasure") && ok;
-  ok = Same(u.PieceVertexOffsets, f.PieceVertexOffsets, name + " PieceVertexOffsets") && ok;
-  ok = Same(u.PieceFaceOffsets, f.PieceFaceOffsets, name + " PieceFaceOffsets") && ok;
-  ok = Same(u.Points, f.Points, name + " Points") && ok;
-  ok = Same(u.EmbeddedPoints, f.EmbeddedPoints, name + " EmbeddedPoints") && ok;
-  ok = Same(u.VertexPlanes, f.VertexPlanes, name + " VertexPlanes") && ok;
-  ok = Same(u.FaceOffsets, f.FaceOffsets, name + " FaceOffsets") && ok;
-  ok = Same(u.FaceVertices, f.FaceVertices, name + " FaceVertices") && ok;
-  ok = Same(u.FaceKind, f.FaceKind, name + " FaceKind") && ok;
-  ok = Same(u.FaceNeighbor, f.FaceNeighbor, name + " FaceNeighbor") && ok;
-  ok = Same(u.SiteMeasure, f.SiteMeasure, name + " SiteMeasure") && ok;
-  ok = Same(u.SiteEmbeddedMeasure, f.SiteEmbeddedMeasure, name + " SiteEmbeddedMeasure") && ok;
-  ok = Same(u.VoronoiVertexSites, f.VoronoiVertexSites, name + " VoronoiVertexSites") && ok;
-  ok = Same(u.VoronoiVertexElement, f.VoronoiVertexElement, name + " VoronoiVertexElement") && ok;
-  ok = Same(u.BoundaryDualFaces, f.BoundaryDualFaces, name + " BoundaryDualFaces") && ok;
-  ok = Same(u.ElementPieceOffsets, f.ElementPieceOffsets, name + " ElementPieceOffsets") && ok;
-  ok = Same(u.ElementVoronoiVertexOffsets,
-         f.ElementVoronoiVertexOffsets,
-         name + " ElementVoronoiVertexOffsets") &&
-    ok;
-  ok = Same(u.ElementBoundaryDualFaceOffsets,
-         f.ElementBoundaryDualFaceOffsets,
-         name + " ElementBoundaryDualFaceOffsets") &&
-    ok;
-  ok = Same(u.ElementNearestSite, f.ElementNearestSite, name + " ElementNearestSite") && ok;
-  ok = Same(u.ElementEmptyVisit, f.ElementEmptyVisit, name + " ElementEmptyVisit") && ok;
-  ok = Same(u.PieceSecurityRadius2, f.PieceSecurityRadius2, name + " PieceSecurityRadius2") && ok;
-  ok = Same(u.PieceLastCutDistance, f.PieceLastCutDistance, name + " PieceLastCutDistance") && ok;
-  return ok;
-}
 
 // Measure of element c in input space (Gram determinant, independent of the kernel).
 double ElementMeasure(const av::SimplexMesh& m, std::size_t c)
