@@ -5,6 +5,7 @@
 // every interior face stays shared by two tets, fixed vertices stay, the worst quality never
 // drops; and the mutation hook that accepts worsening operations is caught by those checks.
 #include "AnisoTestChecks.h"
+#include "PropertyChecks.h"
 #include "MeshImprovement.h"
 #include "MeshTopology.h"
 #include "StructuredMeshes.h"
@@ -15,6 +16,8 @@
 #include <map>
 #include <random>
 #include <vector>
+
+using av_test::Checks;
 
 namespace
 {
@@ -272,19 +275,6 @@ av::SimplexMesh JitteredGrid(int n, unsigned seed)
       }
   return m;
 }
-
-struct Checks
-{
-  bool Ok = true;
-  void Expect(bool cond, const char* what)
-  {
-    if (!cond)
-    {
-      Ok = false;
-      std::cerr << "  property broken: " << what << std::endl;
-    }
-  }
-};
 
 // The properties every run must keep; returns them instead of failing, so the mutation test
 // can show they catch a worsening run.

@@ -6,6 +6,7 @@
 // by two triangles (one on the 2D boundary), sphere vertices stay on the sphere, the worst
 // quality never drops; the mutation hook that accepts worsening moves breaks those checks.
 #include "AnisoTestChecks.h"
+#include "PropertyChecks.h"
 #include "MeshImprovement.h"
 #include "MeshTopology.h"
 #include "StructuredMeshes.h"
@@ -18,6 +19,8 @@
 #include <random>
 #include <utility>
 #include <vector>
+
+using av_test::Checks;
 
 namespace
 {
@@ -82,19 +85,6 @@ double Area(const av::SimplexMesh& m)
     s += av::CellMeasure(m, c);
   return s;
 }
-
-struct Checks
-{
-  bool Ok = true;
-  void Expect(bool cond, const char* what)
-  {
-    if (!cond)
-    {
-      Ok = false;
-      std::cerr << "  property broken: " << what << std::endl;
-    }
-  }
-};
 
 // 2D: no inverted triangle; every interior edge shared by two triangles; the boundary kept as a
 // curve (each boundary edge after lies on one before, the same total length), boundary and fixed
