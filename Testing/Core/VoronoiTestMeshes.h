@@ -99,6 +99,31 @@ inline av::SimplexMesh KuhnGrid(int nx, int ny, int nz, const double lo[3], cons
   return m;
 }
 
+/// Measure of cell c with its vertices at `pts` (NumPoints x dim, dim <= 16) through the Gram
+/// determinant: independent of the kernels' measures.
+inline double GramCellMeasure(const av::SimplexMesh& m, const double* pts, int dim, std::size_t c)
+{
+  const int k = m.SimplexDim;
+  const std::int32_t* cell = m.Cell(c);
+  double e[3][16] = {};
+  for (int a = 0; a < k; ++a)
+    for (int d = 0; d < dim; ++d)
+      e[a][d] = pts[cell[a + 1] * dim + d] - pts[cell[0] * dim + d];
+  double G[3][3];
+  for (int a = 0; a < k; ++a)
+    for (int b = 0; b < k; ++b)
+    {
+      G[a][b] = 0.0;
+      for (int d = 0; d < dim; ++d)
+        G[a][b] += e[a][d] * e[b][d];
+    }
+  const double det = k == 2 ? G[0][0] * G[1][1] - G[0][1] * G[1][0]
+                            : G[0][0] * (G[1][1] * G[2][2] - G[1][2] * G[2][1]) -
+      G[0][1] * (G[1][0] * G[2][2] - G[1][2] * G[2][0]) +
+      G[0][2] * (G[1][0] * G[2][1] - G[1][1] * G[2][0]);
+  return std::sqrt(std::max(0.0, det)) / (k == 2 ? 2.0 : 6.0);
+}
+
 /// Embedding: input coordinates, then extra(x, column) for columns AmbientDim..dim-1.
 inline av::Embedding MakeEmbedding(const av::SimplexMesh& m, int dim,
   const std::function<double(const double*, int)>& extra)

@@ -31,28 +31,8 @@ double MeshMeasure(const av::SimplexMesh& m, const double* pts, int dim)
 {
   // Sum of element measures through the Gram determinant, independent of the RVD code.
   double total = 0.0;
-  const int k = m.SimplexDim;
   for (std::size_t c = 0; c < m.NumCells(); ++c)
-  {
-    const std::int32_t* cell = m.Cell(c);
-    double e[3][16];
-    for (int a = 0; a < k; ++a)
-      for (int d = 0; d < dim; ++d)
-        e[a][d] = pts[cell[a + 1] * dim + d] - pts[cell[0] * dim + d];
-    double G[3][3];
-    for (int a = 0; a < k; ++a)
-      for (int b = 0; b < k; ++b)
-      {
-        G[a][b] = 0.0;
-        for (int d = 0; d < dim; ++d)
-          G[a][b] += e[a][d] * e[b][d];
-      }
-    const double det = k == 2 ? G[0][0] * G[1][1] - G[0][1] * G[1][0]
-                              : G[0][0] * (G[1][1] * G[2][2] - G[1][2] * G[2][1]) -
-        G[0][1] * (G[1][0] * G[2][2] - G[1][2] * G[2][0]) +
-        G[0][2] * (G[1][0] * G[2][1] - G[1][1] * G[2][0]);
-    total += std::sqrt(std::max(0.0, det)) / (k == 2 ? 2.0 : 6.0);
-  }
+    total += GramCellMeasure(m, pts, dim, c);
   return total;
 }
 

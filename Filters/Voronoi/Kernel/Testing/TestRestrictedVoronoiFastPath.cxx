@@ -22,30 +22,6 @@ namespace
 {
 
 
-// Measure of element c in input space (Gram determinant, independent of the kernel).
-double ElementMeasure(const av::SimplexMesh& m, std::size_t c)
-{
-  const int k = m.SimplexDim, dim = m.AmbientDim;
-  const std::int32_t* cell = m.Cell(c);
-  double e[3][3] = {};
-  for (int a = 0; a < k; ++a)
-    for (int d = 0; d < dim; ++d)
-      e[a][d] = m.Point(cell[a + 1])[d] - m.Point(cell[0])[d];
-  double G[3][3];
-  for (int a = 0; a < k; ++a)
-    for (int b = 0; b < k; ++b)
-    {
-      G[a][b] = 0.0;
-      for (int d = 0; d < dim; ++d)
-        G[a][b] += e[a][d] * e[b][d];
-    }
-  const double det = k == 2 ? G[0][0] * G[1][1] - G[0][1] * G[1][0]
-                            : G[0][0] * (G[1][1] * G[2][2] - G[1][2] * G[2][1]) -
-      G[0][1] * (G[1][0] * G[2][2] - G[1][2] * G[2][0]) +
-      G[0][2] * (G[1][0] * G[2][1] - G[1][1] * G[2][0]);
-  return std::sqrt(std::max(0.0, det)) / (k == 2 ? 2.0 : 6.0);
-}
-
 double Dist2(const double* a, const double* b, int dim)
 {
   double s = 0.0;
@@ -103,7 +79,7 @@ std::size_t CheckAgainstFullClipping(const av::SimplexMesh& m,
       double sum = 0.0;
       for (std::int64_t p = p0; p < p1; ++p)
         sum += b.PieceMeasure[p];
-      const double ref = ElementMeasure(m, c);
+      const double ref = GramCellMeasure(m, m.Points.data(), m.AmbientDim, c);
       if (std::abs(sum - ref) > 1e-12 * ref)
         ++badPartition;
       if (p1 - p0 != 1)
