@@ -36,7 +36,7 @@ struct MeshStageOptions
   int LloydIterations = 0;        ///< Lloyd (CVT) steps after sampling (av::RelaxSitesLloyd)
   bool Repair = true;             ///< insert sites to repair inverted dual elements
   int MaxRepairRounds = 10;
-  bool RepairNonManifold = false; ///< also repair non-manifold faces
+  bool RepairNonManifold = true;  ///< also repair non-manifold faces
   bool ValidDual = true;          ///< replace a still invalid volume dual (ValidDualMesh.h)
   /// Site improvement rounds before the repair (av::ImproveSites: ODT steps and sliver
   /// pushes, then RVD + RDT again); 0 = the paper's pipeline.

@@ -74,7 +74,7 @@ struct Args
   int Lloyd = 0;             // Lloyd (CVT) steps after sampling
   bool Repair = true;        // repair inverted dual elements by site insertion
   int RepairRounds = 10;
-  bool RepairNonManifold = false;
+  bool RepairNonManifold = true;
   bool ValidDual = true;
   int ImproveRounds = 1;     // site improvement rounds before the repair (0 = paper)
   int OdtIterations = 3;     // ODT steps per improvement round
@@ -719,7 +719,8 @@ void Usage(std::ostream& os)
         "  --no-repair       mesh: keep inverted dual elements (default: insert sites at their\n"
         "                    Voronoi vertices until none is left)\n"
         "  --repair-rounds N mesh: insertion rounds at most (default 10)\n"
-        "  --repair-nonmanifold  mesh: also repair non-manifold faces of the dual\n"
+        "  --no-repair-nonmanifold  mesh: leave non-manifold faces of the dual (default: insert\n"
+        "                    sites at the Voronoi vertices around them too)\n"
         "  --no-valid-dual   mesh: keep a volume dual still invalid after the repair (default:\n"
         "                    Delaunay of its sites, carved, flipped towards the metric)\n"
         "  --improve-rounds N  mesh: site improvement rounds before the repair: ODT steps\n"
@@ -861,8 +862,10 @@ bool Parse(int argc, char** argv, Args& a)
       a.ImproveMesh = false;
     else if (k == "--repair-rounds")
       a.RepairRounds = std::stoi(next());
-    else if (k == "--repair-nonmanifold")
+    else if (k == "--repair-nonmanifold") // the default
       a.RepairNonManifold = true;
+    else if (k == "--no-repair-nonmanifold")
+      a.RepairNonManifold = false;
     else if (k == "--no-valid-dual")
       a.ValidDual = false;
     else if (k == "--improve-rounds")

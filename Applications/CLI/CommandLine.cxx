@@ -79,7 +79,8 @@ meshing:
   --no-repair              keep inverted mesh elements (default: insert sites at their dual
                            Voronoi vertices until none is left, paper §4.2)
   --repair-rounds N        insertion rounds at most (default 10)
-  --repair-nonmanifold     also repair faces shared by more than two mesh elements
+  --no-repair-nonmanifold  do not repair faces shared by more than two mesh elements
+                           (default: insert sites there too, so the mesh is a manifold)
   --no-valid-dual          keep a volume mesh that is still invalid after the repair (default:
                            replace it by the Delaunay tetrahedralization of its sites, carved
                            to the domain and flipped towards the metric's Delaunay criterion)
@@ -298,8 +299,10 @@ Options ParseCommandLine(int argc, char* argv[])
       o.ImproveRounds = ParseInt(a, next());
     else if (a == "--odt-iterations")
       o.OdtIterations = ParseInt(a, next());
-    else if (a == "--repair-nonmanifold")
+    else if (a == "--repair-nonmanifold") // the default; kept so older scripts still run
       o.RepairNonManifold = true;
+    else if (a == "--no-repair-nonmanifold")
+      o.RepairNonManifold = false;
     else if (a == "--no-valid-dual")
       o.ValidDual = false;
     else if (a == "--no-mesh-improvement")

@@ -26,7 +26,7 @@ struct Options
   double MaxStretch = 10.0; ///< curvature: cap on s2 / s1 (0 = none)
   bool TensorAsMetric = false, Clamp = false, Quiet = false, Repair = true;
   bool ValidDual = true;
-  bool RepairNonManifold = false, DoubleSolve = false, ImproveMesh = true;
+  bool RepairNonManifold = true, DoubleSolve = false, ImproveMesh = true;
   /// Metric preparation (on for tensor:ARRAY; metric, preset and .sol inputs only when a
   /// preparation option is given, PrepareAsked). SitesGiven: --sites was on the command line.
   double HMin = 0.0, HMax = 0.0, HGrad = 1.3, SizeBlend = 0.5;

@@ -27,7 +27,7 @@
  * Repair (paper §4.2, RepairInverted, default on): while an element is inverted, one site is
  * inserted at the Voronoi vertex dual to each inverted element (its circumcenter in the
  * embedding, restricted to the domain) and the diagram recomputed, at most MaxRepairRounds
- * times (default 10). RepairNonManifold (default off) also repairs faces shared by more than
+ * times (default 10). RepairNonManifold (default on) also repairs faces shared by more than
  * two elements. What remains is reported with a warning. A volume dual still invalid then
  * (inverted or flat elements, faces of more than two) is replaced, with ValidDual (default on),
  * by a mesh of the same sites that is valid by construction (Delaunay tetrahedralization of the
@@ -130,7 +130,7 @@ protected:
 
   bool RepairInverted = true;
   bool ImproveMesh = true;
-  bool RepairNonManifold = false;
+  bool RepairNonManifold = true;
   bool ValidDual = true;
   int MaxRepairRounds = 10;
   int ImprovementRounds = 1;

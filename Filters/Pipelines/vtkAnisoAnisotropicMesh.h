@@ -15,7 +15,7 @@
  * NumUnusedSites) and "L_avg", "L_max", "MetricScale".
  * Output 1 (vtkTable): histogram of the per-cell min angles ("MinAngle" bin center, "Count").
  * Inverted elements are repaired by site insertion as in vtkAnisoRestrictedDelaunay
- * (RepairInverted, default on; MaxRepairRounds, default 10; RepairNonManifold, default off;
+ * (RepairInverted, default on; MaxRepairRounds, default 10; RepairNonManifold, default on;
  * ValidDual, default on: a volume mesh still invalid is replaced by a valid one of its sites),
  * so the mesh may have more vertices than NumberOfCells; field data NumInsertedSites,
  * RepairRounds, NumInvertedBeforeRepair.
@@ -85,7 +85,7 @@ protected:
   const char* GetUserLabel() const override { return "Aniso Anisotropic Mesh"; }
 
   bool RepairInverted = true;
-  bool RepairNonManifold = false;
+  bool RepairNonManifold = true;
   bool ValidDual = true;
   int MaxRepairRounds = 10;
   int ImprovementRounds = 2;

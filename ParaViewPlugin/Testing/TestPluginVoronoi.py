@@ -61,7 +61,7 @@ print("RDT: %d tets, inverted %g, non-manifold %g" % (
 # Repair properties (defaults): no inverted element is left; the points are the 80 sampled
 # sites followed by the inserted ones.
 assert delaunay.RepairInverted == 1 and delaunay.MaxRepairRounds == 10
-assert delaunay.RepairNonManifold == 0
+assert delaunay.RepairNonManifold == 1
 inserted = int(field(delaunay, "NumInsertedSites"))
 assert field(delaunay, "NumInverted") == 0
 assert inserted == 0 or field(delaunay, "NumInvertedBeforeRepair") > 0

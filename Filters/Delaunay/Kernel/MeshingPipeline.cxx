@@ -141,7 +141,7 @@ MeshingPipelineResult RunMeshingPipeline(const SimplexMesh& mesh,
   {
     watch.Restart();
     const RestrictedDelaunayMesh& dual = result.Repaired.Delaunay;
-    const bool invalid = dual.NumInverted > 0 || dual.NumNonManifoldFaces > 0;
+    const bool invalid = DualNeedsReplacement(dual);
     const MetricField siteMetric = invalid && options.Metric
       ? InterpolateMetricAtSites(mesh, *options.Metric, result.Repaired.Sites)
       : MetricField();

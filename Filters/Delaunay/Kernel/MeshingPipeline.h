@@ -42,7 +42,7 @@ struct MeshingPipelineOptions
   /// compute and report (RepairRestrictedDelaunay with MaxRounds 0).
   bool Repair = true;
   int MaxRepairRounds = 10;       ///< insertion rounds at most
-  bool RepairNonManifold = false; ///< also repair faces shared by more than two elements
+  bool RepairNonManifold = true;  ///< also repair faces shared by more than two elements
   /// Volumes: when the repaired dual still has inverted / flat cells or non-manifold faces,
   /// replace it by the Delaunay tetrahedralization of its sites carved to the domain
   /// (MakeDualValid, ValidDualMesh.h), valid by construction. false: keep the invalid dual.

@@ -234,7 +234,7 @@ DelaunayRepairResult Repair(const SimplexMesh& mesh, const Embedding& embedding,
   SiteSet previousSites; // sites of out.Voronoi after an insertion round
   bool havePrevious = false;
   BestState best;
-  std::size_t bestBad = 0;
+  std::pair<std::size_t, std::size_t> bestBad{ 0, 0 };
   int roundsSinceBest = 0;
   for (int round = 0;; ++round)
   {
@@ -263,11 +263,15 @@ DelaunayRepairResult Repair(const SimplexMesh& mesh, const Embedding& embedding,
       out.InitialInverted = rdt.NumInverted;
       out.InitialNonManifoldFaces = rdt.NumNonManifoldFaces;
     }
-    const bool nonManifold = options.RepairNonManifold && rdt.NumNonManifoldFaces > 0;
-    const std::size_t numBad =
-      rdt.NumInverted + (options.RepairNonManifold ? rdt.NumNonManifoldFaces : 0);
+    // Inverted cells first: non-manifold faces are repaired only once none is left, and a
+    // state is better when it has fewer inverted cells, then fewer non-manifold faces. So the
+    // non-manifold repair never ends with more inverted cells than the inverted repair alone
+    // (on a folded embedding its insertions can invert cells that were fine).
+    const std::size_t numNonManifold = options.RepairNonManifold ? rdt.NumNonManifoldFaces : 0;
+    const bool nonManifold = rdt.NumInverted == 0 && numNonManifold > 0;
+    const std::pair<std::size_t, std::size_t> numBad{ rdt.NumInverted, numNonManifold };
     out.InvertedPerRound.push_back(rdt.NumInverted);
-    out.Converged = rdt.NumInverted == 0 && !nonManifold;
+    out.Converged = rdt.NumInverted == 0 && numNonManifold == 0;
     const bool currentIsBest = round == 0 || numBad < bestBad;
     if (currentIsBest)
     {

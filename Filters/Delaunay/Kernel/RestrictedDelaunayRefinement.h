@@ -23,14 +23,16 @@ struct DelaunayRepairOptions
   /// clipped again) and recomputes its dual.
   int MaxRounds = 10;
   /// Also insert at the Voronoi vertices of the cells around faces shared by more than two
-  /// cells (the dual is then a manifold where it converges).
-  bool RepairNonManifold = false;
+  /// cells (the dual is then a manifold where it converges). On by default: a non-manifold
+  /// dual is invalid (surfaces: holes and pinched edges; volumes: the valid-dual fallback).
+  bool RepairNonManifold = true;
   /// A candidate closer than this fraction of its circumradius (embedding distance) to a
   /// candidate accepted in the same round is skipped: nearly coincident Voronoi vertices
   /// (almost co-spherical sites) would otherwise give two sites at almost the same place.
   double MinDistanceFraction = 0.25;
   /// Stop after this many rounds in a row that do not lower the fewest bad elements seen so
-  /// far (inverted, plus non-manifold faces with RepairNonManifold), and return that best state: on a poor embedding insertions can create more inverted
+  /// far (fewest inverted, then, with RepairNonManifold, fewest non-manifold faces; those are
+  /// repaired only once no cell is inverted), and return that best state: on a poor embedding insertions can create more inverted
   /// elements than they remove (the sphere-cos preset: 283 -> 523 -> 765 ...).
   int StallRounds = 2;
   /// Options of every restricted Voronoi computation (ElementBegin/End must be the defaults).

@@ -251,14 +251,22 @@ void RecountFinalDual(const SimplexMesh& input, RestrictedDelaunayMesh& rdt, con
   rdt.NumUnusedSites = static_cast<std::size_t>(std::count(used.begin(), used.end(), 0));
 }
 
+bool DualNeedsReplacement(const RestrictedDelaunayMesh& rdt)
+{
+  const double sites = static_cast<double>(rdt.Points.size() / 3);
+  return rdt.NumInverted > 0 || rdt.NumNonManifoldFaces > 0 ||
+    static_cast<double>(rdt.NumUnusedSites) > kMaxUnusedSiteFraction * sites;
+}
+
 ValidDualResult MakeDualValid(const SimplexMesh& mesh, const std::vector<std::int32_t>& adjacency,
   const SiteSet& sites, const MetricField* siteMetric, RestrictedDelaunayMesh& rdt)
 {
   ValidDualResult r;
   r.InvalidCells = rdt.NumInverted;
   r.NonManifoldFaces = rdt.NumNonManifoldFaces;
+  r.UnusedSites = rdt.NumUnusedSites;
   if (mesh.SimplexDim != 3 || mesh.AmbientDim != 3 || rdt.SimplexDim != 3 ||
-    (rdt.NumInverted == 0 && rdt.NumNonManifoldFaces == 0) || rdt.Points.size() < 12)
+    !DualNeedsReplacement(rdt) || rdt.Points.size() < 12)
     return r;
 
   SimplexMesh dt;

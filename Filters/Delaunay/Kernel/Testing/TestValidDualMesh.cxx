@@ -70,6 +70,49 @@ av::SimplexMesh AsMesh(const av::RestrictedDelaunayMesh& d)
 
 std::size_t NonDelaunayFaces(const av::SimplexMesh& m, const Eigen::Matrix3d& s);
 
+/// `dual` without the cells of every `stride`-th site (those sites are then in no cell).
+av::RestrictedDelaunayMesh WithoutCellsOfSites(const FoldedCase& c,
+  const av::RestrictedDelaunayMesh& dual, const av::SiteSet& sites, std::size_t stride)
+{
+  av::RestrictedDelaunayMesh holed = dual;
+  std::vector<std::int32_t> cells;
+  for (std::size_t t = 0; t < dual.NumCells(); ++t)
+  {
+    const std::int32_t* v = dual.Cells.data() + 4 * t;
+    if (std::none_of(v, v + 4, [&](std::int32_t s) { return s % stride == 0; }))
+      cells.insert(cells.end(), v, v + 4);
+  }
+  holed.Cells = std::move(cells);
+  av::RecountFinalDual(c.Mesh, holed, sites);
+  return holed;
+}
+
+/// A dual of positive cells without non-manifold faces but with holes (sites in no cell, as a
+/// domain thinner than the cells gives) is replaced when more than 1 % of its sites are left
+/// out, and kept below that.
+void TestHoledDualIsReplaced(const FoldedCase& c, const av::RestrictedDelaunayMesh& valid,
+  const av::SiteSet& sites)
+{
+  const std::size_t numSites = valid.Points.size() / 3;
+  const std::vector<std::int32_t> adjacency = av::ComputeElementAdjacency(c.Mesh);
+  av::RestrictedDelaunayMesh holed = WithoutCellsOfSites(c, valid, sites, 10);
+  AV_CHECK(holed.NumInverted == 0 && holed.NumNonManifoldFaces == 0);
+  AV_CHECK_MSG(holed.NumUnusedSites >= numSites / 10, holed.NumUnusedSites << " unused");
+  AV_CHECK(av::DualNeedsReplacement(holed));
+  const std::size_t holedCells = holed.NumCells();
+  const av::ValidDualResult filled = av::MakeDualValid(c.Mesh, adjacency, sites, nullptr, holed);
+  AV_CHECK(filled.Replaced && filled.UnusedSites >= numSites / 10);
+  AV_CHECK_MSG(holed.NumUnusedSites == 0 && holed.NumInverted == 0 &&
+      holed.NumNonManifoldFaces == 0 && holed.NumCells() > holedCells,
+    holed.NumUnusedSites << " unused site(s), " << holed.NumCells() << " cells");
+
+  // One site of 150 left out (below 1 %) is not a reason to replace the dual.
+  av::RestrictedDelaunayMesh one = WithoutCellsOfSites(c, valid, sites, numSites + 1);
+  AV_CHECK(one.NumUnusedSites == 1 && !av::DualNeedsReplacement(one));
+  const std::vector<std::int32_t> before = one.Cells;
+  AV_CHECK(!av::MakeDualValid(c.Mesh, adjacency, sites, nullptr, one).Replaced && one.Cells == before);
+}
+
 void TestFoldedCubeGetsValidMesh()
 {
   const FoldedCase c = FoldedCube(0.2, 8.0, 150, 3);
@@ -118,6 +161,7 @@ void TestFoldedCubeGetsValidMesh()
   copy.NumInverted = 0;
   const av::ValidDualResult again = av::MakeDualValid(c.Mesh, {}, r.Repaired.Sites, nullptr, copy);
   AV_CHECK(!again.Replaced && copy.Cells == d.Cells);
+  TestHoledDualIsReplaced(c, d, r.Repaired.Sites);
   // With a constant metric the Delaunay tetrahedralization in the mean metric is already the
   // metric's Delaunay mesh: no face violates the criterion, no flip is needed.
   Eigen::Matrix3d root = Eigen::Matrix3d::Identity();
