@@ -46,6 +46,15 @@ namespace
 using avbench::JsonLine;
 const double kNaN = std::numeric_limits<double>::quiet_NaN();
 
+/// The bench's metric preparation defaults: the kernel's, with the CLI's cells across thin
+/// parts (vtkAnisoTensorToMetric's MinCellsAcross default).
+av::MetricPreparationOptions DefaultPreparation()
+{
+  av::MetricPreparationOptions o;
+  o.MinCellsAcross = 1.25;
+  return o;
+}
+
 struct Args
 {
   std::string CaseName;
@@ -88,7 +97,7 @@ struct Args
   // Metric preparation (presets keep their metric unless one of these is given).
   bool Prepare = false;
   bool NoPrepare = false; // real tensor cases: --no-prepare-metric keeps the raw metric
-  av::MetricPreparationOptions Preparation;
+  av::MetricPreparationOptions Preparation = DefaultPreparation();
   double MaxStretch = 0.0;    // surface cases: curvature metric cap (0: the case's own)
   double Adapt = 0.0;        // L_bg of the adapted background mesh (0 = the preset's grid)
   int RvdRepeats = 3;        // voronoi stage: best of N
@@ -382,6 +391,8 @@ void ReportEmbedding(const Args& a, const Case& c, const av::EmbeddingOptions& o
     out.Set("metric_prep_max_change", c.Prep.Deviation.Maximum);
     out.Set("metric_prep_changed_fraction", c.Prep.Deviation.ChangedFraction);
     out.Set("metric_prep_graded_vertices", c.Prep.NumGraded);
+    out.Set("metric_prep_thickness_limited", c.Prep.NumThicknessLimited);
+    out.Set("metric_prep_cells_across", c.Prep.CellsAcross);
     out.Set("metric_implied_sites", c.Prep.ImpliedSites);
   }
   out.Set("embed_seconds", embedSeconds);
@@ -741,6 +752,7 @@ void Usage(std::ostream& os)
         "  --prepare-metric  prepare the preset's metric for the sites (gradation 1.3), as do\n"
         "  --hmin H --hmax H --hgrad B --size-mode tensor|uniform|blend --size-blend A\n"
         "                    (--no-gradation: none); adds L_avg_raw, metric_prep_* keys\n"
+        "  --min-cells-across K  cells across thin parts of volumes (default 1.25, 0 = off)\n"
         "  --no-prepare-metric  real tensor cases (prepared by default, as the CLI does):\n"
         "                    the raw metric\n"
         "  --max-stretch S   surface cases: cap on the curvature metric's stretch ratio\n"
@@ -899,6 +911,11 @@ bool Parse(int argc, char** argv, Args& a)
       const double v = std::stod(next());
       av::MetricPreparationOptions& p = a.Preparation;
       (k == "--hmin" ? p.HMin : k == "--hmax" ? p.HMax : k == "--hgrad" ? p.GradationFactor : p.SizeBlend) = v;
+      a.Prepare = true;
+    }
+    else if (k == "--min-cells-across")
+    {
+      a.Preparation.MinCellsAcross = std::stod(next());
       a.Prepare = true;
     }
     else if (k == "--size-mode")

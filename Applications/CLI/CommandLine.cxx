@@ -62,6 +62,8 @@ of these options is given; lengths in the input's units, the metric first normal
 unit length is one of the --sites output cells):
   --hmin H, --hmax H       smallest / largest size (default 0 = no limit)
   --hgrad B                gradation: sizes grow by at most ~B per cell (default 1.3, MMG's)
+  --min-cells-across K     volumes: at least K cells across thin parts of the domain
+                           (default 1.25, 0 = off; lowered if they alone need more --sites)
   --no-gradation           no gradation
   --size-mode MODE         tensor (sizes from the tensor, default), uniform (shape only, equal
                            sizes) or blend (det M = det(M_tensor)^A, A from --size-blend)
@@ -158,6 +160,8 @@ void CheckOptions(const Options& o)
     Fail("--hmin and --hmax must be >= 0 and --hmin <= --hmax", 2);
   if (!(o.HGrad > 1.0 && o.HGrad <= 1000.0))
     Fail("--hgrad must be in (1, 1000]", 2);
+  if (!(o.MinCellsAcross >= 0 && o.MinCellsAcross <= 100))
+    Fail("--min-cells-across must be in [0, 100]", 2);
   if (o.SizeMode != "tensor" && o.SizeMode != "uniform" && o.SizeMode != "blend")
     Fail("--size-mode must be tensor, uniform or blend", 2);
   if (!(o.SizeBlend >= 0 && o.SizeBlend <= 1))
@@ -231,6 +235,8 @@ Options ParseCommandLine(int argc, char* argv[])
       o.Sites = ParseInt(a, next());
       o.SitesGiven = true;
     }
+    else if (a == "--min-cells-across")
+      o.MinCellsAcross = ParseDouble(a, next());
     else if (a == "--hmin" || a == "--hmax" || a == "--hgrad" || a == "--size-blend")
     {
       const double v = ParseDouble(a, next());

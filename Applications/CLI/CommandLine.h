@@ -29,7 +29,7 @@ struct Options
   bool RepairNonManifold = true, DoubleSolve = false, ImproveMesh = true;
   /// Metric preparation (on for tensor:ARRAY; metric, preset and .sol inputs only when a
   /// preparation option is given, PrepareAsked). SitesGiven: --sites was on the command line.
-  double HMin = 0.0, HMax = 0.0, HGrad = 1.3, SizeBlend = 0.5;
+  double HMin = 0.0, HMax = 0.0, HGrad = 1.3, SizeBlend = 0.5, MinCellsAcross = 1.25;
   std::string SizeMode = "tensor";
   bool Gradation = true, PrepareAsked = false, SitesGiven = false;
 };

@@ -220,6 +220,7 @@ void SetPreparation(const Options& o, vtkAnisoTensorToMetric* m)
   m->SetNumberOfSites(o.Sites);
   m->SetHMin(o.HMin);
   m->SetHMax(o.HMax);
+  m->SetMinCellsAcross(o.MinCellsAcross);
   m->SetGradation(o.Gradation);
   m->SetGradationFactor(o.HGrad);
 }

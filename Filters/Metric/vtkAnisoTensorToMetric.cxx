@@ -503,6 +503,7 @@ bool vtkAnisoTensorToMetric::Prepare(vtkDataSet* input,
   o.TargetSites = this->NumberOfSites;
   o.HMin = this->HMin;
   o.HMax = this->HMax;
+  o.MinCellsAcross = this->MinCellsAcross;
   o.Gradation = this->Gradation;
   o.GradationFactor = this->GradationFactor;
   o.Dimension = dimension;
@@ -528,7 +529,8 @@ bool vtkAnisoTensorToMetric::Prepare(vtkDataSet* input,
   result.Metric = std::move(prep.Metric);
   result.StretchRatio = std::move(prep.StretchRatio);
   result.GlobalScale *= prep.Scale * back;
-  this->CellUnitScale = prep.Scale * back == 1.0 ? 1.0 : prep.Scale;
+  // Output units times CellUnitScale are cell units: the factor undone above, or 1.
+  this->CellUnitScale = this->ApplyGlobalScale ? prep.Scale : 1.0;
   av::EigenvalueRange(result.Metric, dimension == 2, result.MinEigenvalue, result.MaxEigenvalue);
   const auto range = std::minmax_element(result.StretchRatio.begin(), result.StretchRatio.end());
   result.MinStretch = *range.first;
@@ -538,10 +540,11 @@ bool vtkAnisoTensorToMetric::Prepare(vtkDataSet* input,
   this->ChangedFraction = prep.Deviation.ChangedFraction;
   this->ImpliedSites = prep.ImpliedSites;
   this->NumberOfGradedPoints = static_cast<vtkIdType>(prep.NumGraded);
-  const double figures[5] = { prep.Deviation.Maximum, prep.Complexity,
+  const double figures[7] = { prep.Deviation.Maximum, prep.Complexity,
     static_cast<double>(prep.NumHMinClamped), static_cast<double>(prep.NumHMaxClamped),
-    static_cast<double>(prep.GradationSweeps) };
-  std::copy(figures, figures + 5, this->PreparationFigures);
+    static_cast<double>(prep.GradationSweeps), prep.CellsAcross,
+    static_cast<double>(prep.NumThicknessLimited) };
+  std::copy(figures, figures + 7, this->PreparationFigures);
   return true;
 }
 
@@ -646,6 +649,8 @@ void vtkAnisoTensorToMetric::WriteOutput(const av::TensorToMetricResult& result,
     AddFieldValue(fd, "NumHMinClamped", this->PreparationFigures[2]);
     AddFieldValue(fd, "NumHMaxClamped", this->PreparationFigures[3]);
     AddFieldValue(fd, "GradationSweeps", this->PreparationFigures[4]);
+    AddFieldValue(fd, "CellsAcross", this->PreparationFigures[5]);
+    AddFieldValue(fd, "NumThicknessLimited", this->PreparationFigures[6]);
   }
 }
 
@@ -673,6 +678,7 @@ void vtkAnisoTensorToMetric::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NumberOfSites: " << this->NumberOfSites << "\n";
   os << indent << "HMin: " << this->HMin << "\n";
   os << indent << "HMax: " << this->HMax << "\n";
+  os << indent << "MinCellsAcross: " << this->MinCellsAcross << "\n";
   os << indent << "Gradation: " << this->Gradation << "\n";
   os << indent << "GradationFactor: " << this->GradationFactor << "\n";
 }

@@ -202,6 +202,15 @@ public:
   ///@}
 
   ///@{
+  /// Volumes and flat 2D domains: at least this many cells across thin parts of the domain
+  /// (av::MetricPreparationOptions::MinCellsAcross, chords along 13 directions; default 1.25,
+  /// 0 = off). Field data "CellsAcross" (lowered where the thin parts alone would need more
+  /// than NumberOfSites) and "NumThicknessLimited".
+  vtkSetClampMacro(MinCellsAcross, double, 0.0, 100.0);
+  vtkGetMacro(MinCellsAcross, double);
+  ///@}
+
+  ///@{
   /// Bounded size growth per unit metric length (default on) with factor GradationFactor
   /// (MMG's hgrad, > 1, default 1.3).
   vtkSetMacro(Gradation, bool);
@@ -258,6 +267,7 @@ protected:
   int NumberOfSites = 2000;
   double HMin = 0.0;
   double HMax = 0.0;
+  double MinCellsAcross = 1.25;
   bool Gradation = true;
   double GradationFactor = 1.3;
 
@@ -275,7 +285,7 @@ protected:
   double ImpliedSites = 0.0;
   vtkIdType NumberOfGradedPoints = 0;
   double CellUnitScale = 1.0; ///< factor from the output metric to cell units
-  double PreparationFigures[5] = { 0, 0, 0, 0, 0 }; ///< max change, complexity, clamps, sweeps
+  double PreparationFigures[7] = { 0, 0, 0, 0, 0, 0, 0 }; ///< max change, complexity, clamps, sweeps, thickness
 
 private:
 #ifndef __VTK_WRAP__

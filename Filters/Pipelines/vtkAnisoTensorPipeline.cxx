@@ -273,6 +273,7 @@ vtkSmartPointer<vtkDataSet> vtkAnisoTensorPipeline::RunMetricStages(vtkDataSet* 
     tensorToMetric->SetSizeBlend(this->SizeBlend);
     tensorToMetric->SetHMin(this->HMin);
     tensorToMetric->SetHMax(this->HMax);
+    tensorToMetric->SetMinCellsAcross(this->MinCellsAcross);
     tensorToMetric->SetGradation(this->Gradation);
     tensorToMetric->SetGradationFactor(this->GradationFactor);
     tensorToMetric->SetMetricArrayName("Metric");
@@ -430,6 +431,7 @@ void vtkAnisoTensorPipeline::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "SizeBlend: " << this->SizeBlend << "\n";
   os << indent << "HMin: " << this->HMin << "\n";
   os << indent << "HMax: " << this->HMax << "\n";
+  os << indent << "MinCellsAcross: " << this->MinCellsAcross << "\n";
   os << indent << "Gradation: " << (this->Gradation ? "on" : "off") << "\n";
   os << indent << "GradationFactor: " << this->GradationFactor << "\n";
   os << indent << "AdaptBackgroundMesh: " << this->AdaptBackgroundMesh << "\n";

@@ -140,6 +140,9 @@ public:
   vtkGetMacro(HMin, double);
   vtkSetClampMacro(HMax, double, 0.0, VTK_DOUBLE_MAX);
   vtkGetMacro(HMax, double);
+  /// Cells across thin parts (vtkAnisoTensorToMetric::MinCellsAcross, default 1.25, 0 = off).
+  vtkSetClampMacro(MinCellsAcross, double, 0.0, 100.0);
+  vtkGetMacro(MinCellsAcross, double);
   vtkSetMacro(Gradation, bool);
   vtkGetMacro(Gradation, bool);
   vtkBooleanMacro(Gradation, bool);
@@ -226,6 +229,7 @@ protected:
   double SizeBlend = 0.5;
   double HMin = 0.0;
   double HMax = 0.0;
+  double MinCellsAcross = 1.25;
   bool Gradation = true;
   double GradationFactor = 1.3;
   bool AdaptBackgroundMesh = false;

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "MetricPreparation.h"
 
+#include "DomainChords.h"
+
 #include "MeshTopology.h"
 #include "MetricAlgebra.h"
 #include "MetricFieldOps.h"
@@ -298,6 +300,8 @@ void CheckInputs(const SimplexMesh& mesh,
     throw InputError(who + "hmin and hmax must be >= 0 (0 = no limit)");
   if (o.HMin > 0.0 && o.HMax > 0.0 && o.HMin > o.HMax)
     throw InputError(who + "hmin must not exceed hmax");
+  if (!(o.MinCellsAcross >= 0.0) || !std::isfinite(o.MinCellsAcross))
+    throw InputError(who + "the cells across thin parts must be >= 0 (0 = off)");
   if (o.Gradation && !(o.GradationFactor > 1.0 && std::isfinite(o.GradationFactor)))
     throw InputError(who + "the gradation factor (hgrad) must be > 1");
   if (o.MaxNormalizationRounds < 1 || !(o.ComplexityTolerance > 0.0))
@@ -319,6 +323,35 @@ void CheckInputs(const SimplexMesh& mesh,
       throw InputError(who + "the metric of vertex " + std::to_string(i) +
         " is not symmetric positive definite (or has NaN/Inf)");
   }
+}
+
+/// MinCellsAcross: where the chord c along direction d holds fewer than `cells` unit lengths,
+/// add (cells^2 / c^2 - d^T M d) d d^T to M (SPD kept, lengths only grow). Returns the number
+/// of vertices changed.
+template <int D>
+std::size_t LimitByThickness(const DomainChords& chords, double cells, std::vector<Mat<D>>& m)
+{
+  const std::size_t nd = chords.NumDirections();
+  std::vector<unsigned char> changed(m.size(), 0);
+  ForEachVertex(m.size(),
+    [&](std::size_t i)
+    {
+      for (std::size_t k = 0; k < nd; ++k)
+      {
+        const double c = chords.Chord[i * nd + k];
+        if (!std::isfinite(c) || !(c > 0.0))
+          continue;
+        const Vec<D> d = Eigen::Map<const Vec<D>>(chords.Directions.data() + k * D);
+        const double need = (cells / c) * (cells / c);
+        const double have = d.dot(m[i] * d);
+        if (have < need)
+        {
+          m[i] += (need - have) * d * d.transpose();
+          changed[i] = 1;
+        }
+      }
+    });
+  return static_cast<std::size_t>(std::count(changed.begin(), changed.end(), 1));
 }
 
 template <int D>
@@ -345,48 +378,73 @@ MetricPreparationResult Prepare(const SimplexMesh& mesh,
   const double lo = o.HMax > 0.0 ? 1.0 / (o.HMax * o.HMax) : 0.0;
   const double hi = o.HMin > 0.0 ? 1.0 / (o.HMin * o.HMin) : 0.0;
   const int rounds = r.TargetComplexity > 0.0 ? o.MaxNormalizationRounds : 1;
+  // Geometry only: computed once. Volumes, and flat 2D domains in the 2D metric block.
+  // Not in Uniform mode: its contract is equal sizes (det M constant).
+  bool thickness = o.MinCellsAcross > 0.0 && o.SizeMode != MetricSizeMode::Uniform &&
+    mesh.SimplexDim == D && (mesh.AmbientDim == D || (D == 2 && mesh.AmbientDim == 3));
+  for (std::size_t i = 0; thickness && D == 2 && mesh.AmbientDim == 3 && i < mesh.NumPoints(); ++i)
+    thickness = mesh.Point(i)[2] == mesh.Point(0)[2]; // a flat domain, not a surface
+  const DomainChords chords = thickness ? ComputeDomainChords(mesh) : DomainChords();
   std::vector<Mat<D>> m;
-  double previousScale = scale, previousComplexity = 0.0;
-  for (int round = 0; round < rounds; ++round)
+  const double initialScale = scale;
+  const auto normalize = [&](double cells)
   {
-    // Every round starts again from the sized field, so the result does not depend on the
-    // rounds before, only on the final scale.
-    m = sized;
-    ForEachVertex(m.size(), [&](std::size_t i) { m[i] *= scale; });
-    // Limits, gradation, limits again: the intersections of the gradation can leave a size a
-    // little outside [hmin, hmax], and the limits are the user's hard bounds.
-    std::vector<unsigned char> clamped(m.size(), 0);
-    ClampSizes<D>(lo, hi, m, clamped);
-    r.NumGraded = 0;
-    r.GradationSweeps = 0;
-    if (o.Gradation)
-      r.NumGraded = Grade<D>(mesh, graph, std::log(o.GradationFactor), m, r.GradationSweeps);
-    ClampSizes<D>(lo, hi, m, clamped);
-    r.NumHMaxClamped = static_cast<std::size_t>(
-      std::count_if(clamped.begin(), clamped.end(), [](unsigned char f) { return f & 1; }));
-    r.NumHMinClamped = static_cast<std::size_t>(
-      std::count_if(clamped.begin(), clamped.end(), [](unsigned char f) { return f & 2; }));
-    r.Metric = WriteField<D>(m);
-    r.Complexity = MetricComplexity(mesh, r.Metric);
-    r.Scale = scale;
-    if (r.TargetComplexity <= 0.0)
-      break;
-    r.NormalizationRounds = round + 1;
-    const double ratio = r.TargetComplexity / r.Complexity;
-    if (std::abs(ratio - 1.0) <= o.ComplexityTolerance)
-      break;
-    // Newton on log C(log s): the slope is k/2 for a plain scaling, less where hmin or hmax
-    // hold the sizes; secant estimate after the first round.
-    double slope = 0.5 * k;
-    if (round > 0 && std::abs(std::log(scale / previousScale)) > 1e-12)
+    scale = initialScale;
+    double previousScale = scale, previousComplexity = 0.0;
+    for (int round = 0; round < rounds; ++round)
     {
-      slope = std::log(r.Complexity / previousComplexity) / std::log(scale / previousScale);
-      slope = std::clamp(slope, 0.05, k);
+      // Every round starts again from the sized field, so the result does not depend on the
+      // rounds before, only on the final scale.
+      m = sized;
+      ForEachVertex(m.size(), [&](std::size_t i) { m[i] *= scale; });
+      // Limits, gradation, limits again: the intersections of the gradation can leave a size a
+      // little outside [hmin, hmax], and the limits are the user's hard bounds.
+      std::vector<unsigned char> clamped(m.size(), 0);
+      ClampSizes<D>(lo, hi, m, clamped);
+      r.NumThicknessLimited = thickness ? LimitByThickness<D>(chords, cells, m) : 0;
+      r.NumGraded = 0;
+      r.GradationSweeps = 0;
+      if (o.Gradation)
+        r.NumGraded = Grade<D>(mesh, graph, std::log(o.GradationFactor), m, r.GradationSweeps);
+      ClampSizes<D>(lo, hi, m, clamped);
+      r.NumHMaxClamped = static_cast<std::size_t>(
+        std::count_if(clamped.begin(), clamped.end(), [](unsigned char f) { return f & 1; }));
+      r.NumHMinClamped = static_cast<std::size_t>(
+        std::count_if(clamped.begin(), clamped.end(), [](unsigned char f) { return f & 2; }));
+      r.Metric = WriteField<D>(m);
+      r.Complexity = MetricComplexity(mesh, r.Metric);
+      r.Scale = scale;
+      if (r.TargetComplexity <= 0.0)
+        break;
+      r.NormalizationRounds = round + 1;
+      const double ratio = r.TargetComplexity / r.Complexity;
+      if (std::abs(ratio - 1.0) <= o.ComplexityTolerance)
+        break;
+      // Newton on log C(log s): the slope is k/2 for a plain scaling, less where hmin or hmax
+      // hold the sizes; secant estimate after the first round.
+      double slope = 0.5 * k;
+      if (round > 0 && std::abs(std::log(scale / previousScale)) > 1e-12)
+      {
+        slope = std::log(r.Complexity / previousComplexity) / std::log(scale / previousScale);
+        slope = std::clamp(slope, 0.05, k);
+      }
+      previousScale = scale;
+      previousComplexity = r.Complexity;
+      scale *= std::exp(std::log(ratio) / slope);
     }
-    previousScale = scale;
-    previousComplexity = r.Complexity;
-    scale *= std::exp(std::log(ratio) / slope);
+  };
+  double cells = o.MinCellsAcross;
+  normalize(cells);
+  // Where the thin parts alone need more cells than the target (a long duct for few sites),
+  // fewer cells across: their complexity grows about like cells^k.
+  for (int attempt = 0; thickness && r.TargetComplexity > 0.0 && attempt < 4 &&
+       r.Complexity > (1.0 + 25.0 * o.ComplexityTolerance) * r.TargetComplexity;
+       ++attempt)
+  {
+    cells *= std::pow(r.TargetComplexity / r.Complexity, 1.0 / k);
+    normalize(cells);
   }
+  r.CellsAcross = thickness ? cells : 0.0;
   r.ImpliedSites = r.Complexity / unit;
   r.StretchRatio.resize(m.size());
   ForEachVertex(m.size(),

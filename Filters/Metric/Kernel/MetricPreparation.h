@@ -38,6 +38,14 @@ struct MetricPreparationOptions
   /// clamped to [1 / HMax^2, 1 / HMin^2]; 0 = no limit [0, 0].
   double HMin = 0.0;
   double HMax = 0.0;
+  /// Cells across thin parts: along each of the directions of ComputeDomainChords, the domain's
+  /// chord through a vertex is at least this many unit metric lengths there (the metric is
+  /// raised along that direction, a rank-one update, where it is not), applied with the size
+  /// limits. A domain thinner than the cells has no four Voronoi cells meeting inside it and
+  /// its restricted Delaunay dual has holes (the CalculiX rotor's disc). When the thin parts
+  /// alone would need more than TargetSites, fewer cells across (CellsAcross). Volumes and flat
+  /// 2D domains, not in Uniform size mode (equal sizes); surfaces are left alone. 0 = off [0].
+  double MinCellsAcross = 0.0;
   /// Bounded growth along every edge pq: M_q >= (1 + l_p(pq) ln beta)^-2 M_p, l_p the length of
   /// pq in M_p (Alauzet 2010, physical-space gradation), enforced by metric intersection [on].
   bool Gradation = true;
@@ -70,19 +78,22 @@ struct MetricDeviation
 /// Output of PrepareMetric.
 struct MetricPreparationResult
 {
-  MetricField Metric;               ///< the prepared field, 6 components per vertex
-  std::vector<double> StretchRatio; ///< s_max / s_min per vertex
-  double Scale = 1.0;               ///< normalization factor applied to the size-mode metric
-  double RawComplexity = 0.0;       ///< complexity of the input field
-  double Complexity = 0.0;          ///< complexity of the prepared field
-  double TargetComplexity = 0.0;    ///< TargetSites x UnitVertexMeasure (0 when not normalized)
-  double ImpliedSites = 0.0;        ///< Complexity / UnitVertexMeasure: the sites it asks for
-  int NormalizationRounds = 0;      ///< rounds run (0 without TargetSites)
-  int GradationSweeps = 0;          ///< sweeps of the last gradation
-  std::size_t NumGraded = 0;        ///< vertices the last gradation changed
-  std::size_t NumHMinClamped = 0;   ///< vertices with an eigenvalue lowered to 1 / HMin^2
-  std::size_t NumHMaxClamped = 0;   ///< vertices with an eigenvalue raised to 1 / HMax^2
-  MetricDeviation Deviation;        ///< against the input field
+  MetricField Metric;                  ///< the prepared field, 6 components per vertex
+  std::vector<double> StretchRatio;    ///< s_max / s_min per vertex
+  double Scale = 1.0;                  ///< normalization factor applied to the size-mode metric
+  double RawComplexity = 0.0;          ///< complexity of the input field
+  double Complexity = 0.0;             ///< complexity of the prepared field
+  double TargetComplexity = 0.0;       ///< TargetSites x UnitVertexMeasure (0 when not normalized)
+  double ImpliedSites = 0.0;           ///< Complexity / UnitVertexMeasure: the sites it asks for
+  int NormalizationRounds = 0;         ///< rounds run (0 without TargetSites)
+  int GradationSweeps = 0;             ///< sweeps of the last gradation
+  std::size_t NumGraded = 0;           ///< vertices the last gradation changed
+  std::size_t NumHMinClamped = 0;      ///< vertices with an eigenvalue lowered to 1 / HMin^2
+  std::size_t NumHMaxClamped = 0;      ///< vertices with an eigenvalue raised to 1 / HMax^2
+  std::size_t NumThicknessLimited = 0; ///< vertices raised by MinCellsAcross
+  /// MinCellsAcross as used: lower where it asked for more than TargetSites (0: off).
+  double CellsAcross = 0.0;
+  MetricDeviation Deviation;           ///< against the input field
 };
 
 /**

@@ -2,8 +2,10 @@
 // The valid final mesh where the restricted Delaunay dual is not (ValidDualMesh.h): on a
 // folded cube whose dual keeps inverted cells (repair off), the replaced mesh has every tet
 // positive, every face shared by at most two tets, lies in the domain and, the metric being
-// constant, is the metric's Delaunay mesh (Delaunay in the mean metric); the metric Delaunay flips (MetricDelaunayFlips.h) keep the mesh valid and
-// its volume exactly, and remove most faces that violate the metric's Delaunay criterion.
+// constant, is the metric's Delaunay mesh (Delaunay in the mean metric); the metric Delaunay flips
+// (MetricDelaunayFlips.h) keep the mesh valid and its volume exactly, and remove most faces that
+// violate the metric's Delaunay criterion.
+#include "AnisoTestChecks.h"
 #include "FoldedTestCases.h"
 #include "MeshQuality.h"
 #include "MeshTopology.h"
@@ -11,7 +13,6 @@
 #include "MetricDelaunayFlips.h"
 #include "TetMesher.h"
 #include "ValidDualMesh.h"
-#include "AnisoTestChecks.h"
 
 #include <Eigen/Dense>
 
@@ -72,7 +73,9 @@ std::size_t NonDelaunayFaces(const av::SimplexMesh& m, const Eigen::Matrix3d& s)
 
 /// `dual` without the cells of every `stride`-th site (those sites are then in no cell).
 av::RestrictedDelaunayMesh WithoutCellsOfSites(const FoldedCase& c,
-  const av::RestrictedDelaunayMesh& dual, const av::SiteSet& sites, std::size_t stride)
+  const av::RestrictedDelaunayMesh& dual,
+  const av::SiteSet& sites,
+  std::size_t stride)
 {
   av::RestrictedDelaunayMesh holed = dual;
   std::vector<std::int32_t> cells;
@@ -90,7 +93,8 @@ av::RestrictedDelaunayMesh WithoutCellsOfSites(const FoldedCase& c,
 /// A dual of positive cells without non-manifold faces but with holes (sites in no cell, as a
 /// domain thinner than the cells gives) is replaced when more than 1 % of its sites are left
 /// out, and kept below that.
-void TestHoledDualIsReplaced(const FoldedCase& c, const av::RestrictedDelaunayMesh& valid,
+void TestHoledDualIsReplaced(const FoldedCase& c,
+  const av::RestrictedDelaunayMesh& valid,
   const av::SiteSet& sites)
 {
   const std::size_t numSites = valid.Points.size() / 3;
@@ -110,7 +114,8 @@ void TestHoledDualIsReplaced(const FoldedCase& c, const av::RestrictedDelaunayMe
   av::RestrictedDelaunayMesh one = WithoutCellsOfSites(c, valid, sites, numSites + 1);
   AV_CHECK(one.NumUnusedSites == 1 && !av::DualNeedsReplacement(one));
   const std::vector<std::int32_t> before = one.Cells;
-  AV_CHECK(!av::MakeDualValid(c.Mesh, adjacency, sites, nullptr, one).Replaced && one.Cells == before);
+  AV_CHECK(
+    !av::MakeDualValid(c.Mesh, adjacency, sites, nullptr, one).Replaced && one.Cells == before);
 }
 
 void TestFoldedCubeGetsValidMesh()
@@ -145,9 +150,10 @@ void TestFoldedCubeGetsValidMesh()
   AV_CHECK_MSG(vol <= 1.0 + 1e-12 && vol > 0.6, "volume " << vol);
   // Every site is used (random sites inside the cube are all vertices of their hull's mesh).
   AV_CHECK_MSG(d.NumUnusedSites == 0, d.NumUnusedSites << " unused site(s)");
-  std::cout << "folded cube: " << plain.Repaired.Delaunay.NumInverted << " inverted -> valid mesh of "
-            << m.NumCells() << " tets, volume " << vol << ", flips 2-3 " << r.ValidDual.Flips.NumFlips23
-            << " 3-2 " << r.ValidDual.Flips.NumFlips32 << std::endl;
+  std::cout << "folded cube: " << plain.Repaired.Delaunay.NumInverted
+            << " inverted -> valid mesh of " << m.NumCells() << " tets, volume " << vol
+            << ", flips 2-3 " << r.ValidDual.Flips.NumFlips23 << " 3-2 "
+            << r.ValidDual.Flips.NumFlips32 << std::endl;
 
   // The boundary sliver peel keeps the domain: it removes at most 0.2 % of the volume.
   std::cout << "  peeled " << r.ValidDual.BoundarySlivers << " boundary sliver(s), "
@@ -189,7 +195,9 @@ std::size_t NonDelaunayFaces(const av::SimplexMesh& m, const Eigen::Matrix3d& s)
     if (kv.second.size() != 2)
       continue;
     Eigen::Vector3d q[5];
-    const std::int32_t ids[5] = { kv.first[0], kv.first[1], kv.first[2], kv.second[0], kv.second[1] };
+    const std::int32_t ids[5] = {
+      kv.first[0], kv.first[1], kv.first[2], kv.second[0], kv.second[1]
+    };
     for (int i = 0; i < 5; ++i)
       q[i] = s * Eigen::Map<const Eigen::Vector3d>(m.Point(ids[i]));
     Eigen::Matrix3d a;
@@ -237,7 +245,8 @@ void TestFlipsTowardsConstantMetric()
   AV_CHECK_NEAR(TotalVolume(m), volBefore, 1e-12 * volBefore);
   const auto sharing = FaceSharing(m);
   AV_CHECK(sharing[3] == 0);
-  AV_CHECK_MSG(sharing[1] == sharingBefore[1], "boundary faces " << sharingBefore[1] << " -> " << sharing[1]);
+  AV_CHECK_MSG(
+    sharing[1] == sharingBefore[1], "boundary faces " << sharingBefore[1] << " -> " << sharing[1]);
 }
 
 } // namespace
