@@ -93,6 +93,8 @@ av::MeshingPipelineOptions PipelineOptions(const MeshStageOptions& options,
   po.RepairNonManifold = options.RepairNonManifold;
   po.ValidDual = options.ValidDual;
   po.ImproveMesh = options.ImproveMesh;
+  po.Improvement.PlanarBoundary = options.PlanarBoundary;
+  po.Improvement.BoundaryFlipMaxDihedral = options.BoundaryFlipMaxDihedral;
   po.Metric = metric;
   return po;
 }
@@ -108,6 +110,9 @@ void CopyMeshingCounts(const av::MeshingPipelineResult& m, MeshStageResult& r)
   r.ImprovementFlips =
     m.Improvement.NumFlips23 + m.Improvement.NumEdgeRemovals + m.Improvement.NumFlips22;
   r.ImprovementSmoothed = m.Improvement.NumSmoothed;
+  r.ImprovementBoundaryOps =
+    m.Improvement.NumBoundaryEdgeRemovals + m.Improvement.NumBoundarySmoothed;
+  r.ImprovementVolumeChange = m.Improvement.BoundaryVolumeChange;
   r.InvertedBeforeImprovement = m.InvertedBeforeImprovement;
   r.ValidDualReplaced = m.ValidDual.Replaced;
   r.ValidDualSeconds = m.ValidDualSeconds;

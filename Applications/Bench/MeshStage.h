@@ -44,6 +44,8 @@ struct MeshStageOptions
   int OdtIterations = 3;      ///< ODT steps per round (0: sliver pushes only)
   bool PerturbSlivers = true; ///< sliver pushes in each round
   bool ImproveMesh = true; ///< flips and smoothing of the final dual in the metric (MeshImprovement)
+  bool PlanarBoundary = true; ///< ...also on planar boundary patches (MeshImprovementOptions)
+  double BoundaryFlipMaxDihedral = 10.0; ///< ...and edges of nearly coplanar boundary faces
   bool PreserveSharpFeatures = true; ///< corner / feature-line particles (ParticleSamplerOptions)
   double FeatureAngle = 30.0;        ///< degrees
 };
@@ -63,6 +65,9 @@ struct MeshStageResult
   double MeshImprovementSeconds = 0.0; ///< flips and smoothing of the final dual
   std::size_t ImprovementFlips = 0;    ///< 2-3 flips + edge removals (tets), 2-2 flips (triangles)
   std::size_t ImprovementSmoothed = 0; ///< accepted vertex moves
+  /// Of those, on planar boundary patches: edge removals and in-plane vertex moves (tets)
+  std::size_t ImprovementBoundaryOps = 0;
+  double ImprovementVolumeChange = 0.0; ///< fraction of the volume moved by curved-boundary flips
   std::size_t InvertedBeforeImprovement = 0; ///< dual's inverted (or flat) cells before it
   bool ValidDualReplaced = false;  ///< the repaired dual was invalid: Delaunay of the sites
   double ValidDualSeconds = 0.0;

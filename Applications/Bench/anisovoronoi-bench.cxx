@@ -89,6 +89,8 @@ struct Args
   int OdtIterations = 3;     // ODT steps per improvement round
   bool PerturbSlivers = true;
   bool ImproveMesh = true;   // flips and smoothing of the final mesh in the metric
+  bool PlanarBoundary = true; // ...and on planar boundary patches
+  double BoundaryFlipDihedral = 10.0; // ...and nearly planar ones (degrees)
   bool Features = true;      // corner / feature-line particles
   bool Reference = false;    // closed-form isometric embedding instead of the solver
   double FeatureAngle = 30.0;
@@ -535,6 +537,8 @@ avbench::MeshStageOptions MeshStageOptionsFor(const Args& a, const Case& c)
   o.OdtIterations = a.OdtIterations;
   o.PerturbSlivers = a.PerturbSlivers;
   o.ImproveMesh = a.ImproveMesh;
+  o.PlanarBoundary = a.PlanarBoundary;
+  o.BoundaryFlipMaxDihedral = a.BoundaryFlipDihedral;
   o.PreserveSharpFeatures = a.Features;
   o.FeatureAngle = a.FeatureAngle;
   return o;
@@ -572,6 +576,8 @@ void ReportMesh(const Case& c, const avbench::MeshStageOptions& o,
   out.Set("mesh_improvement_seconds", r.MeshImprovementSeconds);
   out.Set("mesh_improvement_flips", r.ImprovementFlips);
   out.Set("mesh_improvement_smoothed", r.ImprovementSmoothed);
+  out.Set("mesh_improvement_boundary_ops", r.ImprovementBoundaryOps);
+  out.Set("mesh_improvement_volume_change", r.ImprovementVolumeChange);
   out.Set("valid_dual_replaced", r.ValidDualReplaced);
   out.Set("valid_dual_seconds", r.ValidDualSeconds);
   out.Set("inverted_before_mesh_improvement", r.InvertedBeforeImprovement);
@@ -741,6 +747,12 @@ void Usage(std::ostream& os)
         "  --no-sliver-push  mesh: no sliver pushes in the improvement rounds\n"
         "  --no-mesh-improvement  mesh: keep the repaired dual as it is (default: flips and\n"
         "                    vertex smoothing raise its worst element in the metric)\n"
+        "  --no-planar-boundary  mesh: the improvement leaves every boundary vertex and face\n"
+        "                    as it is (default: it also moves vertices and removes edges in\n"
+        "                    planar boundary patches)\n"
+        "  --boundary-flip-dihedral D  mesh: the improvement also removes boundary edges whose\n"
+        "                    two faces are at most D degrees from coplanar (default 10; 0 =\n"
+        "                    planar only), at most 0.1 % of the volume in all\n"
         "  --no-features     mesh: no corner / feature-line particles (paper §4.1 sharp features)\n"
         "  --feature-angle A mesh: dihedral angle in degrees above which a boundary edge is a\n"
         "                    feature line (default 30)\n"
@@ -872,6 +884,10 @@ bool Parse(int argc, char** argv, Args& a)
       a.RvdEmbeddedPoints = true;
     else if (k == "--no-mesh-improvement")
       a.ImproveMesh = false;
+    else if (k == "--no-planar-boundary")
+      a.PlanarBoundary = false;
+    else if (k == "--boundary-flip-dihedral")
+      a.BoundaryFlipDihedral = std::stod(next());
     else if (k == "--repair-rounds")
       a.RepairRounds = std::stoi(next());
     else if (k == "--repair-nonmanifold") // the default

@@ -25,6 +25,20 @@ struct MeshImprovementOptions
   double TargetAngle = 35.0;
   bool Flips = true;     ///< tets: 2-3 flips and edge removal (3-2 flips included); triangles: 2-2
   bool Smoothing = true; ///< interior vertex moves that raise the worst incident element
+  /// Tets: also work on planar parts of the boundary, where that keeps the domain exactly: a
+  /// boundary vertex whose boundary faces all lie in one plane (and form one disc) moves in that
+  /// plane, and a boundary edge whose two boundary faces are coplanar is removed like an
+  /// interior one (the 2-2 / 4-4 boundary flips and their longer cousins), the polygon of its
+  /// open ring triangulated anew. Creases, corners and curved patches stay untouched.
+  bool PlanarBoundary = true;
+  /// Tets, with PlanarBoundary: a boundary edge is also removed where its two boundary faces
+  /// meet at up to this angle (degrees) away from coplanar, on a curved boundary. That moves the
+  /// boundary by the thin tet between the old and the new faces (their four vertices stay where
+  /// they are, on the input's boundary); 0: planar patches only. Far below the feature angle.
+  double BoundaryFlipMaxDihedral = 10.0;
+  /// Tets: the most volume those curved-boundary removals may change in all, as a fraction of
+  /// the mesh's volume.
+  double BoundaryFlipVolumeBudget = 1e-3;
   int MaxEdgeRemovalRing = 7; ///< edge removal on edges of at most this many tets (3 = 3-2 only)
   /// Tets: an operation may not add edges whose metric length, divided by the median of the
   /// input's, leaves [1/sqrt2, sqrt2] (the UGAWG range of the §5.2 evaluation): a flip's new
@@ -73,6 +87,10 @@ struct MeshImprovementResult
   std::size_t NumEdgeRemovals = 0; ///< tets: edge removals (3-2 flips included)
   std::size_t NumFlips22 = 0;      ///< triangles: edge flips
   std::size_t NumSmoothed = 0;     ///< accepted vertex moves
+  std::size_t NumBoundaryEdgeRemovals = 0; ///< tets: of those, on planar boundary patches
+  std::size_t NumBoundarySmoothed = 0;     ///< tets: moves of vertices in a boundary plane
+  /// Tets: total |volume change| of the curved-boundary removals, as a fraction of the volume
+  double BoundaryVolumeChange = 0.0;
   std::size_t NumSplits = 0;       ///< triangles: edge splits (new vertices appended)
   std::size_t NumCollapses = 0;    ///< triangles: edge collapses (the removed vertex is unused)
   int Passes = 0;

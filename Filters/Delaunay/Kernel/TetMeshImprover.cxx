@@ -44,12 +44,24 @@ TetMeshImprover::TetMeshImprover(SimplexMesh& mesh,
   , Smoother(Work,
       Options,
       true,
-      {},
+      // A vertex of a planar boundary patch stays in its plane (exactly, up to rounding).
+      [this](std::int32_t v, const Eigen::Vector3d& x)
+      {
+        const Eigen::Vector3d& n = PlaneNormal[v];
+        Work.Points[v] = x - n * n.dot(x - Work.Points[v]);
+        return true;
+      },
       Options.KeepEdgeLengths && !Options.AcceptWorsening
         ? VertexStarSmoother<3>::EdgeCount([this](std::int32_t v) { return OutOfRangeAround(v); })
         : VertexStarSmoother<3>::EdgeCount())
 {
+  PlaneNormal.assign(P.size(), Eigen::Vector3d::Zero());
+  for (const Tet& t : Tets)
+    MeshVolume += std::abs(Volume(t));
   MarkBoundaryAndNonManifold();
+  if (Options.PlanarBoundary)
+    Smoother.SetDirectionFilter([this](std::int32_t v, Eigen::Vector3d& g)
+      { g -= PlaneNormal[v] * PlaneNormal[v].dot(g); });
   if (Options.KeepEdgeLengths)
     ComputeMedianEdgeLength();
 }
@@ -96,31 +108,114 @@ int TetMeshImprover::OutOfRangeAround(std::int32_t v) const
 }
 
 // Vertices on faces of one tet (the boundary) or of more than two (non-manifold) never move:
-// that keeps the domain and leaves configurations the flips do not understand alone.
+// that keeps the domain and leaves configurations the flips do not understand alone. The
+// exception (PlanarBoundary) is a vertex inside a planar boundary patch: it moves in the plane.
 void TetMeshImprover::MarkBoundaryAndNonManifold()
 {
-  std::vector<std::array<std::int32_t, 3>> faces;
+  const std::vector<char> userFixed = Work.Fixed;
+  // Each face sorted (for matching) and in its tet's order, counterclockwise seen from the
+  // opposite vertex, i.e. clockwise seen from outside.
+  struct Face
+  {
+    std::array<std::int32_t, 3> Sorted, Ordered;
+    bool operator<(const Face& o) const { return Sorted < o.Sorted; }
+  };
+  std::vector<Face> faces;
   faces.reserve(Tets.size() * 4);
   for (const Tet& t : Tets)
     for (int m = 0; m < 4; ++m)
     {
-      std::array<std::int32_t, 3> f = {
-        t[FaceOpposite[m][0]], t[FaceOpposite[m][1]], t[FaceOpposite[m][2]]
-      };
-      std::sort(f.begin(), f.end());
+      Face f;
+      f.Ordered = { t[FaceOpposite[m][0]], t[FaceOpposite[m][1]], t[FaceOpposite[m][2]] };
+      f.Sorted = f.Ordered;
+      std::sort(f.Sorted.begin(), f.Sorted.end());
       faces.push_back(f);
     }
   std::sort(faces.begin(), faces.end());
+  std::vector<std::array<std::int32_t, 3>> boundary;
+  std::vector<char> nonManifold(P.size(), 0);
   for (std::size_t i = 0; i < faces.size();)
   {
     std::size_t j = i + 1;
-    while (j < faces.size() && faces[j] == faces[i])
+    while (j < faces.size() && faces[j].Sorted == faces[i].Sorted)
       ++j;
     if (j - i != 2)
-      for (std::int32_t v : faces[i])
+      for (std::int32_t v : faces[i].Sorted)
+      {
         Work.Fixed[v] = 1;
+        nonManifold[v] = j - i > 2 ? 1 : nonManifold[v];
+      }
+    if (j - i == 1)
+      boundary.push_back(faces[i].Ordered);
     i = j;
   }
+  if (!Options.PlanarBoundary)
+    return;
+  std::vector<char> keep = userFixed;
+  for (std::size_t v = 0; v < keep.size(); ++v)
+    keep[v] = keep[v] || nonManifold[v];
+  FindPlanarBoundaryVertices(boundary, keep);
+}
+
+void TetMeshImprover::FindPlanarBoundaryVertices(
+  const std::vector<std::array<std::int32_t, 3>>& boundary, const std::vector<char>& userFixed)
+{
+  // Boundary faces per vertex: the link edge (b, c) of face (v, b, c) in its order.
+  std::vector<std::vector<std::pair<std::int32_t, std::int32_t>>> link(P.size());
+  std::vector<Eigen::Vector3d> areaSum(P.size(), Eigen::Vector3d::Zero());
+  for (const auto& f : boundary)
+  {
+    const Eigen::Vector3d n = (P[f[1]] - P[f[0]]).cross(P[f[2]] - P[f[0]]);
+    for (int i = 0; i < 3; ++i)
+    {
+      link[f[i]].emplace_back(f[(i + 1) % 3], f[(i + 2) % 3]);
+      areaSum[f[i]] += n;
+    }
+  }
+  for (std::size_t v = 0; v < P.size(); ++v)
+  {
+    const auto& edges = link[v];
+    if (edges.size() < 3 || userFixed[v] || !(areaSum[v].norm() > 0.0))
+      continue;
+    // One disc: following the link edges from the first closes a cycle through all of them.
+    std::size_t steps = 0;
+    std::int32_t at = edges[0].second;
+    while (steps < edges.size())
+    {
+      std::size_t found = 0, next = 0;
+      for (std::size_t e = 0; e < edges.size(); ++e)
+        if (edges[e].first == at)
+        {
+          ++found;
+          next = e;
+        }
+      if (found != 1)
+        break;
+      at = edges[next].second;
+      ++steps;
+      if (at == edges[0].second)
+        break;
+    }
+    if (steps != edges.size() || at != edges[0].second)
+      continue;
+    // Coplanar: every link vertex within a tiny fraction of its distance from the plane.
+    const Eigen::Vector3d n = areaSum[v].normalized();
+    bool planar = true;
+    for (const auto& [b, c] : edges)
+    {
+      const Eigen::Vector3d d = P[b] - P[v];
+      planar = planar && std::abs(n.dot(d)) <= 1e-10 * d.norm();
+    }
+    if (!planar)
+      continue;
+    PlaneNormal[v] = n;
+    Work.Fixed[v] = 0;
+  }
+}
+
+double TetMeshImprover::Volume(const Tet& t) const
+{
+  return (P[t[1]] - P[t[0]]).cross(P[t[2]] - P[t[0]]).dot(P[t[3]] - P[t[0]]);
 }
 
 bool TetMeshImprover::Accepts(double after, double before) const
@@ -178,13 +273,90 @@ bool TetMeshImprover::BuildRing(std::int32_t a, std::int32_t b)
   return false;
 }
 
+bool TetMeshImprover::BuildOpenRing(std::int32_t a, std::int32_t b, bool& curved)
+{
+  curved = false;
+  EdgeTets.clear();
+  for (std::int32_t t : Star[a])
+    if (IndexIn(Tets[t], b) >= 0)
+      EdgeTets.push_back(t);
+  const std::size_t n = EdgeTets.size();
+  if (n < 2 || n + 1 > static_cast<std::size_t>(Options.MaxEdgeRemovalRing))
+    return false;
+  Next.clear();
+  for (std::int32_t t : EdgeTets)
+  {
+    const Tet& q = Tets[t];
+    int idx[4] = { IndexIn(q, a), IndexIn(q, b), -1, -1 };
+    int k = 2;
+    for (int i = 0; i < 4; ++i)
+      if (i != idx[0] && i != idx[1])
+        idx[k++] = i;
+    if (!IsEvenPermutation(idx))
+      std::swap(idx[2], idx[3]);
+    Next.push_back(q[idx[2]]);
+    Next.push_back(q[idx[3]]);
+  }
+  // The path starts at the one vertex that follows no other.
+  std::int32_t start = -1;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    bool isSuccessor = false;
+    for (std::size_t j = 0; j < n; ++j)
+      isSuccessor = isSuccessor || Next[2 * j + 1] == Next[2 * i];
+    if (!isSuccessor)
+    {
+      if (start >= 0)
+        return false;
+      start = Next[2 * i];
+    }
+  }
+  if (start < 0)
+    return false;
+  Ring.assign(1, start);
+  for (std::size_t step = 0; step < n; ++step)
+  {
+    std::int32_t succ = -1;
+    int found = 0;
+    for (std::size_t i = 0; i < n; ++i)
+      if (Next[2 * i] == Ring.back())
+      {
+        succ = Next[2 * i + 1];
+        ++found;
+      }
+    if (found != 1 || std::find(Ring.begin(), Ring.end(), succ) != Ring.end())
+      return false;
+    Ring.push_back(succ);
+  }
+  // The two boundary faces (a, b, r0) and (a, b, rn) in one plane, or nearly.
+  const Eigen::Vector3d normal = (P[b] - P[a]).cross(P[Ring.front()] - P[a]);
+  const Eigen::Vector3d d = P[Ring.back()] - P[a];
+  if (!(normal.norm() > 0.0) || !(d.norm() > 0.0))
+    return false;
+  if (std::abs(normal.normalized().dot(d)) <= 1e-10 * d.norm())
+    return true;
+  // Outward normals of the two faces (r0 and rn are on opposite sides of a b).
+  const Eigen::Vector3d n0 = (P[Ring.front()] - P[a]).cross(P[b] - P[a]).normalized();
+  const Eigen::Vector3d n1 = (P[b] - P[a]).cross(P[Ring.back()] - P[a]).normalized();
+  curved = true;
+  return n0.dot(n1) >= std::cos(Options.BoundaryFlipMaxDihedral * Pi / 180.0);
+}
+
 // Edge removal (Shewchuk): the n tets around an interior edge are replaced by the 2(n-2) tets
 // joining a and b to the best triangulation of their ring, found by dynamic programming over
 // the ring's sub-polygons, maximizing the worst tet.
+// On a planar boundary the ring is a path r0..r(n-1) and the polygon's closing side r0 r(n-1)
+// is a new boundary edge: the faces (a, b, r0) and (a, b, r(n-1)) become (a, r0, r(n-1)) and
+// (b, r(n-1), r0), which cover the same part of the plane.
 bool TetMeshImprover::TryEdgeRemoval(std::int32_t a, std::int32_t b)
 {
+  bool open = false, curved = false;
   if (!BuildRing(a, b))
-    return false;
+  {
+    if (!Options.PlanarBoundary || !BuildOpenRing(a, b, curved))
+      return false;
+    open = true;
+  }
   const int n = static_cast<int>(Ring.size());
   double before = std::numeric_limits<double>::infinity();
   for (std::int32_t t : EdgeTets)
@@ -226,26 +398,50 @@ bool TetMeshImprover::TryEdgeRemoval(std::int32_t a, std::int32_t b)
     stack.push_back({ i, k });
     stack.push_back({ k, j });
   }
+  auto isRingEdge = [&](int u, int w)
+  { return std::abs(u - w) == 1 || (!open && std::abs(u - w) == n - 1); };
   for (const auto& t : tris)
     for (int e = 0; e < 3; ++e)
     {
       const int u = t[e], w = t[(e + 1) % 3];
-      const bool ringEdge = std::abs(u - w) == 1 || std::abs(u - w) == n - 1;
-      if (!ringEdge && Work.HasEdge(Ring[u], Ring[w]))
+      if (!isRingEdge(u, w) && Work.HasEdge(Ring[u], Ring[w]))
         return false;
     }
   if (Options.KeepEdgeLengths && !Options.AcceptWorsening)
   {
-    int outNew = 0; // each diagonal is counted twice (it is on two triangles)
+    // Each diagonal is counted twice (it is on two triangles), an open ring's closing side once.
+    int outNew = 0;
     for (const auto& t : tris)
       for (int e = 0; e < 3; ++e)
       {
         const int u = t[e], w = t[(e + 1) % 3];
-        const bool ringEdge = std::abs(u - w) == 1 || std::abs(u - w) == n - 1;
-        outNew += !ringEdge && OutOfRange(Ring[u], Ring[w]) ? 1 : 0;
+        const int weight = open && std::abs(u - w) == n - 1 ? 2 : 1;
+        outNew += !isRingEdge(u, w) && OutOfRange(Ring[u], Ring[w]) ? weight : 0;
       }
     if (outNew / 2 > (OutOfRange(a, b) ? 1 : 0))
       return false;
+  }
+  double volumeChange = 0.0;
+  if (open)
+  {
+    // The new tets must fill the old ones exactly: the same volume (coplanar faces, convex
+    // quad). On a curved boundary they differ by the thin tet (a, b, r0, rn) between the old and
+    // the new boundary faces, within the budget.
+    double oldVolume = 0.0, newVolume = 0.0;
+    for (std::int32_t t : EdgeTets)
+      oldVolume += Volume(Tets[t]);
+    for (const auto& t : tris)
+      newVolume += Volume({ a, Ring[t[0]], Ring[t[1]], Ring[t[2]] }) +
+        Volume({ b, Ring[t[2]], Ring[t[1]], Ring[t[0]] });
+    const double allowed =
+      curved ? std::abs(Volume({ a, b, Ring.front(), Ring.back() })) : 0.0;
+    volumeChange = std::abs(newVolume - oldVolume);
+    if (!(volumeChange <= allowed + 1e-9 * std::abs(oldVolume)))
+      return false;
+    if (curved &&
+      BoundaryVolumeChange + volumeChange > Options.BoundaryFlipVolumeBudget * MeshVolume)
+      return false;
+    volumeChange = curved ? volumeChange : 0.0;
   }
   const std::vector<std::int32_t> old = EdgeTets;
   for (std::int32_t t : old)
@@ -256,6 +452,8 @@ bool TetMeshImprover::TryEdgeRemoval(std::int32_t a, std::int32_t b)
     Work.Add({ b, Ring[t[2]], Ring[t[1]], Ring[t[0]] });
   }
   ++EdgeRemovals;
+  BoundaryEdgeRemovals += open ? 1 : 0;
+  BoundaryVolumeChange += volumeChange;
   return true;
 }
 
@@ -301,6 +499,7 @@ bool TetMeshImprover::TrySmooth(std::int32_t v)
   if (!Smoother.TrySmooth(v, false))
     return false;
   ++Smoothed;
+  BoundarySmoothed += PlaneNormal[v].squaredNorm() > 0.0 ? 1 : 0;
   return true;
 }
 
@@ -341,6 +540,9 @@ void TetMeshImprover::Run(MeshImprovementResult& result)
   result.NumFlips23 = Flips23;
   result.NumEdgeRemovals = EdgeRemovals;
   result.NumSmoothed = Smoothed;
+  result.NumBoundaryEdgeRemovals = BoundaryEdgeRemovals;
+  result.NumBoundarySmoothed = BoundarySmoothed;
+  result.BoundaryVolumeChange = MeshVolume > 0.0 ? BoundaryVolumeChange / MeshVolume : 0.0;
   result.Moved = std::move(Work.Moved);
 }
 

@@ -33,9 +33,18 @@ private:
 
   double Quality(const Tet& t) const { return Work.Quality(t); }
   void MarkBoundaryAndNonManifold();
+  /// Frees the boundary vertices whose boundary faces lie in one plane and form one disc
+  /// around them (PlaneNormal set), given the faces of one tet with their outward order.
+  void FindPlanarBoundaryVertices(const std::vector<std::array<std::int32_t, 3>>& boundary,
+    const std::vector<char>& userFixed);
   bool Improve(std::int32_t tet); // best operation on one bad tet, true if applied
   bool TryEdgeRemoval(std::int32_t a, std::int32_t b);
   bool BuildRing(std::int32_t a, std::int32_t b);
+  /// As BuildRing for a boundary edge: the link is a path r0..rn (n tets), and the edge's two
+  /// boundary faces (a, b, r0) and (a, b, rn) are coplanar, or within BoundaryFlipMaxDihedral
+  /// of it (then `curved`). False otherwise.
+  bool BuildOpenRing(std::int32_t a, std::int32_t b, bool& curved);
+  double Volume(const Tet& t) const; // Euclidean, times 6
   bool TryFlip23(std::int32_t tet, int apexIndex, double worst);
   bool TrySmooth(std::int32_t v);
   bool Accepts(double after, double before) const;
@@ -55,7 +64,11 @@ private:
   std::vector<std::int32_t> EdgeTets, Ring, Next;
   std::vector<double> Best;
   std::vector<int> Choice;
+  // Per point: the unit normal of its boundary plane where it may move in it, else zero.
+  std::vector<Eigen::Vector3d> PlaneNormal;
   std::size_t Flips23 = 0, EdgeRemovals = 0, Smoothed = 0;
+  std::size_t BoundaryEdgeRemovals = 0, BoundarySmoothed = 0;
+  double MeshVolume = 0.0, BoundaryVolumeChange = 0.0; // Euclidean, times 6
   double MedianEdge = 0.0; // median metric edge length of the input mesh
 };
 

@@ -110,7 +110,9 @@ bool VertexStarSmoother<K>::TrySmooth(std::int32_t v, bool deferCommit)
   const int outBefore = OutOfRangeEdges ? OutOfRangeEdges(v) : 0;
   for (int iter = 0; iter < 8; ++iter)
   {
-    const Eigen::Vector3d g = WorstGradient(v, 1e-6 * scale);
+    Eigen::Vector3d g = WorstGradient(v, 1e-6 * scale);
+    if (Filter)
+      Filter(v, g);
     const double gn = g.norm();
     if (!(gn > 0.0) || !std::isfinite(gn))
       break;

@@ -38,6 +38,12 @@ public:
   /// Options.AcceptMove must agree too and v is marked moved.
   bool TrySmooth(std::int32_t v, bool deferCommit);
 
+  /// Optional: restricts a search direction at v in place (tets on a planar boundary patch:
+  /// its projection on the plane), so that the ascent is not spent on the normal component
+  /// that Place would undo.
+  using Direction = std::function<void(std::int32_t v, Eigen::Vector3d& g)>;
+  void SetDirectionFilter(Direction filter) { this->Filter = std::move(filter); }
+
 private:
   struct VertexState
   {
@@ -53,6 +59,7 @@ private:
   bool RequireMove;
   PlaceVertex Place;
   EdgeCount OutOfRangeEdges;
+  Direction Filter;
 };
 
 extern template class VertexStarSmoother<2>;

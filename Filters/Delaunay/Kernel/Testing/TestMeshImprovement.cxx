@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Tests of ImproveMesh: each operation on a hand-made bad configuration raises the worst
 // quality (2-3 flip, 3-2 flip, edge removal of 4 and 5 tets, smoothing, 2-2 flip, triangle
-// smoothing); on perturbed grids nothing inverts, the volume and the boundary are kept exactly,
+// smoothing, the boundary 2-2 flip and the in-plane move on a planar boundary, refused across a
+// crease); on perturbed grids nothing inverts, the volume and the boundary are kept exactly,
 // every interior face stays shared by two tets, fixed vertices stay, the worst quality never
 // drops; and the mutation hook that accepts worsening operations is caught by those checks.
 #include "AnisoTestChecks.h"
@@ -218,6 +219,113 @@ void TestSmoothing()
   AV_CHECK(refused.Points == m.Points);
 }
 
+// Makes every tet of m positive (swaps two vertices of a negative one).
+void Orient(av::SimplexMesh& m)
+{
+  for (std::size_t k = 0; k < m.NumCells(); ++k)
+    if (av::CellMeasure(m, k) < 0)
+      std::swap(m.Cells[4 * k + 2], m.Cells[4 * k + 3]);
+}
+
+void TestPlanarBoundary()
+{
+  av::MeshImprovementOptions flipsOnly;
+  flipsOnly.Smoothing = false;
+  flipsOnly.KeepEdgeLengths = false;
+  // Boundary 2-2 flip: the long edge a b of the flat base quad (a, r0, b, r2) in z = 0, under
+  // the apex r1, is replaced by the short diagonal r0 r2.
+  auto pyramid = [](double baseZ)
+  {
+    av::SimplexMesh m;
+    m.Points = { -1, 0, 0, 1, 0, 0, 0, -0.3, 0, 0, 0, 0.6, 0, 0.3, baseZ };
+    m.Cells = { 0, 1, 2, 3, 0, 1, 3, 4 };
+    Orient(m);
+    return m;
+  };
+  {
+    av::SimplexMesh m = pyramid(0.0);
+    const double before = WorstQuality(m);
+    const double volume = Volume(m);
+    const av::MeshImprovementResult r = av::ImproveMesh(m, IsotropicMetric(5), nullptr, flipsOnly);
+    AV_CHECK(r.NumBoundaryEdgeRemovals == 1 && m.NumCells() == 2);
+    AV_CHECK_MSG(WorstQuality(m) > before + 0.1, before << " -> " << WorstQuality(m));
+    AV_CHECK_NEAR(Volume(m), volume, 1e-15);
+    AV_CHECK(NumInverted(m) == 0);
+    bool manifold = false;
+    const auto faces = BoundaryFaces(m, manifold);
+    AV_CHECK(faces.size() == 6 && manifold);
+    const std::vector<std::int32_t> newBase = { 0, 2, 4 }; // (a, r0, r2): on the plane z = 0
+    AV_CHECK(std::find(faces.begin(), faces.end(), newBase) != faces.end());
+    // Off: unchanged.
+    av::SimplexMesh k = pyramid(0.0);
+    av::MeshImprovementOptions off = flipsOnly;
+    off.PlanarBoundary = false;
+    AV_CHECK(av::ImproveMesh(k, IsotropicMetric(5), nullptr, off).NumEdgeRemovals == 0);
+    AV_CHECK(k.Cells == pyramid(0.0).Cells);
+  }
+  { // A crease (r2 lifted by 0.2: the base folds by 34 degrees): the edge a b stays.
+    av::SimplexMesh m = pyramid(0.2);
+    av::MeshImprovementOptions any = flipsOnly;
+    any.BoundaryFlipVolumeBudget = 1.0;
+    const av::MeshImprovementResult r = av::ImproveMesh(m, IsotropicMetric(5), nullptr, any);
+    AV_CHECK(r.NumEdgeRemovals == 0 && m.Cells == pyramid(0.2).Cells);
+  }
+  { // A curved base (r2 lifted by 0.02, 3.8 degrees): flipped when the volume budget allows,
+    // and the volume changes by exactly the thin tet (a, b, r0, r2) between the two bases.
+    const av::SimplexMesh start = pyramid(0.02);
+    const double thin = 0.02 * 2.0 * 0.3 / 6.0; // |det(b - a, r0 - a, r2 - a)| / 6
+    av::SimplexMesh kept = start;
+    AV_CHECK(av::ImproveMesh(kept, IsotropicMetric(5), nullptr, flipsOnly).NumEdgeRemovals == 0);
+    av::MeshImprovementOptions budget = flipsOnly;
+    budget.BoundaryFlipVolumeBudget = 1.0;
+    av::SimplexMesh m = start;
+    const av::MeshImprovementResult r = av::ImproveMesh(m, IsotropicMetric(5), nullptr, budget);
+    AV_CHECK(r.NumBoundaryEdgeRemovals == 1 && NumInverted(m) == 0);
+    AV_CHECK_NEAR(r.BoundaryVolumeChange, thin / Volume(start), 1e-14);
+    AV_CHECK_NEAR(std::abs(Volume(m) - Volume(start)), thin, 1e-15);
+    av::MeshImprovementOptions planarOnly = budget;
+    planarOnly.BoundaryFlipMaxDihedral = 0.0;
+    av::SimplexMesh p = start;
+    AV_CHECK(av::ImproveMesh(p, IsotropicMetric(5), nullptr, planarOnly).NumEdgeRemovals == 0);
+  }
+  // In-plane move: the center c of a square base in z = 0 under an apex, pulled towards a side;
+  // it moves back in the plane, exactly (z stays 0), the volume stays.
+  auto halfOctahedron = [](double centerZ)
+  {
+    av::SimplexMesh m;
+    m.Points = { 1, 0, 0, 0, 1, 0, -1, 0, 0, 0, -1, 0, 0, 0, 1, 0.6, 0.1, centerZ };
+    for (std::int32_t i = 0; i < 4; ++i)
+      m.Cells.insert(m.Cells.end(), { 5, i, (i + 1) % 4, 4 });
+    Orient(m);
+    return m;
+  };
+  av::MeshImprovementOptions smoothOnly;
+  smoothOnly.Flips = false;
+  smoothOnly.KeepEdgeLengths = false;
+  {
+    av::SimplexMesh m = halfOctahedron(0.0);
+    const double before = WorstQuality(m);
+    const double volume = Volume(m);
+    const av::MeshImprovementResult r = av::ImproveMesh(m, IsotropicMetric(6), nullptr, smoothOnly);
+    AV_CHECK(r.NumBoundarySmoothed >= 1 && r.NumBoundarySmoothed == r.NumSmoothed && r.Moved[5]);
+    AV_CHECK_MSG(WorstQuality(m) > before + 0.2, before << " -> " << WorstQuality(m));
+    AV_CHECK(m.Points[17] == 0.0);
+    AV_CHECK(std::abs(m.Points[15]) < 0.3 && std::abs(m.Points[16]) < 0.3);
+    AV_CHECK_NEAR(Volume(m), volume, 1e-15);
+    for (int i = 0; i < 15; ++i) // the square's corners and the apex stay
+      AV_CHECK(m.Points[i] == halfOctahedron(0.0).Points[i]);
+    std::vector<std::uint8_t> fixed(6, 0);
+    fixed[5] = 1; // a feature vertex stays
+    av::SimplexMesh k = halfOctahedron(0.0);
+    AV_CHECK(av::ImproveMesh(k, IsotropicMetric(6), &fixed, smoothOnly).NumSmoothed == 0);
+  }
+  { // Lifted off the plane of its neighbours the center is a crease vertex: it stays.
+    av::SimplexMesh m = halfOctahedron(0.05);
+    AV_CHECK(av::ImproveMesh(m, IsotropicMetric(6), nullptr, smoothOnly).NumSmoothed == 0);
+    AV_CHECK(m.Points == halfOctahedron(0.05).Points);
+  }
+}
+
 void TestTriangles()
 {
   { // A quad split along its long diagonal: the flip takes the short one.
@@ -276,27 +384,87 @@ av::SimplexMesh JitteredGrid(int n, unsigned seed)
   return m;
 }
 
+// Coordinates of a point of the unit cube's surface that are 0 or 1 (bit d: x_d is 0 or 1).
+int CubeFaceBits(const double* x)
+{
+  int bits = 0;
+  for (int d = 0; d < 3; ++d)
+    bits |= (x[d] == 0.0 || x[d] == 1.0) ? 1 << d : 0;
+  return bits;
+}
+
 // The properties every run must keep; returns them instead of failing, so the mutation test
-// can show they catch a worsening run.
+// can show they catch a worsening run. `unitCube`: the tets fill [0,1]^3 and boundary vertices
+// of its faces may move in them (PlanarBoundary), so the boundary is checked as a surface: every
+// boundary face lies in a face of the cube, the boundary area is kept, vertices on the cube's
+// edges and corners stay, the others stay on their faces.
 Checks CheckRun(const av::SimplexMesh& before,
   const av::SimplexMesh& after,
   const std::vector<std::uint8_t>& fixed,
-  const av::MeshImprovementResult& r)
+  const av::MeshImprovementResult& r,
+  bool unitCube = false)
 {
   Checks c;
   bool manifoldBefore = false, manifoldAfter = false;
-  c.Expect(BoundaryFaces(before, manifoldBefore) == BoundaryFaces(after, manifoldAfter),
-    "same boundary faces");
+  const auto facesBefore = BoundaryFaces(before, manifoldBefore);
+  const auto facesAfter = BoundaryFaces(after, manifoldAfter);
+  if (!unitCube)
+    c.Expect(facesBefore == facesAfter, "same boundary faces");
+  else
+  {
+    auto area = [](const av::SimplexMesh& m, const std::vector<std::vector<std::int32_t>>& fs)
+    {
+      double a = 0.0;
+      for (const auto& f : fs)
+      {
+        double e[2][3];
+        for (int k = 0; k < 2; ++k)
+          for (int d = 0; d < 3; ++d)
+            e[k][d] = m.Point(f[k + 1])[d] - m.Point(f[0])[d];
+        const double n[3] = { e[0][1] * e[1][2] - e[0][2] * e[1][1],
+          e[0][2] * e[1][0] - e[0][0] * e[1][2], e[0][0] * e[1][1] - e[0][1] * e[1][0] };
+        a += 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+      }
+      return a;
+    };
+    for (const auto& f : facesAfter)
+    {
+      // The three vertices share a coordinate that is 0 or 1 with the same value.
+      bool inFace = false;
+      for (int d = 0; d < 3; ++d)
+      {
+        const double v = after.Point(f[0])[d];
+        inFace = inFace ||
+          ((v == 0.0 || v == 1.0) && after.Point(f[1])[d] == v && after.Point(f[2])[d] == v);
+      }
+      c.Expect(inFace, "every boundary face in a face of the cube");
+    }
+    c.Expect(std::abs(area(after, facesAfter) - area(before, facesBefore)) < 1e-12,
+      "boundary area kept");
+  }
   c.Expect(manifoldAfter, "every interior face shared by exactly two cells");
   c.Expect(NumInverted(after) == 0, "no inverted cell");
   c.Expect(std::abs(Volume(after) - Volume(before)) < 1e-12, "volume kept");
   const std::vector<char> boundary = av::BoundaryVertexMask(before);
   for (std::size_t i = 0; i < before.NumPoints(); ++i)
-    if (boundary[i] || fixed[i])
+  {
+    const double* x0 = before.Point(i);
+    const double* x1 = after.Point(i);
+    const int bits = unitCube && boundary[i] ? CubeFaceBits(x0) : 0;
+    const bool onCubeFace = bits == 1 || bits == 2 || bits == 4;
+    if ((boundary[i] && !onCubeFace) || fixed[i])
       for (int d = 0; d < before.AmbientDim; ++d)
-        c.Expect(
-          after.Points[i * before.AmbientDim + d] == before.Points[i * before.AmbientDim + d],
-          "boundary and fixed points stay");
+        c.Expect(x1[d] == x0[d], "boundary and fixed points stay");
+    else if (onCubeFace)
+    {
+      const int d = bits >> 1; // the coordinate that is 0 or 1 (bits 1, 2, 4 -> 0, 1, 2)
+      bool inside = true;
+      for (int k = 0; k < 3; ++k)
+        inside = inside && x1[k] >= 0.0 && x1[k] <= 1.0;
+      c.Expect(CubeFaceBits(x1) == bits && x1[d] == x0[d] && inside,
+        "face points stay on their face");
+    }
+  }
   c.Expect(r.WorstAfter >= r.WorstBefore, "the worst quality never drops");
   return c;
 }
@@ -324,11 +492,22 @@ void TestGrids()
   av::SimplexMesh m = start;
   const av::MeshImprovementResult r =
     av::ImproveMesh(m, metric, &fixed, av::MeshImprovementOptions());
-  const Checks c = CheckRun(start, m, fixed, r);
+  const Checks c = CheckRun(start, m, fixed, r, true);
   AV_CHECK(c.Ok);
   AV_CHECK_MSG(r.WorstAfter > r.WorstBefore + 1.0, r.WorstBefore << " -> " << r.WorstAfter);
   AV_CHECK(r.NumSmoothed > 0 && r.NumEdgeRemovals + r.NumFlips23 > 0);
+  AV_CHECK_MSG(r.NumBoundarySmoothed > 0 && r.NumBoundaryEdgeRemovals > 0,
+    r.NumBoundarySmoothed << " boundary moves, " << r.NumBoundaryEdgeRemovals
+                          << " boundary edge removals");
   AV_CHECK(m.NumPoints() == start.NumPoints());
+  { // Without PlanarBoundary the boundary stays face for face.
+    av::MeshImprovementOptions interior;
+    interior.PlanarBoundary = false;
+    av::SimplexMesh k = start;
+    const av::MeshImprovementResult kr = av::ImproveMesh(k, metric, &fixed, interior);
+    AV_CHECK(CheckRun(start, k, fixed, kr).Ok);
+    AV_CHECK(kr.NumBoundarySmoothed == 0 && kr.NumBoundaryEdgeRemovals == 0);
+  }
 
   // Triangles on a jittered grid in the same metric.
   const double lo[2] = { 0, 0 }, hi[2] = { 1, 1 };
@@ -357,7 +536,7 @@ void TestGrids()
   const av::MeshImprovementResult wr = av::ImproveMesh(w, metric, &fixed, worsening);
   std::cerr << "(expected) worsening run: " << wr.WorstBefore << " -> " << wr.WorstAfter
             << std::endl;
-  AV_CHECK_MSG(!CheckRun(start, w, fixed, wr).Ok, "the checks miss a worsening run");
+  AV_CHECK_MSG(!CheckRun(start, w, fixed, wr, true).Ok, "the checks miss a worsening run");
 }
 
 void TestBadInput()
@@ -385,6 +564,7 @@ int TestMeshImprovement(int, char*[])
 {
   TestFlips();
   TestSmoothing();
+  TestPlanarBoundary();
   TestTriangles();
   TestGrids();
   TestBadInput();
