@@ -101,6 +101,30 @@ void SetSite(const SimplexMesh& mesh,
     sites.Bary[v * 4 + i] = lambda[i];
 }
 
+/// The boundary triangles of a tet mesh (facets without a neighbor in `adjacency`), each
+/// ordered so that its normal points into the domain, on the mesh's own points.
+SimplexMesh BoundaryTriangles(const SimplexMesh& mesh, const std::vector<std::int32_t>& adjacency)
+{
+  // The facet opposite local vertex a, counterclockwise seen from a in a positive tet.
+  constexpr int Facet[4][3] = { { 1, 3, 2 }, { 0, 2, 3 }, { 0, 3, 1 }, { 0, 1, 2 } };
+  SimplexMesh surface;
+  surface.AmbientDim = 3;
+  surface.SimplexDim = 2;
+  surface.Points = mesh.Points;
+  for (std::size_t c = 0; c < mesh.NumCells(); ++c)
+  {
+    const std::int32_t* e = mesh.Cell(c);
+    const bool negative = CellMeasure(mesh, c) < 0.0;
+    for (int a = 0; a < 4; ++a)
+      if (adjacency[4 * c + a] < 0)
+      {
+        const int j = negative ? 2 : 1, k = negative ? 1 : 2;
+        surface.Cells.insert(surface.Cells.end(), { e[Facet[a][0]], e[Facet[a][j]], e[Facet[a][k]] });
+      }
+  }
+  return surface;
+}
+
 } // namespace
 
 MeshImprovementResult ImproveFinalMesh(const SimplexMesh& mesh,
@@ -165,6 +189,38 @@ MeshImprovementResult ImproveFinalMesh(const SimplexMesh& mesh,
       moved[v] = 1;
     return true;
   };
+  // Volumes: boundary vertices of curved patches move on the input's boundary surface.
+  SimplexMesh inputBoundary;
+  std::unique_ptr<TriangleBvh> boundaryBvh;
+  if (dual.SimplexDim == 3 && mesh.SimplexDim == 3 && o.PlanarBoundary)
+  {
+    inputBoundary = BoundaryTriangles(mesh, adjacency);
+    if (inputBoundary.NumCells() > 0)
+    {
+      boundaryBvh = std::make_unique<TriangleBvh>(inputBoundary);
+      o.ProjectToBoundary =
+        [&](std::int32_t, const double* x, const double* inward, double* placed)
+      {
+        std::int32_t tri = -1;
+        const Eigen::Vector3d p(x[0], x[1], x[2]);
+        boundaryBvh->ClosestDistance2(p, &tri);
+        if (tri < 0)
+          return false;
+        auto corner = [&](int i)
+        {
+          return Eigen::Map<const Eigen::Vector3d>(
+            inputBoundary.Point(inputBoundary.Cell(static_cast<std::size_t>(tri))[i]));
+        };
+        const Eigen::Vector3d a = corner(0), b = corner(1), c = corner(2);
+        // The same side of the surface (not the other sheet of a thin part).
+        if ((b - a).cross(c - a).normalized().dot(Eigen::Map<const Eigen::Vector3d>(inward)) < 0.5)
+          return false;
+        Eigen::Map<Eigen::Vector3d> out(placed);
+        out = ClosestPointOnTriangle(p, a, b, c);
+        return true;
+      };
+    }
+  }
   if (dual.SimplexDim == 2)
   {
     o.PlacePoint = [&](

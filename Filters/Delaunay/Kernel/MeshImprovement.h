@@ -36,9 +36,17 @@ struct MeshImprovementOptions
   /// boundary by the thin tet between the old and the new faces (their four vertices stay where
   /// they are, on the input's boundary); 0: planar patches only. Far below the feature angle.
   double BoundaryFlipMaxDihedral = 10.0;
-  /// Tets: the most volume those curved-boundary removals may change in all, as a fraction of
-  /// the mesh's volume.
+  /// Tets: the most volume those curved-boundary operations (removals and the moves below) may
+  /// change in all, as a fraction of the mesh's volume.
   double BoundaryFlipVolumeBudget = 1e-3;
+  /// Tets, with PlanarBoundary: puts a trial position x (3 values) of boundary vertex v on the
+  /// domain's boundary surface, near the tangent plane with unit inward normal `normal`: writes
+  /// `placed`; false when there is no such point (another sheet of a thin part). With it, a
+  /// vertex of a smooth curved patch (one disc of boundary faces, all within
+  /// BoundaryFlipMaxDihedral of their mean plane) moves too: in that plane, then onto the
+  /// surface. Empty: those vertices stay.
+  std::function<bool(std::int32_t v, const double* x, const double* normal, double* placed)>
+    ProjectToBoundary;
   int MaxEdgeRemovalRing = 7; ///< edge removal on edges of at most this many tets (3 = 3-2 only)
   /// Tets: an operation may not add edges whose metric length, divided by the median of the
   /// input's, leaves [1/sqrt2, sqrt2] (the UGAWG range of the §5.2 evaluation): a flip's new
@@ -88,8 +96,8 @@ struct MeshImprovementResult
   std::size_t NumFlips22 = 0;      ///< triangles: edge flips
   std::size_t NumSmoothed = 0;     ///< accepted vertex moves
   std::size_t NumBoundaryEdgeRemovals = 0; ///< tets: of those, on planar boundary patches
-  std::size_t NumBoundarySmoothed = 0;     ///< tets: moves of vertices in a boundary plane
-  /// Tets: total |volume change| of the curved-boundary removals, as a fraction of the volume
+  std::size_t NumBoundarySmoothed = 0; ///< tets: moves of boundary vertices (planar or curved)
+  /// Tets: total |volume change| of the curved-boundary operations, as a fraction of the volume
   double BoundaryVolumeChange = 0.0;
   std::size_t NumSplits = 0;       ///< triangles: edge splits (new vertices appended)
   std::size_t NumCollapses = 0;    ///< triangles: edge collapses (the removed vertex is unused)

@@ -48,7 +48,16 @@ TetMeshImprover::TetMeshImprover(SimplexMesh& mesh,
       [this](std::int32_t v, const Eigen::Vector3d& x)
       {
         const Eigen::Vector3d& n = PlaneNormal[v];
-        Work.Points[v] = x - n * n.dot(x - Work.Points[v]);
+        const Eigen::Vector3d inPlane = x - n * n.dot(x - Work.Points[v]);
+        if (!Curved[v])
+        {
+          Work.Points[v] = inPlane;
+          return true;
+        }
+        Eigen::Vector3d placed;
+        if (!Options.ProjectToBoundary(v, inPlane.data(), n.data(), placed.data()))
+          return false;
+        Work.Points[v] = placed;
         return true;
       },
       Options.KeepEdgeLengths && !Options.AcceptWorsening
@@ -56,6 +65,7 @@ TetMeshImprover::TetMeshImprover(SimplexMesh& mesh,
         : VertexStarSmoother<3>::EdgeCount())
 {
   PlaneNormal.assign(P.size(), Eigen::Vector3d::Zero());
+  Curved.assign(P.size(), 0);
   for (const Tet& t : Tets)
     MeshVolume += std::abs(Volume(t));
   MarkBoundaryAndNonManifold();
@@ -199,16 +209,22 @@ void TetMeshImprover::FindPlanarBoundaryVertices(
     if (steps != edges.size() || at != edges[0].second)
       continue;
     // Coplanar: every link vertex within a tiny fraction of its distance from the plane.
+    // Smooth: every face within BoundaryFlipMaxDihedral of that (mean) plane.
     const Eigen::Vector3d n = areaSum[v].normalized();
-    bool planar = true;
+    const double cosMax = std::cos(Options.BoundaryFlipMaxDihedral * Pi / 180.0);
+    bool planar = true, smooth = true;
     for (const auto& [b, c] : edges)
     {
       const Eigen::Vector3d d = P[b] - P[v];
       planar = planar && std::abs(n.dot(d)) <= 1e-10 * d.norm();
+      const Eigen::Vector3d fn = d.cross(P[c] - P[v]);
+      smooth = smooth && fn.norm() > 0.0 && fn.normalized().dot(n) >= cosMax;
     }
-    if (!planar)
+    const bool curved = !planar && smooth && static_cast<bool>(Options.ProjectToBoundary);
+    if (!planar && !curved)
       continue;
     PlaneNormal[v] = n;
+    Curved[v] = curved ? 1 : 0;
     Work.Fixed[v] = 0;
   }
 }
@@ -494,12 +510,40 @@ bool TetMeshImprover::TryFlip23(std::int32_t tet, int apexIndex, double worst)
   return true;
 }
 
+// A boundary vertex's move is committed here: its volume change (none in a plane, the thin
+// shell between the old and the new faces on a curved patch) must fit the budget first.
 bool TetMeshImprover::TrySmooth(std::int32_t v)
 {
-  if (!Smoother.TrySmooth(v, false))
+  const bool boundary = PlaneNormal[v].squaredNorm() > 0.0;
+  if (!boundary)
+  {
+    if (!Smoother.TrySmooth(v, false))
+      return false;
+    ++Smoothed;
+    return true;
+  }
+  const Eigen::Vector3d start = P[v];
+  auto starVolume = [&]
+  {
+    double sum = 0.0;
+    for (std::int32_t t : Star[v])
+      sum += Volume(Tets[t]);
+    return sum;
+  };
+  const double before = starVolume();
+  if (!Smoother.TrySmooth(v, true))
     return false;
+  const double change = Curved[v] ? std::abs(starVolume() - before) : 0.0;
+  if (BoundaryVolumeChange + change > Options.BoundaryFlipVolumeBudget * MeshVolume ||
+    (Options.AcceptMove && !Options.AcceptMove(v, P[v].data())))
+  {
+    Work.Points[v] = start;
+    return false;
+  }
+  Work.Moved[v] = 1;
+  BoundaryVolumeChange += change;
   ++Smoothed;
-  BoundarySmoothed += PlaneNormal[v].squaredNorm() > 0.0 ? 1 : 0;
+  ++BoundarySmoothed;
   return true;
 }
 

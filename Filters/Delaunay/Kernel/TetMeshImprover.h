@@ -64,8 +64,10 @@ private:
   std::vector<std::int32_t> EdgeTets, Ring, Next;
   std::vector<double> Best;
   std::vector<int> Choice;
-  // Per point: the unit normal of its boundary plane where it may move in it, else zero.
+  // Per point: the unit normal of its boundary plane where it may move in it, else zero;
+  // Curved: the plane is a tangent plane and ProjectToBoundary puts the point on the surface.
   std::vector<Eigen::Vector3d> PlaneNormal;
+  std::vector<char> Curved;
   std::size_t Flips23 = 0, EdgeRemovals = 0, Smoothed = 0;
   std::size_t BoundaryEdgeRemovals = 0, BoundarySmoothed = 0;
   double MeshVolume = 0.0, BoundaryVolumeChange = 0.0; // Euclidean, times 6

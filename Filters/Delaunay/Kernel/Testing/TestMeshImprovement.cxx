@@ -11,6 +11,8 @@
 #include "MeshTopology.h"
 #include "StructuredMeshes.h"
 
+#include <Eigen/Dense>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -318,6 +320,51 @@ void TestPlanarBoundary()
     fixed[5] = 1; // a feature vertex stays
     av::SimplexMesh k = halfOctahedron(0.0);
     AV_CHECK(av::ImproveMesh(k, IsotropicMetric(6), &fixed, smoothOnly).NumSmoothed == 0);
+  }
+  { // On a curved boundary (a cap of the sphere |x - (0, 0, -20)| = 20) the center moves only
+    // with ProjectToBoundary, and then stays on the sphere, within the volume budget.
+    const double radius = 20.0;
+    const Eigen::Vector3d center(0, 0, -radius);
+    auto onSphere = [&](double x, double y)
+    { return Eigen::Vector3d(x, y, std::sqrt(radius * radius - x * x - y * y) - radius); };
+    av::SimplexMesh m = halfOctahedron(0.0);
+    for (int i = 0; i < 6; ++i)
+      if (i != 4)
+      {
+        const Eigen::Vector3d q = onSphere(m.Points[3 * i], m.Points[3 * i + 1]);
+        m.Points[3 * i + 2] = q.z();
+      }
+    Orient(m);
+    const av::SimplexMesh start = m;
+    av::MeshImprovementOptions curved = smoothOnly;
+    curved.BoundaryFlipVolumeBudget = 1.0;
+    av::SimplexMesh fixedCap = start;
+    AV_CHECK(av::ImproveMesh(fixedCap, IsotropicMetric(6), nullptr, curved).NumSmoothed == 0);
+    int calls = 0;
+    curved.ProjectToBoundary = [&](std::int32_t v, const double* x, const double*, double* placed)
+    {
+      ++calls;
+      AV_CHECK(v == 5);
+      const Eigen::Vector3d p = Eigen::Map<const Eigen::Vector3d>(x) - center;
+      Eigen::Map<Eigen::Vector3d> out(placed);
+      out = center + radius * p.normalized();
+      return true;
+    };
+    const double before = WorstQuality(start);
+    const av::MeshImprovementResult r = av::ImproveMesh(m, IsotropicMetric(6), nullptr, curved);
+    AV_CHECK(calls > 0 && r.NumBoundarySmoothed >= 1 && r.Moved[5]);
+    AV_CHECK_MSG(WorstQuality(m) > before + 0.2, before << " -> " << WorstQuality(m));
+    const Eigen::Vector3d c(m.Points[15], m.Points[16], m.Points[17]);
+    AV_CHECK_NEAR((c - center).norm(), radius, 1e-12);
+    AV_CHECK(NumInverted(m) == 0);
+    AV_CHECK_NEAR(r.BoundaryVolumeChange, std::abs(Volume(m) - Volume(start)) / Volume(start), 1e-12);
+    // The default budget (0.1 % of the volume) is far below this move's change: refused.
+    av::MeshImprovementOptions small = curved;
+    small.BoundaryFlipVolumeBudget = 1e-3;
+    AV_CHECK(r.BoundaryVolumeChange > 1e-3);
+    av::SimplexMesh k = start;
+    AV_CHECK(av::ImproveMesh(k, IsotropicMetric(6), nullptr, small).NumSmoothed == 0);
+    AV_CHECK(k.Points == start.Points);
   }
   { // Lifted off the plane of its neighbours the center is a crease vertex: it stays.
     av::SimplexMesh m = halfOctahedron(0.05);
