@@ -53,6 +53,10 @@ struct MeshImprovementOptions
   /// edges must not be more often out of range than the edges it removes, a move may not raise
   /// the count among the vertex's edges.
   bool KeepEdgeLengths = true;
+  /// Tets: KeepEdgeLengths binds operations on tets whose quality angle is at least this
+  /// (degrees); a tet below it, bad by the §5.2 count of tets below 15°, may be improved at the
+  /// price of out-of-range edges (the real volumes' worst tets are otherwise stuck). 0: always.
+  double EdgeLengthRuleMinAngle = 15.0;
   /// Test hook: accept operations that do not raise the worst quality they touch (only those
   /// that keep every element positive). Always false in use.
   bool AcceptWorsening = false;

@@ -101,7 +101,7 @@ void TetMeshImprover::ComputeMedianEdgeLength()
 // The §5.1 edge length (Q_ab = (S_a + S_b) / 2) against the UGAWG range around the median.
 bool TetMeshImprover::OutOfRange(std::int32_t a, std::int32_t b) const
 {
-  if (!(MedianEdge > 0.0))
+  if (!(MedianEdge > 0.0) || EdgeRuleWaived)
     return false;
   const double l = Work.EdgeLength(a, b) / MedianEdge;
   return l < std::sqrt(0.5) || l > std::sqrt(2.0);
@@ -551,6 +551,7 @@ bool TetMeshImprover::Improve(std::int32_t tet)
 {
   const Tet t = Tets[tet];
   const double worst = Quality(t);
+  EdgeRuleWaived = worst < std::sin(Options.EdgeLengthRuleMinAngle * Pi / 180.0);
   if (Options.Flips)
   {
     for (int i = 0; i < 4; ++i)

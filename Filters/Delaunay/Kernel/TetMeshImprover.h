@@ -68,6 +68,7 @@ private:
   // Curved: the plane is a tangent plane and ProjectToBoundary puts the point on the surface.
   std::vector<Eigen::Vector3d> PlaneNormal;
   std::vector<char> Curved;
+  bool EdgeRuleWaived = false; // the tet being improved is below EdgeLengthRuleMinAngle
   std::size_t Flips23 = 0, EdgeRemovals = 0, Smoothed = 0;
   std::size_t BoundaryEdgeRemovals = 0, BoundarySmoothed = 0;
   double MeshVolume = 0.0, BoundaryVolumeChange = 0.0; // Euclidean, times 6

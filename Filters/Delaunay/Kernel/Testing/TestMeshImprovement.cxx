@@ -151,12 +151,21 @@ void TestFlips()
         (std::count(m.Cell(c), m.Cell(c) + 4, n) && std::count(m.Cell(c), m.Cell(c) + 4, n + 1));
     AV_CHECK(!hasEdge);
   }
-  { // Keeping edge lengths: the 2-3 flip's new edge (0.4 against a median of 1) is refused.
+  { // Keeping edge lengths: the 2-3 flip's new edge (0.4 against a median of 1) is refused
+    // for tets of 21.8 degrees (above EdgeLengthRuleMinAngle).
     av::SimplexMesh m = RingConfiguration(3, 0.2, false);
     av::MeshImprovementOptions keep = flipsOnly;
     keep.KeepEdgeLengths = true;
     AV_CHECK(av::ImproveMesh(m, IsotropicMetric(5), nullptr, keep).NumFlips23 == 0);
     AV_CHECK(m.NumCells() == 2);
+    // Slivers of 5.7 degrees (apexes at +-0.05) are flipped anyway (new edge 0.1), unless the
+    // rule binds at every angle.
+    av::SimplexMesh flat = RingConfiguration(3, 0.05, false);
+    AV_CHECK(av::ImproveMesh(flat, IsotropicMetric(5), nullptr, keep).NumFlips23 == 1);
+    av::MeshImprovementOptions always = keep;
+    always.EdgeLengthRuleMinAngle = 0.0;
+    av::SimplexMesh strict = RingConfiguration(3, 0.05, false);
+    AV_CHECK(av::ImproveMesh(strict, IsotropicMetric(5), nullptr, always).NumFlips23 == 0);
   }
   { // With flips off nothing changes.
     av::SimplexMesh m = RingConfiguration(3, 1.5, true);
