@@ -242,15 +242,12 @@ bool TetMeshImprover::Accepts(double after, double before) const
 // Orders the link of edge (a, b) into a ring r0..r(n-1) such that every tet (a, b, ri, ri+1)
 // is an even permutation of a stored tet. False if the edge is on the boundary or the link is
 // not one cycle.
-bool TetMeshImprover::BuildRing(std::int32_t a, std::int32_t b)
+std::size_t TetMeshImprover::CollectEdgeLink(std::int32_t a, std::int32_t b)
 {
   EdgeTets.clear();
   for (std::int32_t t : Star[a])
     if (IndexIn(Tets[t], b) >= 0)
       EdgeTets.push_back(t);
-  const std::size_t n = EdgeTets.size();
-  if (n < 3 || n > static_cast<std::size_t>(Options.MaxEdgeRemovalRing))
-    return false;
   // Pairs (c, d) with (a, b, c, d) even.
   Next.clear();
   for (std::int32_t t : EdgeTets)
@@ -266,6 +263,14 @@ bool TetMeshImprover::BuildRing(std::int32_t a, std::int32_t b)
     Next.push_back(q[idx[2]]);
     Next.push_back(q[idx[3]]);
   }
+  return EdgeTets.size();
+}
+
+bool TetMeshImprover::BuildRing(std::int32_t a, std::int32_t b)
+{
+  const std::size_t n = CollectEdgeLink(a, b);
+  if (n < 3 || n > static_cast<std::size_t>(Options.MaxEdgeRemovalRing))
+    return false;
   Ring.clear();
   Ring.push_back(Next[0]);
   for (std::size_t step = 0; step < n; ++step)
@@ -292,27 +297,9 @@ bool TetMeshImprover::BuildRing(std::int32_t a, std::int32_t b)
 bool TetMeshImprover::BuildOpenRing(std::int32_t a, std::int32_t b, bool& curved)
 {
   curved = false;
-  EdgeTets.clear();
-  for (std::int32_t t : Star[a])
-    if (IndexIn(Tets[t], b) >= 0)
-      EdgeTets.push_back(t);
-  const std::size_t n = EdgeTets.size();
+  const std::size_t n = CollectEdgeLink(a, b);
   if (n < 2 || n + 1 > static_cast<std::size_t>(Options.MaxEdgeRemovalRing))
     return false;
-  Next.clear();
-  for (std::int32_t t : EdgeTets)
-  {
-    const Tet& q = Tets[t];
-    int idx[4] = { IndexIn(q, a), IndexIn(q, b), -1, -1 };
-    int k = 2;
-    for (int i = 0; i < 4; ++i)
-      if (i != idx[0] && i != idx[1])
-        idx[k++] = i;
-    if (!IsEvenPermutation(idx))
-      std::swap(idx[2], idx[3]);
-    Next.push_back(q[idx[2]]);
-    Next.push_back(q[idx[3]]);
-  }
   // The path starts at the one vertex that follows no other.
   std::int32_t start = -1;
   for (std::size_t i = 0; i < n; ++i)

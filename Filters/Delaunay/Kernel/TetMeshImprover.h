@@ -39,6 +39,9 @@ private:
     const std::vector<char>& userFixed);
   bool Improve(std::int32_t tet); // best operation on one bad tet, true if applied
   bool TryEdgeRemoval(std::int32_t a, std::int32_t b);
+  /// The tets on edge (a, b) into EdgeTets and, per tet, its other two vertices (c, d) with
+  /// (a, b, c, d) even into Next; returns their count.
+  std::size_t CollectEdgeLink(std::int32_t a, std::int32_t b);
   bool BuildRing(std::int32_t a, std::int32_t b);
   /// As BuildRing for a boundary edge: the link is a path r0..rn (n tets), and the edge's two
   /// boundary faces (a, b, r0) and (a, b, rn) are coplanar, or within BoundaryFlipMaxDihedral
