@@ -88,6 +88,9 @@ meshing:
                            to the domain and flipped towards the metric's Delaunay criterion)
   --no-mesh-improvement    keep the dual mesh as it is (default: flips and vertex smoothing
                            raise its worst element, measured in the metric)
+  --no-boundary-improvement  the mesh improvement leaves every boundary vertex and face of a
+                           tet mesh as it is (default: planar patches exactly, smooth curved
+                           ones within 0.1 % of the volume)
   --improve-rounds N       site improvement rounds before the repair (default 1; 0 = the
                            paper's pipeline): ODT steps and sliver pushes, diagram redone
   --odt-iterations N       ODT steps per improvement round (default 3; 0 = sliver pushes only)
@@ -313,6 +316,8 @@ Options ParseCommandLine(int argc, char* argv[])
       o.ValidDual = false;
     else if (a == "--no-mesh-improvement")
       o.ImproveMesh = false;
+    else if (a == "--no-boundary-improvement")
+      o.ImproveBoundary = false;
     else if (!a.empty() && a[0] == '-')
       Fail("unknown option " + a + " (see --help)", 2);
     else if (o.Input.empty())

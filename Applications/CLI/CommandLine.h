@@ -27,6 +27,7 @@ struct Options
   bool TensorAsMetric = false, Clamp = false, Quiet = false, Repair = true;
   bool ValidDual = true;
   bool RepairNonManifold = true, DoubleSolve = false, ImproveMesh = true;
+  bool ImproveBoundary = true; // the mesh improvement also works on the tet boundary
   /// Metric preparation (on for tensor:ARRAY; metric, preset and .sol inputs only when a
   /// preparation option is given, PrepareAsked). SitesGiven: --sites was on the command line.
   double HMin = 0.0, HMax = 0.0, HGrad = 1.3, SizeBlend = 0.5, MinCellsAcross = 1.25;

@@ -406,6 +406,7 @@ void RunMeshingStages(const Options& o,
   s.Delaunay->SetRepairNonManifold(o.RepairNonManifold);
   s.Delaunay->SetValidDual(o.ValidDual);
   s.Delaunay->SetImproveMesh(o.ImproveMesh);
+  s.Delaunay->SetImproveBoundary(o.ImproveBoundary);
   runner.Run(s.Delaunay, DelaunayStage);
   s.Voronoi->SetInputConnection(0, s.Embedding->GetOutputPort(0));
   s.Voronoi->SetInputConnection(1, s.Delaunay->GetOutputPort(0));

@@ -238,6 +238,7 @@ av::MeshingPipelineOptions MeshingOptions(vtkAnisoRestrictedDelaunay* self,
   options.RepairNonManifold = self->GetRepairNonManifold();
   options.ValidDual = self->GetValidDual();
   options.ImproveMesh = self->GetImproveMesh();
+  options.Improvement.PlanarBoundary = self->GetImproveBoundary();
   options.Progress = [self](av::MeshingStep step)
   {
     if (self->GetAbortExecute())
@@ -410,6 +411,7 @@ void vtkAnisoRestrictedDelaunay::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "RepairNonManifold: " << (this->RepairNonManifold ? "On" : "Off") << "\n";
   os << indent << "ValidDual: " << (this->ValidDual ? "On" : "Off") << "\n";
   os << indent << "ImproveMesh: " << (this->ImproveMesh ? "On" : "Off") << "\n";
+  os << indent << "ImproveBoundary: " << (this->ImproveBoundary ? "On" : "Off") << "\n";
   os << indent << "MaxRepairRounds: " << this->MaxRepairRounds << "\n";
   os << indent << "ImprovementRounds: " << this->ImprovementRounds << "\n";
   os << indent << "OdtIterations: " << this->OdtIterations << "\n";

@@ -101,12 +101,23 @@ public:
   /// Mesh improvement of the final mesh (default on; off = the paper's dual): 2-3 flips, edge
   /// removal and vertex smoothing that raise the worst element measured in the metric (input
   /// array 1 on port 0, default "Metric"; without it the step is skipped with a warning).
-  /// Boundary, corner and feature-line vertices stay; nothing inverts. The mesh is then no
+  /// Corner and feature-line vertices stay (the boundary: ImproveBoundary); nothing inverts. The mesh is then no
   /// longer the exact dual of the restricted Voronoi diagram; moved sites get interpolated
   /// point data.
   vtkSetMacro(ImproveMesh, bool);
   vtkGetMacro(ImproveMesh, bool);
   vtkBooleanMacro(ImproveMesh, bool);
+  ///@}
+
+  ///@{
+  /// Mesh improvement on the boundary of tet meshes (default on): vertices of planar boundary
+  /// patches move in their plane and boundary edges between coplanar faces are removed, both
+  /// keeping the volume exactly; on smooth curved patches (faces within 10 degrees) the same
+  /// flips run and vertices move onto the input's boundary surface, changing at most 0.1 % of
+  /// the volume. Off: every boundary vertex and face stays.
+  vtkSetMacro(ImproveBoundary, bool);
+  vtkGetMacro(ImproveBoundary, bool);
+  vtkBooleanMacro(ImproveBoundary, bool);
   ///@}
 
   ///@{
@@ -130,6 +141,7 @@ protected:
 
   bool RepairInverted = true;
   bool ImproveMesh = true;
+  bool ImproveBoundary = true;
   bool RepairNonManifold = true;
   bool ValidDual = true;
   int MaxRepairRounds = 10;

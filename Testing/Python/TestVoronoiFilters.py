@@ -12,7 +12,7 @@ import math
 import sys
 
 from vtkmodules.vtkCommonCore import vtkCommand
-from vtkmodules.vtkCommonDataModel import vtkPolyData
+from vtkmodules.vtkCommonDataModel import vtkPolyData, vtkUnstructuredGrid
 from anisovoronoi import (vtkAnisoAnalyticMetricSource, vtkAnisoEmbedding,
                           vtkAnisoParticleSampler, vtkAnisoRestrictedVoronoi,
                           vtkAnisoRestrictedDelaunay, vtkAnisoMeshQuality)
@@ -191,7 +191,39 @@ print("sliver push: %g slivers, %g sites moved; all flagged: %g moved" % (
 assert field(free.GetOutput(), "NumMovedSites") > 0
 assert field(free.GetOutput(), "NumSliversPerturbed") > 0
 assert field(pinned.GetOutput(), "NumMovedSites") == 0
+# The final improvement on the boundary (ImproveBoundary): off, no vertex of a boundary face
+# moves; on, some do, and those on a face of the cube stay on it exactly.
+def boundary_points(grid):
+    count = {}
+    for c in range(grid.GetNumberOfCells()):
+        ids = grid.GetCell(c).GetPointIds()
+        t = [ids.GetId(k) for k in range(4)]
+        for skip in range(4):
+            f = tuple(sorted(t[:skip] + t[skip + 1:]))
+            count[f] = count.get(f, 0) + 1
+    return sorted({v for f, n in count.items() if n == 1 for v in f})
+bounds = cube_embedding.GetOutput().GetBounds()
+def on_cube_face(x):
+    return [d for d in range(3) if x[d] in (bounds[2 * d], bounds[2 * d + 1])]
 cube_rdt.SetImprovementRounds(0)
+cube_rdt.SetImproveBoundary(False)
+cube_rdt.Update()
+kept = vtkUnstructuredGrid()
+kept.DeepCopy(cube_rdt.GetOutput())
+kept_boundary = boundary_points(kept)
+assert kept_boundary and all(kept.GetPoint(i) == sampled.GetPoint(i) for i in kept_boundary)
+cube_rdt.SetImproveBoundary(True)
+cube_rdt.Update()
+improved = cube_rdt.GetOutput()
+moved_boundary = [i for i in boundary_points(improved) if i < sampled.GetNumberOfPoints() and
+                  improved.GetPoint(i) != sampled.GetPoint(i)]
+print("boundary improvement: %d of %d boundary sites moved" % (len(moved_boundary),
+                                                            len(boundary_points(improved))))
+assert moved_boundary
+for i in moved_boundary:
+    before = sampled.GetPoint(i)
+    after = improved.GetPoint(i)
+    assert all(after[d] == before[d] for d in on_cube_face(before)), (i, before, after)
 cube_rdt.SetImproveMesh(False)  # the final mesh improvement moves sites too
 cube_rdt.Update()
 assert field(cube_rdt.GetOutput(), "NumMovedSites") == 0
