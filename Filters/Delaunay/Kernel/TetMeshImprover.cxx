@@ -266,6 +266,19 @@ std::size_t TetMeshImprover::CollectEdgeLink(std::int32_t a, std::int32_t b)
   return EdgeTets.size();
 }
 
+std::int32_t TetMeshImprover::Successor(std::int32_t v, std::size_t n) const
+{
+  std::int32_t succ = -1;
+  int found = 0;
+  for (std::size_t i = 0; i < n; ++i)
+    if (Next[2 * i] == v)
+    {
+      succ = Next[2 * i + 1];
+      ++found;
+    }
+  return found == 1 ? succ : -1;
+}
+
 bool TetMeshImprover::BuildRing(std::int32_t a, std::int32_t b)
 {
   const std::size_t n = CollectEdgeLink(a, b);
@@ -275,15 +288,8 @@ bool TetMeshImprover::BuildRing(std::int32_t a, std::int32_t b)
   Ring.push_back(Next[0]);
   for (std::size_t step = 0; step < n; ++step)
   {
-    std::int32_t succ = -1;
-    int found = 0;
-    for (std::size_t i = 0; i < n; ++i)
-      if (Next[2 * i] == Ring.back())
-      {
-        succ = Next[2 * i + 1];
-        ++found;
-      }
-    if (found != 1)
+    const std::int32_t succ = Successor(Ring.back(), n);
+    if (succ < 0)
       return false;
     if (step + 1 == n)
       return succ == Ring.front();
@@ -319,15 +325,8 @@ bool TetMeshImprover::BuildOpenRing(std::int32_t a, std::int32_t b, bool& curved
   Ring.assign(1, start);
   for (std::size_t step = 0; step < n; ++step)
   {
-    std::int32_t succ = -1;
-    int found = 0;
-    for (std::size_t i = 0; i < n; ++i)
-      if (Next[2 * i] == Ring.back())
-      {
-        succ = Next[2 * i + 1];
-        ++found;
-      }
-    if (found != 1 || std::find(Ring.begin(), Ring.end(), succ) != Ring.end())
+    const std::int32_t succ = Successor(Ring.back(), n);
+    if (succ < 0 || std::find(Ring.begin(), Ring.end(), succ) != Ring.end())
       return false;
     Ring.push_back(succ);
   }

@@ -42,6 +42,8 @@ private:
   /// The tets on edge (a, b) into EdgeTets and, per tet, its other two vertices (c, d) with
   /// (a, b, c, d) even into Next; returns their count.
   std::size_t CollectEdgeLink(std::int32_t a, std::int32_t b);
+  /// The d of the one pair (v, d) among the first n of Next; -1 if none or several.
+  std::int32_t Successor(std::int32_t v, std::size_t n) const;
   bool BuildRing(std::int32_t a, std::int32_t b);
   /// As BuildRing for a boundary edge: the link is a path r0..rn (n tets), and the edge's two
   /// boundary faces (a, b, r0) and (a, b, rn) are coplanar, or within BoundaryFlipMaxDihedral
