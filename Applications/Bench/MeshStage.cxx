@@ -66,7 +66,7 @@ av::SiteSet SampleSites(const av::SimplexMesh& mesh,
   // site whose cell meets the boundary anyway).
   fixed.resize(sampled.FeatureKind.size());
   for (std::size_t i = 0; i < fixed.size(); ++i)
-    fixed[i] = sampled.FeatureKind[i] != 0 ? 1 : 0;
+    fixed[i] = sampled.FeatureKind[i] == 1 ? av::FeatureLinePoint : sampled.FeatureKind[i] != 0;
   if (options.LloydIterations > 0)
   {
     const av::Stopwatch lloydWatch;
@@ -94,7 +94,9 @@ av::MeshingPipelineOptions PipelineOptions(const MeshStageOptions& options,
   po.ValidDual = options.ValidDual;
   po.ImproveMesh = options.ImproveMesh;
   po.Improvement.PlanarBoundary = options.PlanarBoundary;
+  po.Improvement.StraightCreases = options.StraightCreases;
   po.Improvement.BoundaryFlipMaxDihedral = options.BoundaryFlipMaxDihedral;
+  po.Improvement.BoundaryFlipVolumeBudget = options.BoundaryFlipVolumeBudget;
   po.Metric = metric;
   return po;
 }
@@ -113,6 +115,7 @@ void CopyMeshingCounts(const av::MeshingPipelineResult& m, MeshStageResult& r)
   r.ImprovementBoundaryOps =
     m.Improvement.NumBoundaryEdgeRemovals + m.Improvement.NumBoundarySmoothed;
   r.ImprovementVolumeChange = m.Improvement.BoundaryVolumeChange;
+  r.ImprovementCreaseMoves = m.Improvement.NumCreaseSmoothed;
   r.InvertedBeforeImprovement = m.InvertedBeforeImprovement;
   r.ValidDualReplaced = m.ValidDual.Replaced;
   r.ValidDualSeconds = m.ValidDualSeconds;
@@ -193,6 +196,28 @@ void MeasureDualMesh(const av::SimplexMesh& mesh,
     for (std::size_t c = 0; c < dual.NumCells(); ++c)
       covered += std::abs(av::CellMeasure(dual, c));
     r.DualVolumeRatio = covered / domain;
+  }
+  {
+    // Elements whose sites lie in different bodies of the input (a contact assembly).
+    std::vector<std::int32_t> body;
+    if (av::LabelBodies(mesh, body) > 1)
+    {
+      const int nv = dual.SimplexDim + 1;
+      auto siteBody = [&](std::int32_t s)
+      { return body[static_cast<std::size_t>(mesh.Cell(sites.CellIds[s])[0])]; };
+      for (std::size_t c = 0; c < dual.NumCells(); ++c)
+      {
+        bool mixed = false;
+        for (int i = 1; i < nv; ++i)
+          mixed = mixed || siteBody(dual.Cell(c)[i]) != siteBody(dual.Cell(c)[0]);
+        r.CrossBodyElements += mixed ? 1 : 0;
+      }
+      for (std::size_t p = 0; p < rvd.NumPieces(); ++p)
+        r.CrossBodyPieces += siteBody(rvd.PieceSite[p]) !=
+            body[static_cast<std::size_t>(mesh.Cell(rvd.PieceElement[p])[0])]
+          ? 1
+          : 0;
+    }
   }
   {
     const std::vector<double> ge =

@@ -45,7 +45,9 @@ struct MeshStageOptions
   bool PerturbSlivers = true; ///< sliver pushes in each round
   bool ImproveMesh = true; ///< flips and smoothing of the final dual in the metric (MeshImprovement)
   bool PlanarBoundary = true; ///< ...also on planar boundary patches (MeshImprovementOptions)
+  bool StraightCreases = true; ///< ...and along straight creases (MeshImprovementOptions)
   double BoundaryFlipMaxDihedral = 10.0; ///< ...and edges of nearly coplanar boundary faces
+  double BoundaryFlipVolumeBudget = 1e-3; ///< ...changing at most this share of the volume
   bool PreserveSharpFeatures = true; ///< corner / feature-line particles (ParticleSamplerOptions)
   double FeatureAngle = 30.0;        ///< degrees
 };
@@ -56,6 +58,8 @@ struct MeshStageResult
   std::size_t Sites = 0;
   std::size_t CornerSites = 0, FeatureLineSites = 0; ///< of the sampled sites
   double DualVolumeRatio = 0.0; ///< dual mesh volume / domain volume (tets; 1 = covered)
+  std::size_t CrossBodyElements = 0; ///< dual elements with sites in two bodies of the input
+  std::size_t CrossBodyPieces = 0;   ///< Voronoi pieces in a body other than their site's
   double SampleSeconds = 0.0, LloydSeconds = 0.0;
   double RvdSeconds = 0.0, RdtSeconds = 0.0; ///< the first RVD (with the adjacency) and RDT
   double ImproveSeconds = 0.0; ///< site improvement rounds (their RVD + RDT included)
@@ -67,6 +71,7 @@ struct MeshStageResult
   std::size_t ImprovementSmoothed = 0; ///< accepted vertex moves
   /// Of those, on planar boundary patches: edge removals and in-plane vertex moves (tets)
   std::size_t ImprovementBoundaryOps = 0;
+  std::size_t ImprovementCreaseMoves = 0; ///< of those, moves along straight creases
   double ImprovementVolumeChange = 0.0; ///< fraction of the volume moved by curved-boundary flips
   std::size_t InvertedBeforeImprovement = 0; ///< dual's inverted (or flat) cells before it
   bool ValidDualReplaced = false;  ///< the repaired dual was invalid: Delaunay of the sites

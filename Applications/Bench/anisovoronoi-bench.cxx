@@ -9,6 +9,7 @@
 #include "EmbeddingSolver.h"
 #include "JsonLine.h"
 #include "MeshStage.h"
+#include "MeshTopology.h"
 #include "MetricAdaptedMesh.h"
 #include "MetricAlgebra.h"
 #include "RealCases.h"
@@ -68,6 +69,7 @@ struct Args
   double Mu = 100.0;
   int Anderson = 5;
   bool DoubleSolve = false;
+  bool SeparateBodies = true; // bodies apart in the embedding (EmbeddingOptions)
   std::string Solver = "auto";     // global step: auto | direct | iterative
   double CgTolerance = 1e-6;       // iterative: relative residual of each CG solve
   int MaxIterations = 500;         // run to convergence up to this many iterations
@@ -90,7 +92,9 @@ struct Args
   bool PerturbSlivers = true;
   bool ImproveMesh = true;   // flips and smoothing of the final mesh in the metric
   bool PlanarBoundary = true; // ...and on planar boundary patches
+  bool StraightCreases = true; // ...and along straight creases
   double BoundaryFlipDihedral = 10.0; // ...and nearly planar ones (degrees)
+  double BoundaryVolumeBudget = 1e-3; // ...changing at most this fraction of the volume
   bool Features = true;      // corner / feature-line particles
   bool Reference = false;    // closed-form isometric embedding instead of the solver
   double FeatureAngle = 30.0;
@@ -359,6 +363,7 @@ av::EmbeddingOptions EmbeddingOptionsFor(const Args& a, const Case& c, int dim)
   o.Seed = a.Seed;
   o.AndersonWindow = a.Anderson;
   o.SinglePrecisionSolve = !a.DoubleSolve;
+  o.SeparateBodies = a.SeparateBodies;
   o.GlobalSolver = a.Solver == "direct"    ? av::EmbeddingGlobalSolver::Direct
     : a.Solver == "iterative" ? av::EmbeddingGlobalSolver::Iterative
                               : av::EmbeddingGlobalSolver::Automatic;
@@ -538,7 +543,9 @@ avbench::MeshStageOptions MeshStageOptionsFor(const Args& a, const Case& c)
   o.PerturbSlivers = a.PerturbSlivers;
   o.ImproveMesh = a.ImproveMesh;
   o.PlanarBoundary = a.PlanarBoundary;
+  o.StraightCreases = a.StraightCreases;
   o.BoundaryFlipMaxDihedral = a.BoundaryFlipDihedral;
+  o.BoundaryFlipVolumeBudget = a.BoundaryVolumeBudget;
   o.PreserveSharpFeatures = a.Features;
   o.FeatureAngle = a.FeatureAngle;
   return o;
@@ -577,6 +584,7 @@ void ReportMesh(const Case& c, const avbench::MeshStageOptions& o,
   out.Set("mesh_improvement_flips", r.ImprovementFlips);
   out.Set("mesh_improvement_smoothed", r.ImprovementSmoothed);
   out.Set("mesh_improvement_boundary_ops", r.ImprovementBoundaryOps);
+  out.Set("mesh_improvement_crease_moves", r.ImprovementCreaseMoves);
   out.Set("mesh_improvement_volume_change", r.ImprovementVolumeChange);
   out.Set("valid_dual_replaced", r.ValidDualReplaced);
   out.Set("valid_dual_seconds", r.ValidDualSeconds);
@@ -603,6 +611,8 @@ void ReportMesh(const Case& c, const avbench::MeshStageOptions& o,
     out.Set("dual_volume_ratio", r.DualVolumeRatio);
   out.Set("rvd_pieces", r.RvdPieces);
   out.Set("nonmanifold_faces", r.NonManifoldFaces);
+  out.Set("cross_body_elements", r.CrossBodyElements);
+  out.Set("cross_body_pieces", r.CrossBodyPieces);
   out.Set("unused_sites", r.UnusedSites);
   out.Set("paper_G_min", p.GMin);
   out.Set("paper_G_avg", p.GAvg);
@@ -717,6 +727,8 @@ void Usage(std::ostream& os)
         "  --mu M            regularizer weight (default 100)\n"
         "  --anderson W      Anderson window, 0 = plain local/global (default 5)\n"
         "  --double-solve    global steps with CHOLMOD's double solve (default: float factor copy)\n"
+        "  --no-separate-bodies  parts of the input with no shared point stay where the solve\n"
+        "                    leaves them in R^m (default: moved apart, meshed as separate domains)\n"
         "  --solver S        global step: auto (direct below 150,000 vertices) | direct | iterative\n"
         "  --cg-tolerance T  iterative: relative residual of each CG solve (default 1e-6)\n"
         "  --max-iterations N  run to convergence up to N iterations (default 500; <= --iterations:\n"
@@ -750,9 +762,12 @@ void Usage(std::ostream& os)
         "  --no-planar-boundary  mesh: the improvement leaves every boundary vertex and face\n"
         "                    as it is (default: it also moves vertices and removes edges in\n"
         "                    planar boundary patches)\n"
+        "  --no-straight-creases  mesh: feature-line vertices of tet meshes stay (default: they\n"
+        "                    slide along straight creases, the two planes kept exactly)\n"
         "  --boundary-flip-dihedral D  mesh: the improvement also removes boundary edges whose\n"
         "                    two faces are at most D degrees from coplanar (default 10; 0 =\n"
         "                    planar only), at most 0.1 % of the volume in all\n"
+        "  --boundary-volume-budget F  mesh: that share of the volume (default 1e-3)\n"
         "  --no-features     mesh: no corner / feature-line particles (paper §4.1 sharp features)\n"
         "  --feature-angle A mesh: dihedral angle in degrees above which a boundary edge is a\n"
         "                    feature line (default 30)\n"
@@ -848,6 +863,8 @@ bool Parse(int argc, char** argv, Args& a)
       a.Anderson = std::stoi(next());
     else if (k == "--double-solve")
       a.DoubleSolve = true;
+    else if (k == "--no-separate-bodies")
+      a.SeparateBodies = false;
     else if (k == "--solver")
       a.Solver = next();
     else if (k == "--cg-tolerance")
@@ -886,8 +903,12 @@ bool Parse(int argc, char** argv, Args& a)
       a.ImproveMesh = false;
     else if (k == "--no-planar-boundary")
       a.PlanarBoundary = false;
+    else if (k == "--no-straight-creases")
+      a.StraightCreases = false;
     else if (k == "--boundary-flip-dihedral")
       a.BoundaryFlipDihedral = std::stod(next());
+    else if (k == "--boundary-volume-budget")
+      a.BoundaryVolumeBudget = std::stod(next());
     else if (k == "--repair-rounds")
       a.RepairRounds = std::stoi(next());
     else if (k == "--repair-nonmanifold") // the default
@@ -977,6 +998,8 @@ bool RunCase(const Args& args, const std::string& name, const StageFn& stage, in
     }
     out.Set("input_vertices", c.Mesh.NumPoints());
     out.Set("input_elements", c.Mesh.NumCells());
+    std::vector<std::int32_t> body;
+    out.Set("input_bodies", av::LabelBodies(c.Mesh, body));
     out.Set("stretch_min", c.StretchMin);
     out.Set("stretch_max", c.StretchMax);
     out.Set("input_mesh_seconds", c.MeshSeconds);

@@ -39,6 +39,8 @@ options:
   --solver S               embedding global step: auto (direct below 150,000 vertices),
                            direct or iterative (CG + algebraic multigrid, linear memory)
   --double-solve           embedding: CHOLMOD's double-precision solves (default: float copy)
+  --no-separate-bodies     embedding: bodies of the input with no shared point (a contact
+                           assembly) stay touching (default: embedded apart, meshed apart)
   --sample-iterations N    particle L-BFGS iterations at the paper's kernel (default 150;
                            the paper: 50)
   --warmup-iterations N    particle iterations at a narrower kernel first (default 100;
@@ -274,6 +276,8 @@ Options ParseCommandLine(int argc, char* argv[])
       o.FeatureAngle = ParseDouble(a, next());
     else if (a == "--double-solve")
       o.DoubleSolve = true;
+    else if (a == "--no-separate-bodies")
+      o.SeparateBodies = false;
     else if (a == "--seed")
       o.Seed = ParseInt(a, next());
     else if (a == "--refine")

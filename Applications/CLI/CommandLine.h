@@ -26,7 +26,7 @@ struct Options
   double MaxStretch = 10.0; ///< curvature: cap on s2 / s1 (0 = none)
   bool TensorAsMetric = false, Clamp = false, Quiet = false, Repair = true;
   bool ValidDual = true;
-  bool RepairNonManifold = true, DoubleSolve = false, ImproveMesh = true;
+  bool RepairNonManifold = true, DoubleSolve = false, ImproveMesh = true, SeparateBodies = true;
   bool ImproveBoundary = true; // the mesh improvement also works on the tet boundary
   /// Metric preparation (on for tensor:ARRAY; metric, preset and .sol inputs only when a
   /// preparation option is given, PrepareAsked). SitesGiven: --sites was on the command line.

@@ -384,6 +384,7 @@ void RunMeshingStages(const Options& o,
       : o.Solver == "iterative"                    ? vtkAnisoEmbedding::ITERATIVE_SOLVER
                                                    : vtkAnisoEmbedding::AUTOMATIC_SOLVER);
   s.Embedding->SetSinglePrecisionSolve(!o.DoubleSolve);
+  s.Embedding->SetSeparateBodies(o.SeparateBodies);
   s.Embedding->SetMu(o.Mu);
   s.Embedding->SetSeed(o.Seed);
   runner.Run(s.Embedding, EmbeddingStage(o));
@@ -481,6 +482,7 @@ std::vector<std::pair<std::string, std::string>> ReportEntries(const Options& o,
     { "iterative_solve", FieldValue(embedded, "IterativeSolve") > 0.0 ? "true" : "false" },
     { "cells_above_error_threshold",
       JsonNumber(FieldValue(embedded, "CellsAboveErrorThreshold")) },
+    { "input_bodies", JsonNumber(FieldValue(embedded, "InputBodies")) },
     { "metric_scale", JsonNumber(FieldValue(embedded, "MetricScale")) },
     { "stretch_min", JsonNumber(stretchRange[0]) },
     { "stretch_max", JsonNumber(stretchRange[1]) },

@@ -120,7 +120,8 @@ void ExtendPointData(vtkDataSet* sitesInput,
 }
 
 /// The sampler's corner and feature-line sites ("FeatureKind" != 0), which the improvement
-/// rounds must not push off their features; empty when the sites have no such array. False
+/// rounds must not push off their features (feature-line sites, FeatureLinePoint, may slide
+/// along straight creases of the final tet mesh); empty when the sites have no such array. False
 /// (with `error`) when the array does not have one component per site.
 bool FixedSitesFromFeatureKind(vtkDataSet* sitesInput,
   std::size_t numSites,
@@ -140,7 +141,10 @@ bool FixedSitesFromFeatureKind(vtkDataSet* sitesInput,
   }
   fixed.resize(numSites);
   for (std::size_t i = 0; i < fixed.size(); ++i)
-    fixed[i] = kind->GetTuple1(static_cast<vtkIdType>(i)) != 0.0 ? 1 : 0;
+  {
+    const double k = kind->GetTuple1(static_cast<vtkIdType>(i));
+    fixed[i] = k == 1.0 ? av::FeatureLinePoint : (k != 0.0 ? 1 : 0);
+  }
   return true;
 }
 

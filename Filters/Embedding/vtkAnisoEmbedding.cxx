@@ -6,6 +6,7 @@
 #include "EdgeLengthError.h"
 #include "EmbeddingErrorReport.h"
 #include "EmbeddingSolver.h"
+#include "MeshTopology.h"
 #include "MetricScaling.h"
 #include "Stopwatch.h"
 #include "vtkAnisoDataConversion.h"
@@ -54,6 +55,7 @@ av::EmbeddingOptions MakeOptions(vtkAnisoEmbedding* self)
     : av::EmbeddingInitialization::Smooth;
   options.AndersonWindow = self->GetAndersonWindow();
   options.SinglePrecisionSolve = self->GetSinglePrecisionSolve();
+  options.SeparateBodies = self->GetSeparateBodies();
   options.Progress = [self](const av::EmbeddingProgress& p) {
     self->UpdateProgress(0.05 + 0.9 * p.Iteration / std::max(1, p.Iterations));
     return !self->GetAbortExecute();
@@ -197,6 +199,28 @@ int vtkAnisoEmbedding::RequestData(
   {
     return 0;
   }
+  // Parts that touch without shared points (an FE contact assembly, unmerged nodes): say how
+  // they are treated, a user may have meant one domain.
+  if (!vtkAnisoFilterUtilities::RunKernel(this, "body count", [&] {
+        std::vector<std::int32_t> body;
+        this->NumberOfInputBodies = static_cast<vtkIdType>(av::LabelBodies(mesh, body));
+      }))
+  {
+    return 0;
+  }
+  if (this->NumberOfInputBodies > 1)
+  {
+    vtkWarningMacro(<< "the input has " << this->NumberOfInputBodies
+                    << " separate bodies (cells connected through shared points), as a contact "
+                       "assembly has. "
+                    << (this->SeparateBodies
+                           ? "They are embedded apart and sampled and meshed as separate "
+                             "domains: no Voronoi cell or mesh element spans two of them, and "
+                             "the meshes do not conform where the bodies touch. To mesh one "
+                             "domain, merge the coincident points first (Clean to Grid)."
+                           : "SeparateBodies is off: where they touch, Voronoi cells and mesh "
+                             "elements may span two bodies."));
+  }
   // Extra coordinates can only lengthen edges: eigenvalues below 1 are scaled up (paper §6).
   this->MetricScale = 1.0;
   if (!vtkAnisoFilterUtilities::RunKernel(this, "metric scaling", [&] {
@@ -264,6 +288,8 @@ int vtkAnisoEmbedding::RequestData(
   }
   vtkAnisoFilterUtilities::AddFieldValue(output->GetFieldData(), "CellsAboveErrorThreshold",
     static_cast<double>(summary.NumAbove));
+  vtkAnisoFilterUtilities::AddFieldValue(
+    output->GetFieldData(), "InputBodies", static_cast<double>(this->NumberOfInputBodies));
   BuildEnergyTable(result.EnergyHistory, energyTable);
   this->UpdateProgress(1.0);
   return 1;
@@ -291,6 +317,7 @@ void vtkAnisoEmbedding::PrintSelf(ostream& os, vtkIndent indent)
      << "\n";
   os << indent << "AndersonWindow: " << this->AndersonWindow << "\n";
   os << indent << "SinglePrecisionSolve: " << this->SinglePrecisionSolve << "\n";
+  os << indent << "SeparateBodies: " << this->SeparateBodies << "\n";
   os << indent << "AutoScaleMetric: " << this->AutoScaleMetric << "\n";
   os << indent << "EmbeddingArrayName: "
      << (this->EmbeddingArrayName ? this->EmbeddingArrayName : "") << "\n";

@@ -17,7 +17,8 @@
  * - "EdgeLengthError": per-cell largest relative edge length error (%) of the paper §5.1;
  * - field data "L_avg", "L_max" (%), "MetricScale" (c), "EmbeddingDimension",
  *   "EmbeddingIterations", "EmbeddingConverged", "IterativeSolve", "FactorSeconds",
- *   "SolveSeconds", "DoublePrecisionRetries", "EmbeddingSeconds", "CellsAboveErrorThreshold";
+ *   "SolveSeconds", "DoublePrecisionRetries", "EmbeddingSeconds", "CellsAboveErrorThreshold",
+ *   "InputBodies" (cells connected through shared points; more than one gets a warning);
  *   when the input has the point array "RawMetric" (left by the metric preparation of
  *   vtkAnisoTensorToMetric: the unprepared metric at the same complexity), also "L_avg_raw",
  *   "L_max_raw": the same errors measured with it.
@@ -158,6 +159,16 @@ public:
   ///@}
 
   ///@{
+  /// Bodies of the input (parts with no shared point, as in a contact assembly) are moved apart
+  /// along the last embedding coordinate (default on), so that the sampler, the Voronoi cells
+  /// and the mesh treat each as its own domain: no cell spans two bodies. Lengths inside a body
+  /// do not change. Off: they stay where the solve leaves them, touching where they touch.
+  vtkSetMacro(SeparateBodies, bool);
+  vtkGetMacro(SeparateBodies, bool);
+  vtkBooleanMacro(SeparateBodies, bool);
+  ///@}
+
+  ///@{
   /// Multiply the metric by c = 1/λmin when λmin < 1 (paper §6). Default on; when off, such a
   /// metric is an error.
   vtkSetMacro(AutoScaleMetric, bool);
@@ -176,6 +187,7 @@ public:
   vtkGetMacro(MaximumEdgeLengthError, double);
   vtkGetMacro(MetricScale, double);
   vtkGetMacro(CellsAboveErrorThreshold, vtkIdType);
+  vtkGetMacro(NumberOfInputBodies, vtkIdType);
 
 protected:
   vtkAnisoEmbedding();
@@ -199,6 +211,7 @@ protected:
   int Initialization = SMOOTH;
   int AndersonWindow = 5;
   bool SinglePrecisionSolve = true;
+  bool SeparateBodies = true;
   bool AutoScaleMetric = true;
   char* EmbeddingArrayName = nullptr;
 
@@ -206,6 +219,7 @@ protected:
   double MaximumEdgeLengthError = 0.0;
   double MetricScale = 1.0;
   vtkIdType CellsAboveErrorThreshold = 0;
+  vtkIdType NumberOfInputBodies = 0;
 
 private:
   vtkAnisoEmbedding(const vtkAnisoEmbedding&) = delete;

@@ -169,17 +169,32 @@ moved_feature = [i for i in feature_ids if tets.GetPoint(i) != sampled.GetPoint(
 assert not moved_feature, moved_feature
 out_kind = tets.GetPointData().GetArray("FeatureKind")
 assert out_kind is not None and all(out_kind.GetValue(i) == kind.GetValue(i) for i in feature_ids)
-# With every site flagged as a feature site, the sliver push must move none of them.
-flagged = vtkPolyData()
-flagged.DeepCopy(sampled)
-flags = flagged.GetPointData().GetArray("FeatureKind")
-for i in range(flagged.GetNumberOfPoints()):
-    flags.SetValue(i, 1)
-pinned = vtkAnisoRestrictedDelaunay()
-pinned.SetInputConnection(0, cube_embedding.GetOutputPort())
-pinned.SetInputData(1, flagged)
-pinned.SetOdtIterations(0)  # sliver pushes only
-pinned.Update()
+# With every site flagged as a corner site, the sliver push and the final improvement must
+# move none of them; flagged as feature-line sites, only those on an edge of the cube may move,
+# along it (the straight-crease slide of the final improvement).
+def flagged_run(kind):
+    flagged = vtkPolyData()
+    flagged.DeepCopy(sampled)
+    flags = flagged.GetPointData().GetArray("FeatureKind")
+    for i in range(flagged.GetNumberOfPoints()):
+        flags.SetValue(i, kind)
+    f = vtkAnisoRestrictedDelaunay()
+    f.SetInputConnection(0, cube_embedding.GetOutputPort())
+    f.SetInputData(1, flagged)
+    f.SetOdtIterations(0)  # sliver pushes only
+    f.Update()
+    return f
+pinned = flagged_run(2)
+lines = flagged_run(1).GetOutput()
+cube_bounds = cube_embedding.GetOutput().GetBounds()
+slid = 0
+for i in range(sampled.GetNumberOfPoints()):
+    before, after = sampled.GetPoint(i), lines.GetPoint(i)
+    if after != before:
+        on = [d for d in range(3) if before[d] in (cube_bounds[2 * d], cube_bounds[2 * d + 1])]
+        assert len(on) >= 2 and all(after[d] == before[d] for d in on), (i, before, after)
+        slid += 1
+print("all flagged as feature lines: %d slid along an edge of the cube" % slid)
 free = vtkAnisoRestrictedDelaunay()
 free.SetInputConnection(0, cube_embedding.GetOutputPort())
 free.SetInputData(1, sampled)

@@ -207,6 +207,44 @@ double CellMeasure(const SimplexMesh& mesh, std::size_t cell)
   return 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
 }
 
+std::size_t LabelBodies(const SimplexMesh& mesh, std::vector<std::int32_t>& pointBody)
+{
+  CheckCellIds(mesh, "LabelBodies: ", "cell");
+  // Union-find over the points, each cell joining its vertices.
+  std::vector<std::int32_t> parent(mesh.NumPoints());
+  for (std::size_t p = 0; p < parent.size(); ++p)
+    parent[p] = static_cast<std::int32_t>(p);
+  auto root = [&](std::int32_t p)
+  {
+    while (parent[p] != p)
+      p = parent[p] = parent[parent[p]];
+    return p;
+  };
+  const int nv = mesh.SimplexDim + 1;
+  for (std::size_t c = 0; c < mesh.NumCells(); ++c)
+  {
+    const std::int32_t* ids = mesh.Cell(c);
+    for (int i = 1; i < nv; ++i)
+    {
+      const std::int32_t a = root(ids[0]), b = root(ids[i]);
+      if (a != b)
+        parent[std::max(a, b)] = std::min(a, b);
+    }
+  }
+  pointBody.assign(mesh.NumPoints(), -1);
+  std::vector<std::int32_t> bodyOfRoot(mesh.NumPoints(), -1);
+  std::int32_t count = 0;
+  for (std::size_t c = 0; c < mesh.NumCells(); ++c)
+    for (int i = 0; i < nv; ++i)
+    {
+      const std::int32_t p = mesh.Cell(c)[i], r = root(p);
+      if (bodyOfRoot[r] < 0)
+        bodyOfRoot[r] = count++;
+      pointBody[p] = bodyOfRoot[r];
+    }
+  return static_cast<std::size_t>(count);
+}
+
 std::vector<std::int32_t> ComputeElementAdjacency(const SimplexMesh& mesh)
 {
   // Facets bucketed by their smallest vertex id (counting sort), then matched inside each

@@ -20,6 +20,12 @@ namespace av
 /// shared by more than two cells (non-manifold mesh).
 std::vector<std::int32_t> ComputeElementAdjacency(const SimplexMesh& mesh);
 
+/// Bodies: classes of cells connected through shared points. Two parts that touch with separate
+/// points (an FE assembly in contact, a mesh whose coincident nodes were never merged) are two
+/// bodies. Writes each point's body (0 .. count-1, in order of first cell; -1 for points of no
+/// cell) and returns the count.
+std::size_t LabelBodies(const SimplexMesh& mesh, std::vector<std::int32_t>& pointBody);
+
 /// Throws InputError("<who><kind> c references point p, outside [0, n)") for the first cell id
 /// out of range; `kind` names the cells in the message ("triangle", "cell").
 void CheckCellIds(const SimplexMesh& mesh, const std::string& who, const char* kind);

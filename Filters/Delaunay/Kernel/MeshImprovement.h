@@ -16,6 +16,11 @@
 namespace av
 {
 
+/// In ImproveMesh's `fixedPoints`: 0 free, any other value never moves, except this one: a point
+/// on a feature line (the sampler's FeatureKind 1). With StraightCreases it slides along the line
+/// where the tets' boundary around it is two planes meeting in a straight line through it.
+constexpr std::uint8_t FeatureLinePoint = 2;
+
 /// Options of ImproveMesh.
 struct MeshImprovementOptions
 {
@@ -47,6 +52,11 @@ struct MeshImprovementOptions
   /// surface. Empty: those vertices stay.
   std::function<bool(std::int32_t v, const double* x, const double* normal, double* placed)>
     ProjectToBoundary;
+  /// Tets, with PlanarBoundary: a boundary vertex (free or FeatureLinePoint) whose boundary
+  /// faces form one disc made of two planar fans that meet along a straight line through it,
+  /// its two crease edges on that line, moves along the line. Both planes and the crease stay
+  /// exactly where they are.
+  bool StraightCreases = true;
   int MaxEdgeRemovalRing = 7; ///< edge removal on edges of at most this many tets (3 = 3-2 only)
   /// Tets: an operation may not add edges whose metric length, divided by the median of the
   /// input's, leaves [1/sqrt2, sqrt2] (the UGAWG range of the §5.2 evaluation): a flip's new
@@ -101,6 +111,7 @@ struct MeshImprovementResult
   std::size_t NumSmoothed = 0;     ///< accepted vertex moves
   std::size_t NumBoundaryEdgeRemovals = 0; ///< tets: of those, on planar boundary patches
   std::size_t NumBoundarySmoothed = 0; ///< tets: moves of boundary vertices (planar or curved)
+  std::size_t NumCreaseSmoothed = 0;   ///< tets: of those, moves along straight creases
   /// Tets: total |volume change| of the curved-boundary operations, as a fraction of the volume
   double BoundaryVolumeChange = 0.0;
   std::size_t NumSplits = 0;       ///< triangles: edge splits (new vertices appended)
@@ -131,7 +142,8 @@ double MetricSimplexQuality(int simplexDim,
  * touches. Nothing inverts: an element's quality must
  * stay positive. The boundary and the domain are preserved exactly: boundary faces (edges) are
  * never flipped, vertices on them, vertices of faces shared by more than two elements, and those
- * flagged in `fixedPoints` (nullptr: none) never move. Vertex metrics stay those given (a move
+ * flagged in `fixedPoints` (nullptr: none; see FeatureLinePoint) never move (tets: except as
+ * PlanarBoundary and StraightCreases say). Vertex metrics stay those given (a move
  * is small against the metric's variation) unless PlacePoint gives them. Unreferenced points are
  * untouched. The cell count may change; the point count only grows by splits (new points are
  * appended; a collapsed vertex stays as an unreferenced point). Surface triangles need

@@ -47,6 +47,12 @@ TetMeshImprover::TetMeshImprover(SimplexMesh& mesh,
       // A vertex of a planar boundary patch stays in its plane (exactly, up to rounding).
       [this](std::int32_t v, const Eigen::Vector3d& x)
       {
+        const Eigen::Vector3d& t = LineDirection[v];
+        if (t.squaredNorm() > 0.0)
+        {
+          Work.Points[v] += t * t.dot(x - Work.Points[v]);
+          return true;
+        }
         const Eigen::Vector3d& n = PlaneNormal[v];
         const Eigen::Vector3d inPlane = x - n * n.dot(x - Work.Points[v]);
         if (!Curved[v])
@@ -65,13 +71,21 @@ TetMeshImprover::TetMeshImprover(SimplexMesh& mesh,
         : VertexStarSmoother<3>::EdgeCount())
 {
   PlaneNormal.assign(P.size(), Eigen::Vector3d::Zero());
+  LineDirection.assign(P.size(), Eigen::Vector3d::Zero());
   Curved.assign(P.size(), 0);
   for (const Tet& t : Tets)
     MeshVolume += std::abs(Volume(t));
-  MarkBoundaryAndNonManifold();
+  MarkBoundaryAndNonManifold(fixed);
   if (Options.PlanarBoundary)
-    Smoother.SetDirectionFilter([this](std::int32_t v, Eigen::Vector3d& g)
-      { g -= PlaneNormal[v] * PlaneNormal[v].dot(g); });
+    Smoother.SetDirectionFilter(
+      [this](std::int32_t v, Eigen::Vector3d& g)
+      {
+        const Eigen::Vector3d& t = LineDirection[v];
+        if (t.squaredNorm() > 0.0)
+          g = t * t.dot(g);
+        else
+          g -= PlaneNormal[v] * PlaneNormal[v].dot(g);
+      });
   if (Options.KeepEdgeLengths)
     ComputeMedianEdgeLength();
 }
@@ -119,10 +133,16 @@ int TetMeshImprover::OutOfRangeAround(std::int32_t v) const
 
 // Vertices on faces of one tet (the boundary) or of more than two (non-manifold) never move:
 // that keeps the domain and leaves configurations the flips do not understand alone. The
-// exception (PlanarBoundary) is a vertex inside a planar boundary patch: it moves in the plane.
-void TetMeshImprover::MarkBoundaryAndNonManifold()
+// exceptions (PlanarBoundary) are a vertex inside a planar or smooth boundary patch, which
+// moves in its (tangent) plane, and one on a straight crease, which slides along it.
+void TetMeshImprover::MarkBoundaryAndNonManifold(const std::vector<std::uint8_t>* userFlags)
 {
-  const std::vector<char> userFixed = Work.Fixed;
+  std::vector<std::uint8_t> flags(P.size(), 0);
+  for (std::size_t v = 0; v < P.size(); ++v)
+    flags[v] = Work.Fixed[v] ? 1 : 0;
+  if (userFlags)
+    for (std::size_t v = 0; v < userFlags->size() && v < P.size(); ++v)
+      flags[v] = (*userFlags)[v] == FeatureLinePoint ? FeatureLinePoint : flags[v];
   // Each face sorted (for matching) and in its tet's order, counterclockwise seen from the
   // opposite vertex, i.e. clockwise seen from outside.
   struct Face
@@ -161,14 +181,13 @@ void TetMeshImprover::MarkBoundaryAndNonManifold()
   }
   if (!Options.PlanarBoundary)
     return;
-  std::vector<char> keep = userFixed;
-  for (std::size_t v = 0; v < keep.size(); ++v)
-    keep[v] = keep[v] || nonManifold[v];
-  FindPlanarBoundaryVertices(boundary, keep);
+  for (std::size_t v = 0; v < flags.size(); ++v)
+    flags[v] = nonManifold[v] ? 1 : flags[v];
+  FindMovableBoundaryVertices(boundary, flags);
 }
 
-void TetMeshImprover::FindPlanarBoundaryVertices(
-  const std::vector<std::array<std::int32_t, 3>>& boundary, const std::vector<char>& userFixed)
+void TetMeshImprover::FindMovableBoundaryVertices(
+  const std::vector<std::array<std::int32_t, 3>>& boundary, const std::vector<std::uint8_t>& flags)
 {
   // Boundary faces per vertex: the link edge (b, c) of face (v, b, c) in its order.
   std::vector<std::vector<std::pair<std::int32_t, std::int32_t>>> link(P.size());
@@ -182,15 +201,17 @@ void TetMeshImprover::FindPlanarBoundaryVertices(
       areaSum[f[i]] += n;
     }
   }
+  std::vector<std::size_t> order;
   for (std::size_t v = 0; v < P.size(); ++v)
   {
     const auto& edges = link[v];
-    if (edges.size() < 3 || userFixed[v] || !(areaSum[v].norm() > 0.0))
+    const bool onlyCrease = flags[v] == FeatureLinePoint;
+    if (edges.size() < 3 || (flags[v] && !onlyCrease) || (onlyCrease && !Options.StraightCreases))
       continue;
     // One disc: following the link edges from the first closes a cycle through all of them.
-    std::size_t steps = 0;
+    order.assign(1, 0);
     std::int32_t at = edges[0].second;
-    while (steps < edges.size())
+    while (order.size() <= edges.size())
     {
       std::size_t found = 0, next = 0;
       for (std::size_t e = 0; e < edges.size(); ++e)
@@ -199,14 +220,24 @@ void TetMeshImprover::FindPlanarBoundaryVertices(
           ++found;
           next = e;
         }
-      if (found != 1)
+      if (found != 1 || next == 0)
         break;
+      order.push_back(next);
       at = edges[next].second;
-      ++steps;
-      if (at == edges[0].second)
-        break;
     }
-    if (steps != edges.size() || at != edges[0].second)
+    if (order.size() != edges.size() || at != edges[0].first)
+      continue;
+    if (Options.StraightCreases)
+    {
+      const Eigen::Vector3d t = CreaseDirection(static_cast<std::int32_t>(v), edges, order);
+      if (t.squaredNorm() > 0.0)
+      {
+        LineDirection[v] = t;
+        Work.Fixed[v] = 0;
+        continue;
+      }
+    }
+    if (onlyCrease || !(areaSum[v].norm() > 0.0))
       continue;
     // Coplanar: every link vertex within a tiny fraction of its distance from the plane.
     // Smooth: every face within BoundaryFlipMaxDihedral of that (mean) plane.
@@ -227,6 +258,73 @@ void TetMeshImprover::FindPlanarBoundaryVertices(
     Curved[v] = curved ? 1 : 0;
     Work.Fixed[v] = 0;
   }
+}
+
+Eigen::Vector3d TetMeshImprover::CreaseDirection(std::int32_t v,
+  const std::vector<std::pair<std::int32_t, std::int32_t>>& link,
+  const std::vector<std::size_t>& order) const
+{
+  const Eigen::Vector3d none = Eigen::Vector3d::Zero();
+  const std::size_t m = order.size();
+  auto normal = [&](std::size_t k)
+  {
+    const auto& [b, c] = link[order[k % m]];
+    return Eigen::Vector3d((P[b] - P[v]).cross(P[c] - P[v]));
+  };
+  // The fans' ends: consecutive faces that are not parallel (or fold back).
+  std::size_t breaks[2] = { 0, 0 };
+  int numBreaks = 0;
+  for (std::size_t k = 0; k < m; ++k)
+  {
+    const Eigen::Vector3d n0 = normal(k), n1 = normal(k + 1);
+    if (!(n0.norm() > 0.0) || !(n1.norm() > 0.0))
+      return none;
+    if (n0.dot(n1) > 0.0 && n0.normalized().cross(n1.normalized()).norm() <= 1e-8)
+      continue;
+    if (numBreaks == 2)
+      return none;
+    breaks[numBreaks++] = k;
+  }
+  if (numBreaks != 2)
+    return none;
+  auto fanOf = [&](std::size_t k) { return k > breaks[0] && k <= breaks[1] ? 0 : 1; };
+  Eigen::Vector3d fanNormal[2] = { none, none };
+  for (std::size_t k = 0; k < m; ++k)
+    fanNormal[fanOf(k)] += normal(k);
+  for (Eigen::Vector3d& n : fanNormal)
+  {
+    if (!(n.norm() > 0.0))
+      return none;
+    n.normalize();
+  }
+  // Each fan exactly planar (as the planar patches), the two planes really distinct.
+  for (std::size_t k = 0; k < m; ++k)
+  {
+    const Eigen::Vector3d& n = fanNormal[fanOf(k)];
+    for (std::int32_t w : { link[order[k]].first, link[order[k]].second })
+    {
+      const Eigen::Vector3d d = P[w] - P[v];
+      if (std::abs(n.dot(d)) > 1e-10 * d.norm())
+        return none;
+    }
+  }
+  Eigen::Vector3d t = fanNormal[0].cross(fanNormal[1]);
+  if (!(t.norm() > 1e-6))
+    return none;
+  t.normalize();
+  // The crease neighbours (shared by the fans) on the line, on either side of v.
+  const std::int32_t w0 = link[order[breaks[0]]].second, w1 = link[order[breaks[1]]].second;
+  for (std::int32_t w : { w0, w1 })
+  {
+    const Eigen::Vector3d d = P[w] - P[v];
+    if ((d - t * t.dot(d)).norm() > 1e-10 * d.norm())
+      return none;
+  }
+  if (!(t.dot(P[w0] - P[v]) * t.dot(P[w1] - P[v]) < 0.0))
+    return none;
+  // The chord of the two neighbours is the same line; its direction has exact zeros where they
+  // share a coordinate (an axis-aligned crease stays exactly on its two planes).
+  return (P[w1] - P[w0]).normalized();
 }
 
 double TetMeshImprover::Volume(const Tet& t) const
@@ -500,7 +598,8 @@ bool TetMeshImprover::TryFlip23(std::int32_t tet, int apexIndex, double worst)
 // shell between the old and the new faces on a curved patch) must fit the budget first.
 bool TetMeshImprover::TrySmooth(std::int32_t v)
 {
-  const bool boundary = PlaneNormal[v].squaredNorm() > 0.0;
+  const bool crease = LineDirection[v].squaredNorm() > 0.0;
+  const bool boundary = crease || PlaneNormal[v].squaredNorm() > 0.0;
   if (!boundary)
   {
     if (!Smoother.TrySmooth(v, false))
@@ -530,6 +629,7 @@ bool TetMeshImprover::TrySmooth(std::int32_t v)
   BoundaryVolumeChange += change;
   ++Smoothed;
   ++BoundarySmoothed;
+  CreaseSmoothed += crease ? 1 : 0;
   return true;
 }
 
@@ -573,6 +673,7 @@ void TetMeshImprover::Run(MeshImprovementResult& result)
   result.NumSmoothed = Smoothed;
   result.NumBoundaryEdgeRemovals = BoundaryEdgeRemovals;
   result.NumBoundarySmoothed = BoundarySmoothed;
+  result.NumCreaseSmoothed = CreaseSmoothed;
   result.BoundaryVolumeChange = MeshVolume > 0.0 ? BoundaryVolumeChange / MeshVolume : 0.0;
   result.Moved = std::move(Work.Moved);
 }

@@ -19,7 +19,8 @@ namespace av
 class TetMeshImprover
 {
 public:
-  /// `sqrtMetrics`: one symmetric square root per point; `fixed`: per point, nonzero = never moves.
+  /// `sqrtMetrics`: one symmetric square root per point; `fixed`: per point, nonzero = never
+  /// moves (FeatureLinePoint: except along a straight crease).
   TetMeshImprover(SimplexMesh& mesh,
     std::vector<Eigen::Matrix3d> sqrtMetrics,
     const std::vector<std::uint8_t>* fixed,
@@ -32,11 +33,19 @@ private:
   using Tet = SimplexStarMesh<3>::Simplex;
 
   double Quality(const Tet& t) const { return Work.Quality(t); }
-  void MarkBoundaryAndNonManifold();
-  /// Frees the boundary vertices whose boundary faces lie in one plane and form one disc
-  /// around them (PlaneNormal set), given the faces of one tet with their outward order.
-  void FindPlanarBoundaryVertices(const std::vector<std::array<std::int32_t, 3>>& boundary,
-    const std::vector<char>& userFixed);
+  void MarkBoundaryAndNonManifold(const std::vector<std::uint8_t>* userFlags);
+  /// Frees the boundary vertices whose boundary faces form one disc around them and lie in one
+  /// plane (PlaneNormal set) or in two planes meeting along a straight crease through them
+  /// (CreaseDirection set), given the faces of one tet with their outward order. `flags`: per
+  /// vertex 0 free, FeatureLinePoint (may only slide on a crease), other values stay.
+  void FindMovableBoundaryVertices(const std::vector<std::array<std::int32_t, 3>>& boundary,
+    const std::vector<std::uint8_t>& flags);
+  /// The unit direction of the straight crease through v whose link faces, in disc order, are
+  /// `order` (indices into `link`); zero if the disc is not two planar fans meeting on a line
+  /// through v with v's two crease neighbours on it, one on each side.
+  Eigen::Vector3d CreaseDirection(std::int32_t v,
+    const std::vector<std::pair<std::int32_t, std::int32_t>>& link,
+    const std::vector<std::size_t>& order) const;
   bool Improve(std::int32_t tet); // best operation on one bad tet, true if applied
   bool TryEdgeRemoval(std::int32_t a, std::int32_t b);
   /// The tets on edge (a, b) into EdgeTets and, per tet, its other two vertices (c, d) with
@@ -73,9 +82,11 @@ private:
   // Curved: the plane is a tangent plane and ProjectToBoundary puts the point on the surface.
   std::vector<Eigen::Vector3d> PlaneNormal;
   std::vector<char> Curved;
+  // Per point: the unit direction of its straight crease where it may slide along it, else zero.
+  std::vector<Eigen::Vector3d> LineDirection;
   bool EdgeRuleWaived = false; // the tet being improved is below EdgeLengthRuleMinAngle
   std::size_t Flips23 = 0, EdgeRemovals = 0, Smoothed = 0;
-  std::size_t BoundaryEdgeRemovals = 0, BoundarySmoothed = 0;
+  std::size_t BoundaryEdgeRemovals = 0, BoundarySmoothed = 0, CreaseSmoothed = 0;
   double MeshVolume = 0.0, BoundaryVolumeChange = 0.0; // Euclidean, times 6
   double MedianEdge = 0.0; // median metric edge length of the input mesh
 };

@@ -290,7 +290,43 @@ ValidDualResult MakeDualValid(const SimplexMesh& mesh, const std::vector<std::in
         x = (s * Eigen::Vector3d(x)).eval();
       }
     }
-    dt = DelaunayOfPoints(mapped);
+    // One tetrahedralization per body of the input (parts with no shared point, as in a
+    // contact assembly): a tet across the contact would join two domains.
+    std::vector<std::int32_t> pointBody;
+    const std::size_t numBodies = LabelBodies(mesh, pointBody);
+    if (numBodies < 2)
+      dt = DelaunayOfPoints(mapped);
+    else
+    {
+      std::vector<std::vector<std::int32_t>> members(numBodies);
+      for (std::size_t i = 0; i < mapped.size() / 3; ++i)
+      {
+        const std::int32_t cell = sites.CellIds[i];
+        members[static_cast<std::size_t>(pointBody[static_cast<std::size_t>(mesh.Cell(cell)[0])])]
+          .push_back(static_cast<std::int32_t>(i));
+      }
+      for (const std::vector<std::int32_t>& ids : members)
+      {
+        if (ids.size() < 4)
+          continue; // too few sites for a tet: the body's sites stay unused
+        std::vector<double> sub(3 * ids.size());
+        for (std::size_t k = 0; k < ids.size(); ++k)
+          for (int d = 0; d < 3; ++d)
+            sub[3 * k + d] = mapped[3 * static_cast<std::size_t>(ids[k]) + d];
+        try
+        {
+          const SimplexMesh part = DelaunayOfPoints(sub);
+          for (std::int32_t v : part.Cells)
+            dt.Cells.push_back(ids[static_cast<std::size_t>(v)]);
+        }
+        catch (const InputError&)
+        {
+          // coplanar sites of one body: that body stays uncovered, the others are meshed
+        }
+      }
+      if (dt.Cells.empty())
+        return r;
+    }
     dt.Points = rdt.Points;
   }
   catch (const InputError&)

@@ -55,7 +55,8 @@ bool DualNeedsReplacement(const RestrictedDelaunayMesh& rdt);
  * faces or holes (DualNeedsReplacement), replaces its cells by a mesh of the same sites that is valid by construction: the
  * Delaunay tetrahedralization of the sites' input positions mapped by the mean of the sites'
  * metric square roots, each scaled to determinant 1 (TetGen, no new points; the plain
- * Euclidean one without `siteMetric`), without
+ * Euclidean one without `siteMetric`; one per body of the input, LabelBodies, so that no tet
+ * joins two parts of a contact assembly), without
  * the tets whose centroid lies outside the input domain (a walk in `mesh` from the elements of
  * the tet's sites, `adjacency` as from ComputeElementAdjacency), then without the flat tets
  * or nearly flat tets on the boundary of what is left (peeled until none is), then, with

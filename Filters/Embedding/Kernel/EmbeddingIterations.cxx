@@ -4,6 +4,7 @@
 #include "EmbeddingSolverInternals.h"
 
 #include "AndersonAcceleration.h"
+#include "BodySeparation.h"
 #include "Stopwatch.h"
 
 #include <tbb/blocked_range.h>
@@ -261,6 +262,9 @@ EmbeddingResult EmbeddingSolver::Run()
     res.SolverMaxIterations = st.MaxIterations;
   }
   res.Embedded = this->CurrentEmbedding();
+  res.NumBodies = p.NumBodies;
+  if (p.Options.SeparateBodies)
+    SeparateBodies(p.PointBody, p.NumBodies, p.M, res.Embedded);
   return res;
 }
 

@@ -4,6 +4,7 @@
 #include "EmbeddingSolver.h"
 
 #include "EmbeddingSolverInternals.h"
+#include "MeshTopology.h"
 #include "Stopwatch.h"
 
 #include <algorithm>
@@ -28,6 +29,7 @@ EmbeddingSolver::EmbeddingSolver(
   p.NE = mesh.NumCells();
   p.Cells = mesh.Cells;
   p.BuildTopology(mesh);
+  p.NumBodies = LabelBodies(mesh, p.PointBody);
   if (options.TargetAverageErrorPercent > 0.0 &&
     std::max(options.Iterations, options.MaxIterations) > options.Iterations)
   {

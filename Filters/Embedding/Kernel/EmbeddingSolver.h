@@ -96,6 +96,9 @@ struct EmbeddingOptions
   /// uses every core. A plain step whose energy would rise because of the float rounding is
   /// redone with the double factor, so the energy still never increases.
   bool SinglePrecisionSolve = true;
+  /// Separate bodies of the mesh (parts with no shared point) end apart in R^m (SeparateBodies),
+  /// so that each is sampled and meshed as its own domain; off: as they come out of the solve.
+  bool SeparateBodies = true;
   /// Called after every iteration; return false to stop early (the result then has Aborted set).
   std::function<bool(const EmbeddingProgress&)> Progress;
 };
@@ -121,6 +124,7 @@ struct EmbeddingResult
   long long SolverSolves = 0;     ///< iterative: CG solves (one per free dimension and step)
   long long SolverIterations = 0; ///< iterative: CG iterations summed over all solves
   int SolverMaxIterations = 0;    ///< iterative: most CG iterations of one solve
+  std::size_t NumBodies = 1;      ///< bodies of the mesh (moved apart with SeparateBodies)
   /// Average relative energy decrease per iteration over the last kConvergenceWindow iterations
   /// at exit (fewer when fewer were run): the convergence measure.
   double FinalRelativeDecrease = 0.0;

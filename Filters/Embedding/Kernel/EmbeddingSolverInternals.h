@@ -62,6 +62,8 @@ struct EmbeddingSolver::Internals
   std::unique_ptr<FloatSupernodalSolver> FloatSolver; // SinglePrecisionSolve
   std::unique_ptr<IterativeGlobalSolver> Iterative;   // EmbeddingGlobalSolver::Iterative
   SimplexMesh ErrorMesh; // a copy for ErrorTarget (the caller's mesh may not outlive us)
+  std::vector<std::int32_t> PointBody; // LabelBodies, for SeparateBodies
+  std::size_t NumBodies = 1;
   std::unique_ptr<EdgeLengthErrorEvaluator> ErrorTarget; // TargetAverageErrorPercent > 0
   Eigen::MatrixXd LastRhs;                            // right-hand sides of the last global step
   EmbeddingEnergy Energy;

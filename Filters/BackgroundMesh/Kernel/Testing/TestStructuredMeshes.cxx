@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Kuhn tet grid / triangle grid: positive orientation, exact volume partition, conformity
-// (every interior face shared by two cells), edge and boundary counts.
+// (every interior face shared by two cells), edge and boundary counts; two grids that touch
+// along a face with separate points (a contact assembly) are two bodies, merged points one.
 #include "MeshTopology.h"
 #include "StructuredMeshes.h"
 #include "AnisoTestChecks.h"
@@ -63,6 +64,30 @@ int TestStructuredMeshes(int, char*[])
     AV_CHECK(bnd[5] == 0 && bnd[6] == 0 && bnd[0] == 1 && bnd[4] == 1);
   }
   const double z3[3] = { 0, 0, 0 }, o3[3] = { 1, 1, 1 };
+  {
+    // Two unit cubes stacked along z: copies of the points on z = 1 (two bodies), then the
+    // upper cube's cells pointed at the lower cube's points there (one body).
+    const double lo2[3] = { 0, 0, 1 }, hi2[3] = { 1, 1, 2 };
+    const SimplexMesh a = MakeKuhnTetGrid(3, 3, 3, z3, o3), b = MakeKuhnTetGrid(3, 3, 3, lo2, hi2);
+    SimplexMesh both = a;
+    const std::int32_t offset = static_cast<std::int32_t>(a.NumPoints());
+    both.Points.insert(both.Points.end(), b.Points.begin(), b.Points.end());
+    for (std::int32_t id : b.Cells)
+      both.Cells.push_back(id + offset);
+    std::vector<std::int32_t> body;
+    AV_CHECK(LabelBodies(a, body) == 1u && body.size() == a.NumPoints());
+    AV_CHECK(LabelBodies(both, body) == 2u);
+    AV_CHECK(body[0] == 0 && body[26] == 0 && body[27] == 1 && body[53] == 1);
+    SimplexMesh merged = both;
+    for (std::int32_t& id : merged.Cells)
+      if (id >= offset && id - offset < 9) // b's z = 1 layer: ids 0..8, a's ids 18..26
+        id = id - offset + 18;
+    AV_CHECK(LabelBodies(merged, body) == 1u);
+    AV_CHECK(body[27] == -1 && body[35] == -1 && body[36] == 0); // b's z = 1 copies: unused
+    SimplexMesh bad = a;
+    bad.Cells[5] = 999;
+    AV_CHECK_THROWS(LabelBodies(bad, body));
+  }
   AV_CHECK_THROWS(MakeKuhnTetGrid(1, 3, 3, z3, o3));
   AV_CHECK_THROWS(MakeKuhnTetGrid(3, 3, 3, o3, z3));
   return AV_TEST_RESULT();

@@ -2,7 +2,7 @@
 // Tests of ImproveMesh: each operation on a hand-made bad configuration raises the worst
 // quality (2-3 flip, 3-2 flip, edge removal of 4 and 5 tets, smoothing, 2-2 flip, triangle
 // smoothing, the boundary 2-2 flip and the in-plane move on a planar boundary, refused across a
-// crease); on perturbed grids nothing inverts, the volume and the boundary are kept exactly,
+// crease, the slide along a straight crease); on perturbed grids nothing inverts, the volume and the boundary are kept exactly,
 // every interior face stays shared by two tets, fixed vertices stay, the worst quality never
 // drops; and the mutation hook that accepts worsening operations is caught by those checks.
 #include "AnisoTestChecks.h"
@@ -451,9 +451,10 @@ int CubeFaceBits(const double* x)
 
 // The properties every run must keep; returns them instead of failing, so the mutation test
 // can show they catch a worsening run. `unitCube`: the tets fill [0,1]^3 and boundary vertices
-// of its faces may move in them (PlanarBoundary), so the boundary is checked as a surface: every
-// boundary face lies in a face of the cube, the boundary area is kept, vertices on the cube's
-// edges and corners stay, the others stay on their faces.
+// of its faces may move in them (PlanarBoundary) and those of its edges along them
+// (StraightCreases), so the boundary is checked as a surface: every boundary face lies in a face
+// of the cube, the boundary area is kept, the cube's corners stay, the other boundary vertices
+// stay on their face or edge.
 Checks CheckRun(const av::SimplexMesh& before,
   const av::SimplexMesh& after,
   const std::vector<std::uint8_t>& fixed,
@@ -507,22 +508,90 @@ Checks CheckRun(const av::SimplexMesh& before,
     const double* x0 = before.Point(i);
     const double* x1 = after.Point(i);
     const int bits = unitCube && boundary[i] ? CubeFaceBits(x0) : 0;
-    const bool onCubeFace = bits == 1 || bits == 2 || bits == 4;
-    if ((boundary[i] && !onCubeFace) || fixed[i])
+    const bool onCubeFaceOrEdge = bits != 0 && bits != 7;
+    if ((boundary[i] && !onCubeFaceOrEdge) || fixed[i])
       for (int d = 0; d < before.AmbientDim; ++d)
         c.Expect(x1[d] == x0[d], "boundary and fixed points stay");
-    else if (onCubeFace)
+    else if (onCubeFaceOrEdge)
     {
-      const int d = bits >> 1; // the coordinate that is 0 or 1 (bits 1, 2, 4 -> 0, 1, 2)
-      bool inside = true;
+      bool inside = true, kept = true;
       for (int k = 0; k < 3; ++k)
+      {
         inside = inside && x1[k] >= 0.0 && x1[k] <= 1.0;
-      c.Expect(CubeFaceBits(x1) == bits && x1[d] == x0[d] && inside,
-        "face points stay on their face");
+        kept = kept && (!(bits & (1 << k)) || x1[k] == x0[k]); // the coordinates that are 0 or 1
+      }
+      c.Expect(CubeFaceBits(x1) == bits && kept && inside,
+        "face and edge points stay on their face or edge");
     }
   }
   c.Expect(r.WorstAfter >= r.WorstBefore, "the worst quality never drops");
   return c;
+}
+
+// Straight creases: a vertex of an edge of the cube, pulled towards a corner, slides back along
+// the edge (both faces of the cube kept exactly), as a free vertex or a FeatureLinePoint; pinned,
+// with StraightCreases off, or with a bent crease it stays, and the corner never moves.
+void TestStraightCrease()
+{
+  const double lo[3] = { 0, 0, 0 }, hi[3] = { 1, 1, 1 };
+  const av::SimplexMesh grid = av::MakeKuhnTetGrid(4, 4, 4, lo, hi); // 3 x 3 x 3 cubes
+  auto find = [&](double x, double y, double z)
+  {
+    for (std::size_t i = 0; i < grid.NumPoints(); ++i)
+      if (std::abs(grid.Point(i)[0] - x) + std::abs(grid.Point(i)[1] - y) +
+          std::abs(grid.Point(i)[2] - z) < 1e-12)
+        return i;
+    return grid.NumPoints();
+  };
+  const std::size_t v = find(1.0 / 3.0, 0, 0), next = find(2.0 / 3.0, 0, 0), corner = find(0, 0, 0);
+  if (!(v < grid.NumPoints() && next < grid.NumPoints() && corner < grid.NumPoints()))
+  {
+    AV_CHECK_MSG(false, "grid vertices not found");
+    return;
+  }
+  av::SimplexMesh start = grid;
+  start.Points[3 * v] = 0.04;
+  AV_CHECK(NumInverted(start) == 0);
+  const double before = WorstQuality(start);
+  av::MeshImprovementOptions smoothOnly;
+  smoothOnly.Flips = false;
+  smoothOnly.KeepEdgeLengths = false;
+  const av::MetricField metric = IsotropicMetric(grid.NumPoints());
+  for (const std::uint8_t flag : { std::uint8_t(0), av::FeatureLinePoint })
+  {
+    std::vector<std::uint8_t> flags(grid.NumPoints(), 0);
+    flags[v] = flag;
+    av::SimplexMesh m = start;
+    const av::MeshImprovementResult r = av::ImproveMesh(m, metric, &flags, smoothOnly);
+    AV_CHECK_MSG(r.NumCreaseSmoothed >= 1 && r.Moved[v], r.NumCreaseSmoothed << " crease moves");
+    AV_CHECK(m.Points[3 * v + 1] == 0.0 && m.Points[3 * v + 2] == 0.0);
+    AV_CHECK_MSG(m.Points[3 * v] > 0.15 && m.Points[3 * v] < 0.5, "x = " << m.Points[3 * v]);
+    AV_CHECK_MSG(WorstQuality(m) > before + 0.1, before << " -> " << WorstQuality(m));
+    for (int d = 0; d < 3; ++d)
+      AV_CHECK(m.Points[3 * corner + d] == 0.0);
+    const Checks c = CheckRun(start, m, std::vector<std::uint8_t>(grid.NumPoints(), 0), r, true);
+    AV_CHECK(c.Ok);
+  }
+  { // Pinned (a corner site of the sampler, or the user's), or StraightCreases off: it stays.
+    std::vector<std::uint8_t> pinned(grid.NumPoints(), 0);
+    pinned[v] = 1;
+    av::SimplexMesh m = start;
+    const av::MeshImprovementResult r = av::ImproveMesh(m, metric, &pinned, smoothOnly);
+    AV_CHECK(!r.Moved[v] && m.Points[3 * v] == 0.04);
+    av::MeshImprovementOptions off = smoothOnly;
+    off.StraightCreases = false;
+    av::SimplexMesh k = start;
+    AV_CHECK(av::ImproveMesh(k, metric, nullptr, off).NumCreaseSmoothed == 0);
+    AV_CHECK(k.Points[3 * v] == 0.04);
+  }
+  { // A bent crease: its next vertex pushed into the cube, off both planes.
+    av::SimplexMesh bent = start;
+    bent.Points[3 * next + 1] = bent.Points[3 * next + 2] = 0.05;
+    AV_CHECK(NumInverted(bent) == 0);
+    av::SimplexMesh m = bent;
+    const av::MeshImprovementResult r = av::ImproveMesh(m, metric, nullptr, smoothOnly);
+    AV_CHECK(!r.Moved[v] && m.Points[3 * v] == 0.04);
+  }
 }
 
 av::MetricField StretchedMetric(std::size_t n, int dim)
@@ -621,6 +690,7 @@ int TestMeshImprovement(int, char*[])
   TestFlips();
   TestSmoothing();
   TestPlanarBoundary();
+  TestStraightCrease();
   TestTriangles();
   TestGrids();
   TestBadInput();

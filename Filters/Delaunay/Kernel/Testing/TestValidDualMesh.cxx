@@ -4,13 +4,15 @@
 // positive, every face shared by at most two tets, lies in the domain and, the metric being
 // constant, is the metric's Delaunay mesh (Delaunay in the mean metric); the metric Delaunay flips
 // (MetricDelaunayFlips.h) keep the mesh valid and its volume exactly, and remove most faces that
-// violate the metric's Delaunay criterion.
+// violate the metric's Delaunay criterion; on two cubes that touch without shared points (a
+// contact assembly) no tet of the replacement joins sites of the two bodies.
 #include "AnisoTestChecks.h"
 #include "FoldedTestCases.h"
 #include "MeshQuality.h"
 #include "MeshTopology.h"
 #include "MeshingPipeline.h"
 #include "MetricDelaunayFlips.h"
+#include "StructuredMeshes.h"
 #include "TetMesher.h"
 #include "ValidDualMesh.h"
 
@@ -251,8 +253,53 @@ void TestFlipsTowardsConstantMetric()
 
 } // namespace
 
+/// Two 5 x 5 x 5 grids, [0,1]^3 and [0,1]^2 x [1,2], the second with its own copy of z = 1, and
+/// a site at the centroid of every third tet: a joint tetrahedralization of the sites fills the
+/// gap between the bodies' sites with tets whose centroid is in one of them.
+void TestBodiesMeshedApart()
+{
+  const double lo[3] = { 0, 0, 0 }, hi[3] = { 1, 1, 1 }, lo2[3] = { 0, 0, 1 }, hi2[3] = { 1, 1, 2 };
+  av::SimplexMesh mesh = av::MakeKuhnTetGrid(5, 5, 5, lo, hi);
+  const av::SimplexMesh upper = av::MakeKuhnTetGrid(5, 5, 5, lo2, hi2);
+  const std::int32_t offset = static_cast<std::int32_t>(mesh.NumPoints());
+  mesh.Points.insert(mesh.Points.end(), upper.Points.begin(), upper.Points.end());
+  for (std::int32_t id : upper.Cells)
+    mesh.Cells.push_back(id + offset);
+  std::vector<std::int32_t> body;
+  AV_CHECK(av::LabelBodies(mesh, body) == 2u);
+  av::SiteSet sites;
+  sites.Dim = 3;
+  av::RestrictedDelaunayMesh rdt;
+  for (std::size_t c = 0; c < mesh.NumCells(); c += 3)
+  {
+    sites.CellIds.push_back(static_cast<std::int32_t>(c));
+    for (int d = 0; d < 3; ++d)
+    {
+      double x = 0.0;
+      for (int a = 0; a < 4; ++a)
+        x += 0.25 * mesh.Point(static_cast<std::size_t>(mesh.Cell(c)[a]))[d];
+      sites.Coords.push_back(x);
+      rdt.Points.push_back(x);
+    }
+    sites.Bary.insert(sites.Bary.end(), { 0.25, 0.25, 0.25, 0.25 });
+  }
+  rdt.NumUnusedSites = sites.NumSites(); // no cell: replaced
+  const av::ValidDualResult r =
+    av::MakeDualValid(mesh, av::ComputeElementAdjacency(mesh), sites, nullptr, rdt);
+  AV_CHECK(r.Replaced && rdt.NumCells() > 0 && rdt.NumInverted == 0);
+  std::size_t across = 0;
+  for (std::size_t c = 0; c < rdt.NumCells(); ++c)
+  {
+    auto bodyOf = [&](int a)
+    { return body[static_cast<std::size_t>(mesh.Cell(sites.CellIds[rdt.Cells[4 * c + a]])[0])]; };
+    across += bodyOf(1) != bodyOf(0) || bodyOf(2) != bodyOf(0) || bodyOf(3) != bodyOf(0);
+  }
+  AV_CHECK_MSG(across == 0, across << " tet(s) join the two bodies");
+}
+
 int TestValidDualMesh(int, char*[])
 {
+  TestBodiesMeshedApart();
   TestFoldedCubeGetsValidMesh();
   TestFlipsTowardsConstantMetric();
   return AV_TEST_RESULT();
