@@ -12,6 +12,7 @@
 
 #include <Eigen/Dense>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <utility>
@@ -197,6 +198,8 @@ void MeasureDualMesh(const av::SimplexMesh& mesh,
       covered += std::abs(av::CellMeasure(dual, c));
     r.DualVolumeRatio = covered / domain;
   }
+  if (dual.SimplexDim == 3 && dual.AmbientDim == 3)
+    r.PinchedBoundaryEdges = av::CountPinchedBoundaryEdges(dual);
   {
     // Elements whose sites lie in different bodies of the input (a contact assembly).
     std::vector<std::int32_t> body;

@@ -60,6 +60,7 @@ struct MeshStageResult
   double DualVolumeRatio = 0.0; ///< dual mesh volume / domain volume (tets; 1 = covered)
   std::size_t CrossBodyElements = 0; ///< dual elements with sites in two bodies of the input
   std::size_t CrossBodyPieces = 0;   ///< Voronoi pieces in a body other than their site's
+  std::size_t PinchedBoundaryEdges = 0; ///< tets: edges on more than two boundary faces
   double SampleSeconds = 0.0, LloydSeconds = 0.0;
   double RvdSeconds = 0.0, RdtSeconds = 0.0; ///< the first RVD (with the adjacency) and RDT
   double ImproveSeconds = 0.0; ///< site improvement rounds (their RVD + RDT included)

@@ -613,6 +613,7 @@ void ReportMesh(const Case& c, const avbench::MeshStageOptions& o,
   out.Set("nonmanifold_faces", r.NonManifoldFaces);
   out.Set("cross_body_elements", r.CrossBodyElements);
   out.Set("cross_body_pieces", r.CrossBodyPieces);
+  out.Set("pinched_boundary_edges", r.PinchedBoundaryEdges);
   out.Set("unused_sites", r.UnusedSites);
   out.Set("paper_G_min", p.GMin);
   out.Set("paper_G_avg", p.GAvg);

@@ -245,6 +245,39 @@ std::size_t LabelBodies(const SimplexMesh& mesh, std::vector<std::int32_t>& poin
   return static_cast<std::size_t>(count);
 }
 
+std::size_t CountPinchedBoundaryEdges(const SimplexMesh& tets)
+{
+  if (tets.SimplexDim != 3)
+    throw InputError("CountPinchedBoundaryEdges: the mesh must be made of tets");
+  const std::vector<CellFacet> facets = SortedCellFacets(tets);
+  std::vector<std::pair<std::int32_t, std::int32_t>> edges;
+  for (std::size_t i = 0; i < facets.size();)
+  {
+    std::size_t j = i + 1;
+    while (j < facets.size() && facets[j].Vertices == facets[i].Vertices)
+      ++j;
+    if (j - i == 1) // a boundary face (sorted vertices)
+    {
+      const auto& v = facets[i].Vertices;
+      edges.emplace_back(v[0], v[1]);
+      edges.emplace_back(v[0], v[2]);
+      edges.emplace_back(v[1], v[2]);
+    }
+    i = j;
+  }
+  std::sort(edges.begin(), edges.end());
+  std::size_t pinched = 0;
+  for (std::size_t i = 0; i < edges.size();)
+  {
+    std::size_t j = i + 1;
+    while (j < edges.size() && edges[j] == edges[i])
+      ++j;
+    pinched += j - i > 2 ? 1 : 0;
+    i = j;
+  }
+  return pinched;
+}
+
 std::vector<std::int32_t> ComputeElementAdjacency(const SimplexMesh& mesh)
 {
   // Facets bucketed by their smallest vertex id (counting sort), then matched inside each

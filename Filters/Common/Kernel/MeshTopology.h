@@ -26,6 +26,11 @@ std::vector<std::int32_t> ComputeElementAdjacency(const SimplexMesh& mesh);
 /// cell) and returns the count.
 std::size_t LabelBodies(const SimplexMesh& mesh, std::vector<std::int32_t>& pointBody);
 
+/// Tets: edges on more than two boundary faces, where the domain touches itself along an edge
+/// (two parts joined by an edge only, or a notch closed down to an edge). A tet mesh of a
+/// manifold domain has none.
+std::size_t CountPinchedBoundaryEdges(const SimplexMesh& tets);
+
 /// Throws InputError("<who><kind> c references point p, outside [0, n)") for the first cell id
 /// out of range; `kind` names the cells in the message ("triangle", "cell").
 void CheckCellIds(const SimplexMesh& mesh, const std::string& who, const char* kind);

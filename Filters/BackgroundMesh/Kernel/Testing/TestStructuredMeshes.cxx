@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Kuhn tet grid / triangle grid: positive orientation, exact volume partition, conformity
 // (every interior face shared by two cells), edge and boundary counts; two grids that touch
-// along a face with separate points (a contact assembly) are two bodies, merged points one.
+// along a face with separate points (a contact assembly) are two bodies, merged points one;
+// joined along an edge only, they are one body with pinched boundary edges.
 #include "MeshTopology.h"
 #include "StructuredMeshes.h"
 #include "AnisoTestChecks.h"
@@ -83,6 +84,22 @@ int TestStructuredMeshes(int, char*[])
       if (id >= offset && id - offset < 9) // b's z = 1 layer: ids 0..8, a's ids 18..26
         id = id - offset + 18;
     AV_CHECK(LabelBodies(merged, body) == 1u);
+    AV_CHECK(CountPinchedBoundaryEdges(a) == 0 && CountPinchedBoundaryEdges(merged) == 0);
+    // The upper cube shifted by +1 in x and joined to the lower one along the edge x = 1,
+    // z = 1 only (its points (0, j, 0) become the lower cube's (2, j, 2)): 2 pinched edges.
+    SimplexMesh edgeJoined = both;
+    for (std::size_t p = static_cast<std::size_t>(offset); p < edgeJoined.NumPoints(); ++p)
+      edgeJoined.Points[3 * p] += 1.0;
+    for (std::size_t k = a.Cells.size(); k < edgeJoined.Cells.size(); ++k)
+    {
+      const std::int32_t id = edgeJoined.Cells[k] - offset; // i + 3 (j + 3 k) in the upper grid
+      if (id % 3 == 0 && id < 9)
+        edgeJoined.Cells[k] = 2 + 3 * (id / 3) + 18;
+    }
+    AV_CHECK_MSG(CountPinchedBoundaryEdges(edgeJoined) == 2u,
+      CountPinchedBoundaryEdges(edgeJoined) << " pinched edges");
+    std::vector<std::int32_t> edgeBody;
+    AV_CHECK(LabelBodies(edgeJoined, edgeBody) == 1u);
     AV_CHECK(body[27] == -1 && body[35] == -1 && body[36] == 0); // b's z = 1 copies: unused
     SimplexMesh bad = a;
     bad.Cells[5] = 999;
