@@ -6,7 +6,6 @@
 #include "EdgeLengthError.h"
 #include "EmbeddingErrorReport.h"
 #include "EmbeddingSolver.h"
-#include "MeshTopology.h"
 #include "MetricScaling.h"
 #include "Stopwatch.h"
 #include "vtkAnisoDataConversion.h"
@@ -187,6 +186,7 @@ int vtkAnisoEmbedding::RequestData(
   vtkDataSet* input = vtkDataSet::GetData(inputVector[0]);
   vtkUnstructuredGrid* output = vtkUnstructuredGrid::GetData(outputVector, 0);
   vtkTable* energyTable = vtkTable::GetData(outputVector, 1);
+  this->NumberOfInputBodies = 0;
   if (vtkAnisoDataConversion::NothingToCompute(request, outputVector, input))
   {
     return 1; // not this piece, or empty in: empty out
@@ -198,28 +198,6 @@ int vtkAnisoEmbedding::RequestData(
   if (!ConvertInputs(this, input, chosen, association, mesh, metric))
   {
     return 0;
-  }
-  // Parts that touch without shared points (an FE contact assembly, unmerged nodes): say how
-  // they are treated, a user may have meant one domain.
-  if (!vtkAnisoFilterUtilities::RunKernel(this, "body count", [&] {
-        std::vector<std::int32_t> body;
-        this->NumberOfInputBodies = static_cast<vtkIdType>(av::LabelBodies(mesh, body));
-      }))
-  {
-    return 0;
-  }
-  if (this->NumberOfInputBodies > 1)
-  {
-    vtkWarningMacro(<< "the input has " << this->NumberOfInputBodies
-                    << " separate bodies (cells connected through shared points), as a contact "
-                       "assembly has. "
-                    << (this->SeparateBodies
-                           ? "They are embedded apart and sampled and meshed as separate "
-                             "domains: no Voronoi cell or mesh element spans two of them, and "
-                             "the meshes do not conform where the bodies touch. To mesh one "
-                             "domain, merge the coincident points first (Clean to Grid)."
-                           : "SeparateBodies is off: where they touch, Voronoi cells and mesh "
-                             "elements may span two bodies."));
   }
   // Extra coordinates can only lengthen edges: eigenvalues below 1 are scaled up (paper §6).
   this->MetricScale = 1.0;
@@ -250,6 +228,22 @@ int vtkAnisoEmbedding::RequestData(
       }))
   {
     return 0;
+  }
+  // Parts that touch without shared points (an FE contact assembly, unmerged nodes): say how
+  // they were treated, a user may have meant one domain.
+  this->NumberOfInputBodies = static_cast<vtkIdType>(result.NumBodies);
+  if (this->NumberOfInputBodies > 1)
+  {
+    vtkWarningMacro(<< "the input has " << this->NumberOfInputBodies
+                    << " separate bodies (cells connected through shared points), as a contact "
+                       "assembly has. "
+                    << (this->SeparateBodies
+                           ? "They are embedded apart and sampled and meshed as separate "
+                             "domains: no Voronoi cell or mesh element spans two of them, and "
+                             "the meshes do not conform where the bodies touch. To mesh one "
+                             "domain, merge the coincident points first (Clean to Grid)."
+                           : "SeparateBodies is off: where they touch, Voronoi cells and mesh "
+                             "elements may span two bodies."));
   }
   // Never silent: say where the embedding could not fit the metric.
   this->CellsAboveErrorThreshold = static_cast<vtkIdType>(summary.NumAbove);
