@@ -132,16 +132,18 @@ RealInput LoadVolume(const RealCaseInfo& info, const std::string& path, const Re
   return in;
 }
 
-RealInput LoadSurface(const RealCaseInfo& info, const std::string& path)
+RealInput LoadSurface(const RealCaseInfo& info, const std::string& path, const RealCaseOptions& o)
 {
   RealInput in;
   in.IsSurface = true;
   in.Mesh = av::ReadOff(path);
   in.FilePoints = in.Mesh.NumPoints();
   in.FileCells = in.Mesh.NumCells();
-  const av::SurfaceCurvatureMetricResult m =
-    av::SurfaceCurvatureMetric(in.Mesh, av::SurfaceCurvatureMetricOptions());
+  av::SurfaceCurvatureMetricOptions mo;
+  mo.CreaseAngle = o.CreaseAngle;
+  const av::SurfaceCurvatureMetricResult m = av::SurfaceCurvatureMetric(in.Mesh, mo);
   in.Metric = m.Metric;
+  in.CreaseEdges = m.NumCreaseEdges;
   const auto range = std::minmax_element(m.StretchRatio.begin(), m.StretchRatio.end());
   in.StretchMin = *range.first;
   in.StretchMax = *range.second;
@@ -213,7 +215,7 @@ RealInput LoadRealCase(const std::string& name,
       " (make it with scripts/make-real-data.sh " + dataDir +
       ", or point --data-dir / AV_REAL_DATA_DIR at it)");
   }
-  return info.Field.empty() ? LoadSurface(info, path) : LoadVolume(info, path, options);
+  return info.Field.empty() ? LoadSurface(info, path, options) : LoadVolume(info, path, options);
 }
 
 std::size_t DefaultRealSites(const RealInput& input)

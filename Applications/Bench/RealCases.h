@@ -43,6 +43,7 @@ struct RealCaseOptions
   double MinEigenvalue = 1e-3;
   double MaxAnisotropy = 25.0;
   int SmoothingIterations = 0;
+  double CreaseAngle = 180.0; ///< surfaces: the curvature metric's CreaseAngle (180 = none)
 };
 
 /// A real case ready for the embedding.
@@ -53,6 +54,7 @@ struct RealInput
   std::string Description;                   ///< e.g. "ccx-rotor.frd STRESS step 1 -> 2,208 tets"
   std::size_t FilePoints = 0, FileCells = 0; ///< as read, before the split into simplices
   double StretchMin = 0.0, StretchMax = 0.0; ///< of the metric (tangent stretch on surfaces)
+  std::size_t CreaseEdges = 0;               ///< surfaces: edges sharper than CreaseAngle
   bool IsSurface = false;
 };
 

@@ -122,6 +122,7 @@ struct Case
   av::AnalyticPreset Preset = av::AnalyticPreset::Cube1; // unused by real cases
   bool Real = false;          // a real:NAME case (RealCases.h)
   double StretchMin = 0.0, StretchMax = 0.0;
+  std::size_t CreaseEdges = 0;               // real surfaces: edges sharper than the crease angle
   std::size_t FilePoints = 0, FileCells = 0; // real: as read, before the split into simplices
   av::SimplexMesh Mesh;
   av::MetricField Metric;
@@ -221,6 +222,7 @@ Case BuildRealCase(const Args& a)
   c.MeshDescription = in.Description;
   c.StretchMin = in.StretchMin;
   c.StretchMax = in.StretchMax;
+  c.CreaseEdges = in.CreaseEdges;
   c.FilePoints = in.FilePoints;
   c.FileCells = in.FileCells;
   c.DefaultSites = avbench::DefaultRealSites(in);
@@ -783,6 +785,8 @@ void Usage(std::ostream& os)
         "  --min-cells-across K  cells across thin parts of volumes (default 1.25, 0 = off)\n"
         "  --no-prepare-metric  real tensor cases (prepared by default, as the CLI does):\n"
         "                    the raw metric\n"
+        "  --crease-angle A  real surface cases: edges sharper than A degrees are creases the\n"
+        "                    curvature metric is not estimated across (default 180 = none)\n"
         "  --max-stretch S   surface cases: cap on the curvature metric's stretch ratio\n"
         "                    (default: cyclide, torus 10; cyclide2 29 as Tab. 3)\n"
         "  surface cases: --resolution N scales the parameter grid by N / 100; the mesh\n"
@@ -940,6 +944,8 @@ bool Parse(int argc, char** argv, Args& a)
       a.RealMetric.MaxAnisotropy = std::stod(next());
     else if (k == "--smooth")
       a.RealMetric.SmoothingIterations = std::stoi(next());
+    else if (k == "--crease-angle")
+      a.RealMetric.CreaseAngle = std::stod(next());
     else if (k == "--prepare-metric")
       a.Prepare = true;
     else if (k == "--no-prepare-metric")
@@ -996,6 +1002,11 @@ bool RunCase(const Args& args, const std::string& name, const StageFn& stage, in
     {
       out.Set("file_points", c.FilePoints);
       out.Set("file_cells", c.FileCells);
+      if (c.IsSurface)
+      {
+        out.Set("crease_angle", a.RealMetric.CreaseAngle);
+        out.Set("crease_edges", c.CreaseEdges);
+      }
     }
     out.Set("input_vertices", c.Mesh.NumPoints());
     out.Set("input_elements", c.Mesh.NumCells());

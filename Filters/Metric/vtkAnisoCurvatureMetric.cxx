@@ -184,6 +184,7 @@ int vtkAnisoCurvatureMetric::RequestData(vtkInformation*,
   options.CurvatureThreshold = this->CurvatureThreshold;
   options.SmoothingIterations = this->SmoothingIterations;
   options.MaxStretch = this->MaxStretch;
+  options.CreaseAngle = this->CreaseAngle;
   av::SurfaceCurvatureMetricResult result;
   if (!vtkAnisoFilterUtilities::RunKernel(this,
         "curvature metric",
@@ -215,6 +216,8 @@ int vtkAnisoCurvatureMetric::RequestData(vtkInformation*,
   pd->SetActiveTensors(metricName);
   vtkAnisoFilterUtilities::AddFieldValue(
     output->GetFieldData(), "CurvatureFloor", result.CurvatureFloor);
+  vtkAnisoFilterUtilities::AddFieldValue(
+    output->GetFieldData(), "CreaseEdges", static_cast<double>(result.NumCreaseEdges));
   this->UpdateProgress(1.0);
   return 1;
 }
@@ -225,6 +228,7 @@ void vtkAnisoCurvatureMetric::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "CurvatureThreshold: " << this->CurvatureThreshold << "\n";
   os << indent << "SmoothingIterations: " << this->SmoothingIterations << "\n";
   os << indent << "MaxStretch: " << this->MaxStretch << "\n";
+  os << indent << "CreaseAngle: " << this->CreaseAngle << "\n";
   os << indent << "MetricArrayName: " << (this->MetricArrayName ? this->MetricArrayName : "")
      << "\n";
 }

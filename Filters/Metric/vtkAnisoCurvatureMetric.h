@@ -19,10 +19,11 @@
  * Output: the input (shallow copy) plus point arrays "Metric" (6 components XX, YY, ZZ, XY, YZ,
  * XZ, the active tensors), "Stretch" (s2 / s1), "KMin", "KMax" (signed principal curvatures of
  * smaller / larger magnitude), "VMin", "VMax" (unit principal directions), and field data
- * "CurvatureFloor" (the absolute |K| floor used).
+ * "CurvatureFloor" (the absolute |K| floor used) and "CreaseEdges" (edges sharper than CreaseAngle).
  *
  * Parameters: CurvatureThreshold (default 0.1, > 0), SmoothingIterations (default 5),
- * MaxStretch (default 10; 0 = no cap, else >= 1).
+ * MaxStretch (default 10; 0 = no cap, else >= 1), CreaseAngle (default 180 = none; normal
+ * differences are not taken across sharper edges).
  */
 #ifndef vtkAnisoCurvatureMetric_h
 #define vtkAnisoCurvatureMetric_h
@@ -56,6 +57,15 @@ public:
   ///@}
 
   ///@{
+  /// Edges whose two triangles' normals differ by more than this (degrees) are creases: the
+  /// curvature is not estimated across them, so a sharp CAD edge does not read as a huge
+  /// curvature (default 180 = off, the surface is smooth everywhere; 30 = the sampler's
+  /// FeatureAngle).
+  vtkSetClampMacro(CreaseAngle, double, 1e-3, 180.0);
+  vtkGetMacro(CreaseAngle, double);
+  ///@}
+
+  ///@{
   /// Name of the output metric array (default "Metric").
   vtkSetStringMacro(MetricArrayName);
   vtkGetStringMacro(MetricArrayName);
@@ -69,6 +79,7 @@ protected:
   double CurvatureThreshold = 0.1;
   int SmoothingIterations = 5;
   double MaxStretch = 10.0;
+  double CreaseAngle = 180.0;
   char* MetricArrayName = nullptr;
 
 private:

@@ -11,6 +11,7 @@
 #include <Eigen/Dense>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <string>
 
@@ -47,6 +48,10 @@ double ValidateSurface(const SimplexMesh& s, const SurfaceCurvatureMetricOptions
   if (opt.SmoothingIterations < 0 || !(opt.MaxStretch == 0.0 || opt.MaxStretch >= 1.0))
   {
     throw InputError(who + "SmoothingIterations must be >= 0 and MaxStretch 0 or >= 1");
+  }
+  if (!(opt.CreaseAngle > 0.0 && opt.CreaseAngle <= 180.0))
+  {
+    throw InputError(who + "CreaseAngle must be in (0, 180] degrees");
   }
   const std::size_t np = s.NumPoints();
   Vec3 lo = Vec3::Constant(1e300), hi = -lo;
@@ -104,10 +109,10 @@ std::vector<Vec3> VertexNormals(const SimplexMesh& s, double diag)
   return normal;
 }
 
-/// Per face: second fundamental form in 3D (tangent to the face) from normal differences, and
-/// the face's weight (a third of its area).
+/// Per face: second fundamental form in 3D (tangent to the face) from the differences of its
+/// corner normals, and the face's weight (a third of its area).
 void FaceShapeOperators(const SimplexMesh& s,
-  const std::vector<Vec3>& normal,
+  const std::vector<Vec3>& cornerNormal,
   std::vector<Mat3>& faceForm,
   std::vector<double>& faceWeight)
 {
@@ -133,8 +138,8 @@ void FaceShapeOperators(const SimplexMesh& s,
         {
           const int p = (k + 1) % 3, q = (k + 2) % 3;
           const Vec3 e = x[q] - x[p];
-          const Vec3 dn =
-            normal[static_cast<std::size_t>(t[q])] - normal[static_cast<std::size_t>(t[p])];
+          const Vec3 dn = cornerNormal[3 * c + static_cast<std::size_t>(q)] -
+            cornerNormal[3 * c + static_cast<std::size_t>(p)];
           const double u = e.dot(tu), v = e.dot(tv);
           const Vec3 r1(u, v, 0.0), r2(0.0, u, v);
           A += r1 * r1.transpose() + r2 * r2.transpose();
@@ -179,19 +184,150 @@ void VertexFaces(const SimplexMesh& s,
   }
 }
 
+/// Per triangle corner (3 per cell): the unit normal of its wedge, the faces around the corner's
+/// vertex that are connected through edges at the vertex which are not creases (normals more
+/// than creaseAngle apart, or an edge of more than two faces). The wedge normal sums the same
+/// Max-weighted terms as VertexNormals, over the wedge's faces in the same (cell) order, so a
+/// vertex with no crease gets its vertex normal bit for bit. Counts the crease edges.
+std::vector<Vec3> CornerNormals(const SimplexMesh& s,
+  const std::vector<Vec3>& normal,
+  double creaseAngle,
+  const std::vector<std::int32_t>& vfOffset,
+  const std::vector<std::int32_t>& vfList,
+  std::size_t& numCreaseEdges)
+{
+  const std::size_t np = s.NumPoints(), nc = s.NumCells();
+  std::vector<Vec3> corner(3 * nc);
+  numCreaseEdges = 0;
+  if (creaseAngle >= 180.0)
+  {
+    for (std::size_t c = 0; c < nc; ++c)
+      for (int k = 0; k < 3; ++k)
+        corner[3 * c + static_cast<std::size_t>(k)] = normal[static_cast<std::size_t>(s.Cell(c)[k])];
+    return corner;
+  }
+  const double cosCrease = std::cos(creaseAngle * 3.14159265358979323846 / 180.0);
+  // Unit face normals and the Max-weighted corner terms of VertexNormals.
+  std::vector<Vec3> faceNormal(nc), term(3 * nc);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nc, 1024),
+    [&](const tbb::blocked_range<std::size_t>& range)
+    {
+      for (std::size_t c = range.begin(); c != range.end(); ++c)
+      {
+        const std::int32_t* t = s.Cell(c);
+        const Vec3 x[3] = { Eigen::Map<const Vec3>(s.Point(t[0])),
+          Eigen::Map<const Vec3>(s.Point(t[1])), Eigen::Map<const Vec3>(s.Point(t[2])) };
+        const Vec3 n2 = (x[1] - x[0]).cross(x[2] - x[0]);
+        faceNormal[c] = n2.normalized();
+        for (int k = 0; k < 3; ++k)
+        {
+          const Vec3 e1 = x[(k + 1) % 3] - x[k], e2 = x[(k + 2) % 3] - x[k];
+          term[3 * c + static_cast<std::size_t>(k)] = n2 / (e1.squaredNorm() * e2.squaredNorm());
+        }
+      }
+    });
+  std::vector<std::size_t> creases(np, 0);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, np, 256),
+    [&](const tbb::blocked_range<std::size_t>& range)
+    {
+      // Reused per vertex: union-find over the vertex's faces, the far vertex of each edge at
+      // the vertex with its two first faces and face count, the wedge sums.
+      std::vector<std::int32_t> parent;
+      std::vector<std::array<std::int32_t, 4>> edges; // far vertex, first, second face, count
+      std::vector<Vec3> sum;
+      for (std::size_t v = range.begin(); v != range.end(); ++v)
+      {
+        const std::int32_t begin = vfOffset[v], deg = vfOffset[v + 1] - begin;
+        parent.resize(static_cast<std::size_t>(deg));
+        for (std::int32_t a = 0; a < deg; ++a)
+          parent[static_cast<std::size_t>(a)] = a;
+        const auto find = [&](std::int32_t a)
+        {
+          while (parent[static_cast<std::size_t>(a)] != a)
+            a = parent[static_cast<std::size_t>(a)] =
+              parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(a)])];
+          return a;
+        };
+        edges.clear();
+        for (std::int32_t a = 0; a < deg; ++a)
+        {
+          const auto f = static_cast<std::size_t>(vfList[static_cast<std::size_t>(begin + a)]);
+          for (int k = 0; k < 3; ++k)
+          {
+            const std::int32_t x = s.Cell(f)[k];
+            if (static_cast<std::size_t>(x) == v)
+              continue;
+            auto it = std::find_if(edges.begin(), edges.end(),
+              [x](const std::array<std::int32_t, 4>& e) { return e[0] == x; });
+            if (it == edges.end())
+              edges.push_back({ x, a, -1, 1 });
+            else if (++(*it)[3] == 2)
+              (*it)[2] = a;
+          }
+        }
+        // Join the two faces of each manifold edge unless it is sharp; an edge of three or more
+        // faces separates them. Each crease is counted at its lower vertex.
+        for (const auto& e : edges)
+        {
+          bool crease = e[3] > 2;
+          if (e[3] == 2)
+          {
+            const auto f = static_cast<std::size_t>(vfList[static_cast<std::size_t>(begin + e[1])]);
+            const auto g = static_cast<std::size_t>(vfList[static_cast<std::size_t>(begin + e[2])]);
+            crease = !(faceNormal[f].dot(faceNormal[g]) >= cosCrease);
+            if (!crease)
+              parent[static_cast<std::size_t>(find(e[1]))] = find(e[2]);
+          }
+          if (crease && static_cast<std::size_t>(e[0]) > v)
+            ++creases[v];
+        }
+        // A vertex with one wedge keeps its vertex normal (bit for bit).
+        bool oneWedge = true;
+        for (std::int32_t a = 1; a < deg && oneWedge; ++a)
+          oneWedge = find(a) == find(0);
+        sum.assign(static_cast<std::size_t>(deg), Vec3::Zero());
+        if (!oneWedge)
+        {
+          for (std::int32_t a = 0; a < deg; ++a)
+          {
+            const auto f = static_cast<std::size_t>(vfList[static_cast<std::size_t>(begin + a)]);
+            const int k = s.Cell(f)[0] == static_cast<std::int32_t>(v) ? 0
+              : s.Cell(f)[1] == static_cast<std::int32_t>(v)           ? 1
+                                                                       : 2;
+            sum[static_cast<std::size_t>(find(a))] += term[3 * f + static_cast<std::size_t>(k)];
+          }
+        }
+        for (std::int32_t a = 0; a < deg; ++a)
+        {
+          const auto f = static_cast<std::size_t>(vfList[static_cast<std::size_t>(begin + a)]);
+          const int k = s.Cell(f)[0] == static_cast<std::int32_t>(v) ? 0
+            : s.Cell(f)[1] == static_cast<std::int32_t>(v)           ? 1
+                                                                     : 2;
+          const Vec3& w = sum[static_cast<std::size_t>(find(a))];
+          const double len = w.norm();
+          corner[3 * f + static_cast<std::size_t>(k)] =
+            oneWedge || !(len > 0.0) ? normal[v] : Vec3(w / len);
+        }
+      }
+    });
+  for (std::size_t v = 0; v < np; ++v)
+    numCreaseEdges += creases[v];
+  return corner;
+}
+
 /// Per vertex: principal curvatures (ordered by magnitude), the stretch pair (s1, s2) and the
 /// line field confidence * v_max v_max^T that the smoothing averages.
 void PrincipalCurvatures(const SimplexMesh& s,
   const std::vector<Vec3>& normal,
   const std::vector<Mat3>& faceForm,
   const std::vector<double>& faceWeight,
+  const std::vector<std::int32_t>& vfOffset,
+  const std::vector<std::int32_t>& vfList,
   SurfaceCurvatureMetricResult& r,
   std::vector<Eigen::Vector2d>& stretch,
   std::vector<Mat3>& lineField)
 {
   const std::size_t np = s.NumPoints();
-  std::vector<std::int32_t> vfOffset, vfList;
-  VertexFaces(s, vfOffset, vfList);
   r.MinCurvature.resize(np);
   r.MaxCurvature.resize(np);
   stretch.resize(np);   // (s1, s2)
@@ -312,14 +448,18 @@ SurfaceCurvatureMetricResult SurfaceCurvatureMetric(const SimplexMesh& s,
 {
   const double diag = ValidateSurface(s, opt);
   const std::vector<Vec3> normal = VertexNormals(s, diag);
+  SurfaceCurvatureMetricResult r;
+  std::vector<std::int32_t> vfOffset, vfList;
+  VertexFaces(s, vfOffset, vfList);
+  const std::vector<Vec3> cornerNormal =
+    CornerNormals(s, normal, opt.CreaseAngle, vfOffset, vfList, r.NumCreaseEdges);
   std::vector<Mat3> faceForm;
   std::vector<double> faceWeight;
-  FaceShapeOperators(s, normal, faceForm, faceWeight);
-  SurfaceCurvatureMetricResult r;
+  FaceShapeOperators(s, cornerNormal, faceForm, faceWeight);
   r.CurvatureFloor = opt.CurvatureThreshold / diag;
   std::vector<Eigen::Vector2d> stretch;
   std::vector<Mat3> lineField;
-  PrincipalCurvatures(s, normal, faceForm, faceWeight, r, stretch, lineField);
+  PrincipalCurvatures(s, normal, faceForm, faceWeight, vfOffset, vfList, r, stretch, lineField);
   if (opt.SmoothingIterations > 0)
   {
     SmoothStretchAndDirections(s, opt.SmoothingIterations, stretch, lineField);

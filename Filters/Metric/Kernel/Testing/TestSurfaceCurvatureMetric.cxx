@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // SurfaceCurvatureMetric: principal curvatures and directions on a cylinder (known: 1/r around,
-// 0 along the axis), isotropy on a sphere, a flat patch, Eq. 19 structure, errors.
+// 0 along the axis), isotropy on a sphere, a flat patch, Eq. 19 structure, creases (a box, a
+// capped cylinder, a smooth torus unchanged), errors.
 #include "MetricAlgebra.h"
 #include "SurfaceCurvatureMetric.h"
 #include "SurfaceGenerators.h"
@@ -17,6 +18,7 @@ int TestSurfaceCurvatureMetric(int, char*[])
   {
     const av::SimplexMesh cyl = av::MakeCylinderSurface(1.0, 4.0, 64, 40);
     av::SurfaceCurvatureMetricOptions o;
+    o.CreaseAngle = 30.0;
     const auto r = av::SurfaceCurvatureMetric(cyl, o);
     const double diag = std::sqrt(2.0 * 2.0 + 2.0 * 2.0 + 4.0 * 4.0);
     AV_CHECK_NEAR(r.CurvatureFloor, 0.1 / diag, 1e-12);
@@ -93,6 +95,93 @@ int TestSurfaceCurvatureMetric(int, char*[])
     }
   }
 
+  // Creases (CreaseAngle 30 degrees; the default 180 is off): a box is flat on every face, so with the creases
+  // found the metric is isotropic everywhere; read as smooth (180), its edges look curved.
+  {
+    const double lo[3] = { 0, 0, 0 }, hi[3] = { 2, 1, 1 };
+    const int n[3] = { 8, 4, 4 };
+    const av::SimplexMesh box = av::MakeBoxSurface(lo, hi, n);
+    av::SurfaceCurvatureMetricOptions o;
+    o.CreaseAngle = 30.0;
+    const auto r = av::SurfaceCurvatureMetric(box, o);
+    AV_CHECK_MSG(r.NumCreaseEdges == 4 * (8 + 4 + 4), r.NumCreaseEdges << " crease edges");
+    double maxRatio = 0.0;
+    for (double ratio : r.StretchRatio)
+      maxRatio = std::max(maxRatio, ratio);
+    AV_CHECK_MSG(maxRatio < 1.0 + 1e-9, "box with creases: stretch ratio up to " << maxRatio);
+    o.CreaseAngle = 180.0;
+    const auto smooth = av::SurfaceCurvatureMetric(box, o);
+    AV_CHECK(smooth.NumCreaseEdges == 0);
+    const double smoothMax =
+      *std::max_element(smooth.StretchRatio.begin(), smooth.StretchRatio.end());
+    AV_CHECK_MSG(smoothMax > 3.0, "box read as smooth: stretch ratio only up to " << smoothMax);
+  }
+
+  // A capped cylinder (radius 1, height 4): with the rims as creases the flat caps have no
+  // curvature (their centres' one-rings are all cap) and the rim vertices at most the side's
+  // (1 around, the caps' 0 averaged in); read as smooth, the rim normals tilt the caps' fits.
+  // Far from the rims the metric is the same bit for bit.
+  {
+    const int around = 64, along = 40;
+    av::SimplexMesh cyl = av::MakeCylinderSurface(1.0, 4.0, around, along);
+    const auto bottom = static_cast<std::int32_t>(cyl.NumPoints());
+    cyl.Points.insert(cyl.Points.end(), { 0.0, 0.0, 0.0, 0.0, 0.0, 4.0 });
+    const std::int32_t top = bottom + 1, topRing = along * around;
+    for (std::int32_t i = 0; i < around; ++i)
+    {
+      const std::int32_t j = (i + 1) % around;
+      cyl.Cells.insert(cyl.Cells.end(), { bottom, j, i, top, topRing + i, topRing + j });
+    }
+    av::SurfaceCurvatureMetricOptions o;
+    o.CreaseAngle = 30.0;
+    const auto r = av::SurfaceCurvatureMetric(cyl, o);
+    o.CreaseAngle = 180.0;
+    const auto smooth = av::SurfaceCurvatureMetric(cyl, o);
+    AV_CHECK_MSG(r.NumCreaseEdges == 2 * around, r.NumCreaseEdges << " crease edges");
+    double rimK = 0.0, rimKSmooth = 0.0;
+    int rim = 0, middle = 0, middleDiffers = 0;
+    for (std::size_t i = 0; i + 2 < cyl.NumPoints(); ++i)
+    {
+      const double z = cyl.Point(i)[2];
+      if (z == 0.0 || z == 4.0)
+      {
+        ++rim;
+        rimK = std::max(rimK, std::abs(r.MaxCurvature[i]));
+        rimKSmooth = std::max(rimKSmooth, std::abs(smooth.MaxCurvature[i]));
+      }
+      else if (z > 1.0 && z < 3.0)
+      {
+        ++middle;
+        for (int k = 0; k < 6; ++k)
+          middleDiffers += r.Metric.At(i)[k] != smooth.Metric.At(i)[k];
+      }
+    }
+    AV_CHECK(rim == 2 * around && middle > 1000);
+    AV_CHECK_MSG(rimK < 1.1, "rim curvature " << rimK << " with creases (the side's is 1)");
+    AV_CHECK_MSG(rimKSmooth > 0.5, "rim curvature " << rimKSmooth << " without creases");
+    for (const std::int32_t centre : { bottom, top })
+    {
+      const auto c = static_cast<std::size_t>(centre);
+      AV_CHECK_MSG(std::abs(r.MaxCurvature[c]) < 1e-9,
+        "cap centre curvature " << r.MaxCurvature[c] << " with creases (flat)");
+      AV_CHECK_MSG(std::abs(smooth.MaxCurvature[c]) > 0.5,
+        "cap centre curvature " << smooth.MaxCurvature[c] << " without creases");
+    }
+    AV_CHECK_MSG(middleDiffers == 0, middleDiffers << " metric entries changed far from the rims");
+  }
+
+  // A smooth surface has no crease: the metric is the same bit for bit as with CreaseAngle 180.
+  {
+    const av::SimplexMesh torus = av::MakeTorusSurface(3.0, 1.0, 48, 24);
+    av::SurfaceCurvatureMetricOptions o;
+    o.CreaseAngle = 30.0;
+    const auto r = av::SurfaceCurvatureMetric(torus, o);
+    o.CreaseAngle = 180.0;
+    const auto smooth = av::SurfaceCurvatureMetric(torus, o);
+    AV_CHECK(r.NumCreaseEdges == 0);
+    AV_CHECK(r.Metric.Values == smooth.Metric.Values);
+  }
+
   // Errors.
   {
     av::SimplexMesh sphere = av::MakeIcosphere(1.0, 1);
@@ -111,6 +200,11 @@ int TestSurfaceCurvatureMetric(int, char*[])
     av::SurfaceCurvatureMetricOptions bad;
     bad.CurvatureThreshold = 0.0;
     AV_CHECK_THROWS(av::SurfaceCurvatureMetric(sphere, bad));
+    av::SurfaceCurvatureMetricOptions badCrease;
+    badCrease.CreaseAngle = 0.0;
+    AV_CHECK_THROWS(av::SurfaceCurvatureMetric(sphere, badCrease));
+    badCrease.CreaseAngle = std::nan("");
+    AV_CHECK_THROWS(av::SurfaceCurvatureMetric(sphere, badCrease));
   }
   return AV_TEST_RESULT();
 }
