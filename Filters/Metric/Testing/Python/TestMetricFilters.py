@@ -11,7 +11,8 @@ from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
 from vtkmodules.util.vtkConstants import VTK_STRING
 from vtkmodules.vtkCommonCore import vtkCommand, vtkPoints
 from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkImageData, vtkPolyData
-from vtkmodules.vtkFiltersSources import vtkPlaneSource, vtkSphereSource
+from vtkmodules.vtkFiltersCore import vtkCleanPolyData, vtkTriangleFilter
+from vtkmodules.vtkFiltersSources import vtkCubeSource, vtkPlaneSource, vtkSphereSource
 
 from anisovoronoi import (vtkAnisoAnalyticMetricSource, vtkAnisoCurvatureMetric,
                           vtkAnisoEmbedding, vtkAnisoSimplexMesh, vtkAnisoTensorToMetric)
@@ -227,6 +228,32 @@ check(np.all(stretch > 3.0) and np.all(stretch <= 10.0 + 1e-9), "cylinder stretc
 floor = field(c_out, "CurvatureFloor")
 diag = math.sqrt(2 * 2 ** 2 + 4 ** 2)
 check(abs(floor - 0.1 / diag) < 1e-9, "CurvatureFloor = 0.1 / diagonal: %g" % floor)
+
+# Creases: a closed box (VTK's cube, triangulated and merged) is flat on every face. By default
+# (CreaseAngle 180) its 12 edges read as curvature; with CreaseAngle 30 they are the creases and
+# the metric is isotropic everywhere.
+cube = vtkCubeSource()
+cube.SetXLength(2.0)
+tri = vtkTriangleFilter()
+tri.SetInputConnection(cube.GetOutputPort())
+merged = vtkCleanPolyData()
+merged.SetInputConnection(tri.GetOutputPort())
+box = vtkAnisoCurvatureMetric()
+box.SetInputConnection(merged.GetOutputPort())
+check(box.GetCreaseAngle() == 180.0, "CreaseAngle default 180 (off)")
+check(box.GetExecutive().Update() == 1, "curvature metric on a box ran")
+b_out = box.GetOutputDataObject(0)
+check(field(b_out, "CreaseEdges") == 0, "no creases by default")
+check(np.max(np.abs(vtk_to_numpy(b_out.GetPointData().GetArray("KMax")))) > 0.1,
+      "box edges read as curvature without creases")
+box.SetCreaseAngle(30.0)
+check(box.GetExecutive().Update() == 1, "curvature metric on a box with creases ran")
+b_out = box.GetOutputDataObject(0)
+check(field(b_out, "CreaseEdges") == 12, "12 crease edges: %g" % field(b_out, "CreaseEdges"))
+check(np.max(np.abs(vtk_to_numpy(b_out.GetPointData().GetArray("KMax")))) < 1e-9,
+      "flat box faces with creases")
+check(np.max(vtk_to_numpy(b_out.GetPointData().GetArray("Stretch"))) < 1.0 + 1e-9,
+      "box with creases: isotropic")
 
 # Quads are rejected with a hint to triangulate.
 plane = vtkPlaneSource()
