@@ -69,6 +69,20 @@ double ValidateSurface(const SimplexMesh& s, const SurfaceCurvatureMetricOptions
 }
 
 /// Vertex normals with Max's weights (InputError on bad ids, zero-area or unused triangles).
+/// Max's (1999) weighted normal term at corner k of the triangle x: (e1 x e2) / (|e1|^2 |e2|^2),
+/// n2 = (x1 - x0) x (x2 - x0).
+Vec3 MaxCornerTerm(const Vec3 (&x)[3], int k, const Vec3& n2)
+{
+  const Vec3 e1 = x[(k + 1) % 3] - x[k], e2 = x[(k + 2) % 3] - x[k];
+  return n2 / (e1.squaredNorm() * e2.squaredNorm());
+}
+
+/// The local index (0, 1, 2) of vertex v in triangle t.
+int CornerOf(const std::int32_t* t, std::size_t v)
+{
+  return t[0] == static_cast<std::int32_t>(v) ? 0 : t[1] == static_cast<std::int32_t>(v) ? 1 : 2;
+}
+
 std::vector<Vec3> VertexNormals(const SimplexMesh& s, double diag)
 {
   const std::string who = "SurfaceCurvatureMetric: ";
@@ -90,10 +104,7 @@ std::vector<Vec3> VertexNormals(const SimplexMesh& s, double diag)
     // curvature fit below turns into a curvature error.
     const Vec3 x[3] = { a, b, d };
     for (int k = 0; k < 3; ++k)
-    {
-      const Vec3 e1 = x[(k + 1) % 3] - x[k], e2 = x[(k + 2) % 3] - x[k];
-      normal[static_cast<std::size_t>(t[k])] += n2 / (e1.squaredNorm() * e2.squaredNorm());
-    }
+      normal[static_cast<std::size_t>(t[k])] += MaxCornerTerm(x, k, n2);
   }
   for (std::size_t i = 0; i < np; ++i)
   {
@@ -220,10 +231,7 @@ std::vector<Vec3> CornerNormals(const SimplexMesh& s,
         const Vec3 n2 = (x[1] - x[0]).cross(x[2] - x[0]);
         faceNormal[c] = n2.normalized();
         for (int k = 0; k < 3; ++k)
-        {
-          const Vec3 e1 = x[(k + 1) % 3] - x[k], e2 = x[(k + 2) % 3] - x[k];
-          term[3 * c + static_cast<std::size_t>(k)] = n2 / (e1.squaredNorm() * e2.squaredNorm());
-        }
+          term[3 * c + static_cast<std::size_t>(k)] = MaxCornerTerm(x, k, n2);
       }
     });
   std::vector<std::size_t> creases(np, 0);
@@ -285,28 +293,29 @@ std::vector<Vec3> CornerNormals(const SimplexMesh& s,
         bool oneWedge = true;
         for (std::int32_t a = 1; a < deg && oneWedge; ++a)
           oneWedge = find(a) == find(0);
-        sum.assign(static_cast<std::size_t>(deg), Vec3::Zero());
-        if (!oneWedge)
+        if (oneWedge)
         {
           for (std::int32_t a = 0; a < deg; ++a)
           {
             const auto f = static_cast<std::size_t>(vfList[static_cast<std::size_t>(begin + a)]);
-            const int k = s.Cell(f)[0] == static_cast<std::int32_t>(v) ? 0
-              : s.Cell(f)[1] == static_cast<std::int32_t>(v)           ? 1
-                                                                       : 2;
-            sum[static_cast<std::size_t>(find(a))] += term[3 * f + static_cast<std::size_t>(k)];
+            corner[3 * f + static_cast<std::size_t>(CornerOf(s.Cell(f), v))] = normal[v];
           }
+          continue;
+        }
+        sum.assign(static_cast<std::size_t>(deg), Vec3::Zero());
+        for (std::int32_t a = 0; a < deg; ++a)
+        {
+          const auto f = static_cast<std::size_t>(vfList[static_cast<std::size_t>(begin + a)]);
+          sum[static_cast<std::size_t>(find(a))] +=
+            term[3 * f + static_cast<std::size_t>(CornerOf(s.Cell(f), v))];
         }
         for (std::int32_t a = 0; a < deg; ++a)
         {
           const auto f = static_cast<std::size_t>(vfList[static_cast<std::size_t>(begin + a)]);
-          const int k = s.Cell(f)[0] == static_cast<std::int32_t>(v) ? 0
-            : s.Cell(f)[1] == static_cast<std::int32_t>(v)           ? 1
-                                                                     : 2;
           const Vec3& w = sum[static_cast<std::size_t>(find(a))];
           const double len = w.norm();
-          corner[3 * f + static_cast<std::size_t>(k)] =
-            oneWedge || !(len > 0.0) ? normal[v] : Vec3(w / len);
+          corner[3 * f + static_cast<std::size_t>(CornerOf(s.Cell(f), v))] =
+            len > 0.0 ? Vec3(w / len) : normal[v];
         }
       }
     });
