@@ -138,32 +138,25 @@ void CopyMeshingCounts(const av::MeshingPipelineResult& m, MeshStageResult& r)
 }
 
 /// Surface dual meshes: Hausdorff distance to the input, self-intersections, triangles flipped
-/// against the input triangle that holds each site, Euler characteristic and boundary loops.
-void MeasureSurfaceFidelity(const av::SimplexMesh& mesh, const av::SimplexMesh& dual,
-  const av::SiteSet& sites, MeshStageResult& r)
+/// against the closest input triangle, Euler characteristic and boundary loops (the same
+/// EvaluateSurfaceFidelity as vtkAnisoMeshQuality with a reference surface).
+void MeasureSurfaceFidelity(const av::SimplexMesh& mesh,
+  const av::SimplexMesh& dual,
+  MeshStageResult& r)
 {
   r.IsSurface = true;
-  const av::HausdorffResult h = av::SampledHausdorffDistance(dual, mesh, 3);
+  const av::SurfaceFidelityResult f = av::EvaluateSurfaceFidelity(dual, &mesh, 3);
+  const av::HausdorffResult& h = f.Hausdorff;
   r.HausdorffPercent = h.MaxPercent;
   r.HausdorffForwardPercent = 100.0 * h.ForwardMax / h.Diagonal;
   r.HausdorffBackwardPercent = 100.0 * h.BackwardMax / h.Diagonal;
-  r.SelfIntersections = av::CountSelfIntersections(dual);
-  std::vector<double> normals(3 * dual.NumPoints(), 0.0);
-  for (std::size_t i = 0; i < sites.NumSites() && i < dual.NumPoints(); ++i)
-  {
-    const std::int32_t* t = mesh.Cell(static_cast<std::size_t>(sites.CellIds[i]));
-    const Eigen::Map<const Eigen::Vector3d> a(mesh.Point(t[0])), b(mesh.Point(t[1])),
-      c(mesh.Point(t[2]));
-    Eigen::Map<Eigen::Vector3d>(normals.data() + 3 * i) = (b - a).cross(c - a).normalized();
-  }
-  r.Flipped = av::CountFlippedTriangles(dual, normals);
-  const av::SurfaceTopology in = av::ComputeSurfaceTopology(mesh);
-  const av::SurfaceTopology out = av::ComputeSurfaceTopology(dual);
-  r.InputEuler = in.Euler;
-  r.InputBoundaryLoops = in.BoundaryLoops;
-  r.Euler = out.Euler;
-  r.BoundaryLoops = out.BoundaryLoops;
-  r.NonManifoldEdges = out.NonManifoldEdges;
+  r.SelfIntersections = f.SelfIntersections;
+  r.Flipped = f.Flipped;
+  r.InputEuler = f.ReferenceTopology.Euler;
+  r.InputBoundaryLoops = f.ReferenceTopology.BoundaryLoops;
+  r.Euler = f.Topology.Euler;
+  r.BoundaryLoops = f.Topology.BoundaryLoops;
+  r.NonManifoldEdges = f.Topology.NonManifoldEdges;
 }
 
 /// The dual's covered volume and its §5.2 quality against `metric` at the final sites.
@@ -232,7 +225,7 @@ void MeasureDualMesh(const av::SimplexMesh& mesh,
   }
   if (dual.SimplexDim == 2 && dual.AmbientDim == 3 && dual.NumCells() > 0)
   {
-    MeasureSurfaceFidelity(mesh, dual, sites, r);
+    MeasureSurfaceFidelity(mesh, dual, r);
   }
   r.GMin = q.Summary.GMin;
   r.GAvg = q.Summary.GAvg;

@@ -105,7 +105,8 @@ meshing:
   --help                   this text
 
 writes into DIR: embedded.vtu, sites.vtp, voronoi.vtu, voronoi_faces.vtp, mesh.vtu,
-energy.csv, report.json (the benchmark's keys). With the repair, mesh.vtu and voronoi.vtu
+energy.csv, report.json (the benchmark's keys; surfaces add hausdorff, self_intersections,
+flipped, euler, boundary_loops against the input surface). With the repair, mesh.vtu and voronoi.vtu
 use the final sites (sampled ones first, then inserted ones; sites.vtp: the sampled ones).
 With only -o FILE.mesh, nothing but FILE.mesh and its .sol is written.
 

@@ -414,6 +414,10 @@ void RunMeshingStages(const Options& o,
   s.Voronoi->SetShrinkFactor(o.Shrink);
   runner.Run(s.Voronoi, VoronoiStage);
   s.Quality->SetInputConnection(s.Delaunay->GetOutputPort(0));
+  // Surfaces: Hausdorff distance and flipped triangles against the input surface itself.
+  if (vtkAnisoDataConversion::IsSurfaceInThreeD(
+        vtkDataSet::SafeDownCast(s.Simplices->GetOutputDataObject(0))))
+    s.Quality->SetInputConnection(1, s.Simplices->GetOutputPort(0));
   runner.Run(s.Quality, "mesh quality");
 }
 
@@ -540,6 +544,19 @@ std::vector<std::pair<std::string, std::string>> ReportEntries(const Options& o,
     { "nonmanifold_faces_before_repair",
       JsonNumber(FieldValue(rdtOut, "NumNonManifoldFacesBeforeRepair")) },
   };
+  // Surfaces (null otherwise): fidelity to the input surface, paper §6.3.
+  static const char* const surfaceKeys[] = { "hausdorff",
+    "hausdorff_to_input",
+    "hausdorff_from_input",
+    "self_intersections",
+    "flipped",
+    "euler",
+    "input_euler",
+    "boundary_loops",
+    "input_boundary_loops",
+    "nonmanifold_edges" };
+  for (const char* key : surfaceKeys)
+    report.emplace_back(key, JsonNumber(FieldValue(qualityOut, key)));
   return report;
 }
 

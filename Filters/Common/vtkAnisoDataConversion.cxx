@@ -567,6 +567,15 @@ bool NothingToCompute(
     input->GetNumberOfCells() == 0;
 }
 
+bool IsSurfaceInThreeD(vtkDataSet* data)
+{
+  if (!data || data->GetNumberOfCells() == 0 || data->GetCellType(0) != VTK_TRIANGLE)
+    return false;
+  double bounds[6];
+  data->GetBounds(bounds);
+  return bounds[5] > bounds[4];
+}
+
 void CopySimplicesWithInputData(
   vtkDataSet* input, const av::SimplexMesh& mesh, vtkUnstructuredGrid* output)
 {

@@ -133,6 +133,10 @@ ANISOVORONOIFILTERSCOMMON_EXPORT void RequestedPiece(vtkInformation* request,
 ANISOVORONOIFILTERSCOMMON_EXPORT bool NothingToCompute(
   vtkInformation* request, vtkInformationVector* outputVector, vtkDataSet* input);
 
+/// True for a triangle mesh (first cell a triangle) that is not flat (its z varies): the
+/// surface case of ToSimplexMesh, which gets the surface fidelity measures.
+ANISOVORONOIFILTERSCOMMON_EXPORT bool IsSurfaceInThreeD(vtkDataSet* data);
+
 /// True when a piece other than 0 of a split request is asked for: whole-mesh filters then
 /// leave that output empty, so that gathering all pieces gives exactly one copy.
 ANISOVORONOIFILTERSCOMMON_EXPORT bool IsSecondaryPiece(vtkInformation* request,

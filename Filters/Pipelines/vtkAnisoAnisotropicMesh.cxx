@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkAnisoAnisotropicMesh.h"
 
+#include "vtkAnisoDataConversion.h"
 #include "vtkAnisoMeshQuality.h"
 #include "vtkAnisoRestrictedDelaunay.h"
 
@@ -52,6 +53,8 @@ int vtkAnisoAnisotropicMesh::RequestBackEnd(
   vtkNew<vtkAnisoMeshQuality> quality;
   quality->SetInputData(delaunay->GetOutput());
   quality->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "Metric");
+  if (vtkAnisoDataConversion::IsSurfaceInThreeD(embedded))
+    quality->SetReferenceSurfaceData(embedded); // Hausdorff distance and flipped triangles
   if (!this->RunStage(quality, "mesh quality", 0.95, 0.99, error))
   {
     vtkErrorMacro(<< error);

@@ -12,7 +12,10 @@
  * ("Metric", "Embedding", ...), cell data "G", "MinAngle", "Inverted"; field data of the
  * quality (G_min, G_avg, theta_min, theta_avg, pct_bad, inverted, edges_in_unit_range,
  * NumberOfCells), of the dual (NumInverted, NumNonManifoldFaces, NumOpenInteriorFaces,
- * NumUnusedSites) and "L_avg", "L_max", "MetricScale".
+ * NumUnusedSites) and "L_avg", "L_max", "MetricScale". On triangle surfaces also the fidelity
+ * measures of vtkAnisoMeshQuality against the mesh the embedding ran on (the input surface, or
+ * the adapted background mesh): hausdorff, self_intersections, flipped (cell data "Flipped"),
+ * euler, boundary_loops, input_euler, input_boundary_loops, nonmanifold_edges, components.
  * Output 1 (vtkTable): histogram of the per-cell min angles ("MinAngle" bin center, "Count").
  * Inverted elements are repaired by site insertion as in vtkAnisoRestrictedDelaunay
  * (RepairInverted, default on; MaxRepairRounds, default 10; RepairNonManifold, default on;

@@ -2,6 +2,7 @@
 #include "vtkAnisoMeshQuality.h"
 
 #include "MeshQuality.h"
+#include "SurfaceFidelity.h"
 #include "vtkAnisoDataConversion.h"
 #include "vtkAnisoFilterUtilities.h"
 
@@ -43,6 +44,33 @@ void WriteQualityMesh(vtkDataSet* input,
   output->GetCellData()->SetActiveScalars("G");
 }
 
+/// The fidelity figures of a triangle surface as field data (and cell data "Flipped").
+void WriteSurfaceFidelity(const av::SurfaceFidelityResult& f, vtkUnstructuredGrid* output)
+{
+  using vtkAnisoFilterUtilities::AddFieldValue;
+  vtkFieldData* fd = output->GetFieldData();
+  AddFieldValue(fd, "euler", static_cast<double>(f.Topology.Euler));
+  AddFieldValue(fd, "boundary_loops", static_cast<double>(f.Topology.BoundaryLoops));
+  AddFieldValue(fd, "nonmanifold_edges", static_cast<double>(f.Topology.NonManifoldEdges));
+  AddFieldValue(fd, "components", static_cast<double>(f.Topology.Components));
+  AddFieldValue(fd, "self_intersections", static_cast<double>(f.SelfIntersections));
+  if (!f.HasReference)
+    return;
+  const av::HausdorffResult& h = f.Hausdorff;
+  const double toPercent = h.Diagonal > 0.0 ? 100.0 / h.Diagonal : 0.0;
+  AddFieldValue(fd, "hausdorff", h.MaxPercent);
+  AddFieldValue(fd, "hausdorff_to_input", toPercent * h.ForwardMax);
+  AddFieldValue(fd, "hausdorff_from_input", toPercent * h.BackwardMax);
+  AddFieldValue(fd, "flipped", static_cast<double>(f.Flipped));
+  AddFieldValue(fd, "input_euler", static_cast<double>(f.ReferenceTopology.Euler));
+  AddFieldValue(fd, "input_boundary_loops", static_cast<double>(f.ReferenceTopology.BoundaryLoops));
+  vtkNew<vtkUnsignedCharArray> flipped;
+  flipped->SetName("Flipped");
+  flipped->SetNumberOfTuples(static_cast<vtkIdType>(f.FlippedFlags.size()));
+  std::copy(f.FlippedFlags.begin(), f.FlippedFlags.end(), flipped->GetPointer(0));
+  output->GetCellData()->AddArray(flipped);
+}
+
 /// The angle histogram: bin centers (degrees) and counts.
 void WriteHistogram(const av::MeshQualitySummary& s, vtkTable* histogram)
 {
@@ -62,15 +90,18 @@ void WriteHistogram(const av::MeshQualitySummary& s, vtkTable* histogram)
 
 vtkAnisoMeshQuality::vtkAnisoMeshQuality()
 {
+  this->SetNumberOfInputPorts(2);
   this->SetNumberOfOutputPorts(2);
   // Default: the active point tensors (FindPointTensorArray then falls back to "Metric").
   this->SetInputArrayToProcess(
     0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, vtkDataSetAttributes::TENSORS);
 }
 
-int vtkAnisoMeshQuality::FillInputPortInformation(int, vtkInformation* info)
+int vtkAnisoMeshQuality::FillInputPortInformation(int port, vtkInformation* info)
 {
   info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkDataSet");
+  if (port == 1)
+    info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
   return 1;
 }
 
@@ -127,6 +158,10 @@ int vtkAnisoMeshQuality::RequestData(vtkInformation* request,
     return 0;
   }
   WriteQualityMesh(input, mesh, q, output);
+  if (!this->RunSurfaceFidelity(mesh, inputVector, output))
+  {
+    return 0;
+  }
 
   const av::MeshQualitySummary& s = q.Summary;
   this->GMin = s.GMin;
@@ -148,6 +183,72 @@ int vtkAnisoMeshQuality::RequestData(vtkInformation* request,
   return 1;
 }
 
+bool vtkAnisoMeshQuality::RunSurfaceFidelity(const av::SimplexMesh& mesh,
+  vtkInformationVector** inputVector,
+  vtkUnstructuredGrid* output)
+{
+  this->HausdorffPercent = -1.0;
+  this->NumberOfSelfIntersections = -1;
+  this->NumberOfFlipped = -1;
+  vtkDataSet* referenceInput = inputVector[1]->GetNumberOfInformationObjects() > 0
+    ? vtkDataSet::GetData(inputVector[1])
+    : nullptr;
+  const bool surface = mesh.SimplexDim == 2 && mesh.AmbientDim == 3;
+  if (!this->SurfaceFidelity)
+  {
+    return true;
+  }
+  if (!surface)
+  {
+    if (referenceInput)
+      vtkWarningMacro(<< "the reference surface is ignored: the fidelity measures are for "
+                         "triangle surfaces in 3D, and this mesh is "
+                      << (mesh.SimplexDim == 3 ? "tetrahedral" : "a flat 2D domain"));
+    return true;
+  }
+  av::SimplexMesh reference;
+  const bool hasReference = referenceInput && referenceInput->GetNumberOfCells() > 0;
+  if (referenceInput && !hasReference)
+  {
+    vtkErrorMacro(<< "the reference surface (input 1) is empty");
+    return false;
+  }
+  if (hasReference)
+  {
+    std::string error;
+    if (!vtkAnisoDataConversion::ToSimplexMesh(referenceInput, reference, error))
+    {
+      vtkErrorMacro(<< "reference surface (input 1): " << error);
+      return false;
+    }
+    if (reference.SimplexDim != 2 || reference.AmbientDim != 3)
+    {
+      vtkErrorMacro(<< "reference surface (input 1): needs a triangle surface in 3D, got "
+                    << (reference.SimplexDim == 3 ? "tetrahedra" : "a flat 2D domain"));
+      return false;
+    }
+  }
+  av::SurfaceFidelityResult f;
+  if (!vtkAnisoFilterUtilities::RunKernel(this,
+        "surface fidelity",
+        [&]
+        {
+          f = av::EvaluateSurfaceFidelity(
+            mesh, hasReference ? &reference : nullptr, this->HausdorffSamplesPerEdge);
+        }))
+  {
+    return false;
+  }
+  WriteSurfaceFidelity(f, output);
+  this->NumberOfSelfIntersections = static_cast<vtkIdType>(f.SelfIntersections);
+  if (f.HasReference)
+  {
+    this->HausdorffPercent = f.Hausdorff.MaxPercent;
+    this->NumberOfFlipped = static_cast<vtkIdType>(f.Flipped);
+  }
+  return true;
+}
+
 void vtkAnisoMeshQuality::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
@@ -155,4 +256,10 @@ void vtkAnisoMeshQuality::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "theta_min / theta_avg (last run): " << this->ThetaMin << " / " << this->ThetaAvg
      << "\n";
   os << indent << "PercentBad (last run): " << this->PercentBad << "\n";
+  os << indent << "SurfaceFidelity: " << (this->SurfaceFidelity ? "On" : "Off") << "\n";
+  os << indent << "HausdorffSamplesPerEdge: " << this->HausdorffSamplesPerEdge << "\n";
+  os << indent << "HausdorffPercent (last run): " << this->HausdorffPercent << "\n";
+  os << indent << "NumberOfSelfIntersections (last run): " << this->NumberOfSelfIntersections
+     << "\n";
+  os << indent << "NumberOfFlipped (last run): " << this->NumberOfFlipped << "\n";
 }

@@ -18,6 +18,16 @@
  * field data "G_min", "G_avg", "theta_min", "theta_avg", "pct_bad", "inverted",
  * "edges_in_unit_range" (% of edges whose metric length, divided by the median, is in
  * [1/sqrt2, sqrt2]), "NumberOfCells".
+ *
+ * Triangle surfaces in 3D also get the fidelity measures of the paper §6.3 (SurfaceFidelity on,
+ * the default): field data "euler", "boundary_loops", "nonmanifold_edges", "components",
+ * "self_intersections" (pairs of triangles that share no vertex and intersect). With the
+ * optional input 1, the reference surface (the input surface the mesh was made from, e.g. the
+ * output of vtkAnisoEmbedding), also "hausdorff" (sampled two-sided Hausdorff distance in % of
+ * the reference's bounding-box diagonal), "hausdorff_to_input", "hausdorff_from_input" (each
+ * direction, %), "flipped" (triangles whose normal points against the closest reference
+ * triangle's), "input_euler", "input_boundary_loops", and cell data "Flipped". A reference on
+ * a 2D domain or tetrahedral mesh is ignored with a warning.
  * Output 1 (vtkTable): histogram of the per-cell min angles, columns "MinAngle" (bin center,
  * degrees) and "Count", 5-degree bins over [0, 90) — shown as a bar chart in ParaView.
  *
@@ -31,6 +41,11 @@
 
 #include "AnisoVoronoiFiltersQualityModule.h" // export macro
 #include <vtkUnstructuredGridAlgorithm.h>
+
+namespace av
+{
+struct SimplexMesh;
+}
 
 class ANISOVORONOIFILTERSQUALITY_EXPORT vtkAnisoMeshQuality : public vtkUnstructuredGridAlgorithm
 {
@@ -48,6 +63,36 @@ public:
   vtkGetMacro(PercentBad, double);
   ///@}
 
+  ///@{
+  /// Surface fidelity measures for triangle surfaces (default on): topology,
+  /// self-intersections and, with a reference surface on input 1, Hausdorff distance and
+  /// flipped triangles.
+  vtkSetMacro(SurfaceFidelity, bool);
+  vtkGetMacro(SurfaceFidelity, bool);
+  vtkBooleanMacro(SurfaceFidelity, bool);
+  ///@}
+
+  ///@{
+  /// Sample points per triangle edge for the Hausdorff distance (>= 1, default 3: the
+  /// barycentric grid of (n + 1)(n + 2) / 2 points on every triangle of both surfaces).
+  vtkSetClampMacro(HausdorffSamplesPerEdge, int, 1, 64);
+  vtkGetMacro(HausdorffSamplesPerEdge, int);
+  ///@}
+
+  /// The reference surface for the fidelity measures (optional input 1).
+  void SetReferenceSurfaceConnection(vtkAlgorithmOutput* output)
+  {
+    this->SetInputConnection(1, output);
+  }
+  void SetReferenceSurfaceData(vtkDataObject* data) { this->SetInputData(1, data); }
+
+  ///@{
+  /// Fidelity summary of the last run (-1 when not computed).
+  vtkGetMacro(HausdorffPercent, double);
+  vtkGetMacro(NumberOfSelfIntersections, vtkIdType);
+  vtkGetMacro(NumberOfFlipped, vtkIdType);
+  ///@}
+
 protected:
   vtkAnisoMeshQuality();
   ~vtkAnisoMeshQuality() override = default;
@@ -56,11 +101,21 @@ protected:
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
+  /// The surface fidelity measures into `output` (triangle surfaces only); false on error.
+  bool RunSurfaceFidelity(const av::SimplexMesh& mesh,
+    vtkInformationVector** inputVector,
+    vtkUnstructuredGrid* output);
+
   double GMin = 0.0;
   double GAvg = 0.0;
   double ThetaMin = 0.0;
   double ThetaAvg = 0.0;
   double PercentBad = 0.0;
+  bool SurfaceFidelity = true;
+  int HausdorffSamplesPerEdge = 3;
+  double HausdorffPercent = -1.0;
+  vtkIdType NumberOfSelfIntersections = -1;
+  vtkIdType NumberOfFlipped = -1;
 
 private:
   vtkAnisoMeshQuality(const vtkAnisoMeshQuality&) = delete;

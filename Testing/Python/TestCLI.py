@@ -79,6 +79,7 @@ with tempfile.TemporaryDirectory() as tmp:
         check(r["input_vertices"] == 441 and r["voronoi_cells"] == 150, "Medit run sizes")
         check(r["L_avg"] < 5.0, "Medit run embeds the Gaussian metric (L_avg %r)" % r["L_avg"])
         check(r["rvd_volume_error"] < 1e-9, "Medit run: cells partition the square")
+        check(r["hausdorff"] is None and r["euler"] is None, "2D domain: no surface measures")
 
     # A closed surface (OFF) with the curvature metric: the dual mesh of a sphere-like
     # surface with V vertices must have 2V - 4 triangles (Euler).
@@ -104,6 +105,14 @@ with tempfile.TemporaryDirectory() as tmp:
         check(r["voronoi_cells"] == 120, "one cell per site on the surface")
         check(r["mesh_elements"] == 2 * 120 - 4 and r["nonmanifold_faces"] == 0,
               "closed dual surface mesh: %r triangles" % r["mesh_elements"])
+        # Fidelity to the input surface (paper §6.3), in report.json and mesh.vtu's field data.
+        check(r["euler"] == 2 and r["input_euler"] == 2 and r["boundary_loops"] == 0,
+              "surface report: chi %r (input %r)" % (r["euler"], r["input_euler"]))
+        check(r["self_intersections"] == 0 and r["flipped"] == 0 and r["nonmanifold_edges"] == 0,
+              "surface report: embedded, oriented, manifold")
+        check(r["hausdorff"] is not None and 0 < r["hausdorff"] < 3.0 and
+              r["hausdorff"] >= max(r["hausdorff_to_input"], r["hausdorff_from_input"]) - 1e-12,
+              "surface report: Hausdorff %r %% of the diagonal" % r["hausdorff"])
 
     # Error paths: exit != 0, one line on stderr naming the problem, within seconds.
     bad_mesh = os.path.join(tmp, "bad.mesh")

@@ -4,6 +4,7 @@
 #include "TriangleBvh.h"
 
 #include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 
 #include <Eigen/Geometry>
@@ -340,6 +341,49 @@ SurfaceTopology ComputeSurfaceTopology(const SimplexMesh& surface)
   topo.Euler =
     vertices - static_cast<long long>(unique) + static_cast<long long>(surface.NumCells());
   return topo;
+}
+
+std::vector<double> ClosestTriangleNormals(const SimplexMesh& surface, const SimplexMesh& reference)
+{
+  CheckSurface(surface, "ClosestTriangleNormals");
+  CheckSurface(reference, "ClosestTriangleNormals");
+  const TriangleBvh bvh(reference);
+  std::vector<double> normals(3 * surface.NumPoints(), 0.0);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, surface.NumPoints(), 512),
+    [&](const tbb::blocked_range<std::size_t>& r)
+    {
+      for (std::size_t i = r.begin(); i != r.end(); ++i)
+      {
+        std::int32_t t = -1;
+        bvh.ClosestDistance2(P(surface, static_cast<std::int32_t>(i)), &t);
+        if (t < 0)
+          continue;
+        const std::int32_t* v = reference.Cell(static_cast<std::size_t>(t));
+        const Vec3 a = P(reference, v[0]);
+        const Vec3 n = (P(reference, v[1]) - a).cross(P(reference, v[2]) - a);
+        const double len = n.norm();
+        if (len > 0.0)
+          Eigen::Map<Vec3>(normals.data() + 3 * i) = n / len;
+      }
+    });
+  return normals;
+}
+
+SurfaceFidelityResult EvaluateSurfaceFidelity(const SimplexMesh& surface,
+  const SimplexMesh* reference,
+  int samplesPerEdge)
+{
+  SurfaceFidelityResult r;
+  r.Topology = ComputeSurfaceTopology(surface);
+  r.SelfIntersections = CountSelfIntersections(surface);
+  if (!reference)
+    return r;
+  r.HasReference = true;
+  r.ReferenceTopology = ComputeSurfaceTopology(*reference);
+  r.Hausdorff = SampledHausdorffDistance(surface, *reference, samplesPerEdge);
+  r.Flipped =
+    CountFlippedTriangles(surface, ClosestTriangleNormals(surface, *reference), &r.FlippedFlags);
+  return r;
 }
 
 } // namespace av

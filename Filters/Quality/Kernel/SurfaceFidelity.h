@@ -8,6 +8,7 @@
 #include "SimplexMesh.h"
 
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 namespace av
@@ -58,6 +59,14 @@ std::size_t CountFlippedTriangles(const SimplexMesh& surface,
   const std::vector<double>& vertexNormals,
   std::vector<std::uint8_t>* flipped = nullptr);
 
+/**
+ * Reference normals for CountFlippedTriangles when only the reference surface is known: at each
+ * vertex of `surface`, the unit normal of the closest triangle of `reference` (from a
+ * TriangleBvh; zero for a degenerate closest triangle). 3 values per vertex. Runs in parallel.
+ */
+std::vector<double> ClosestTriangleNormals(const SimplexMesh& surface,
+  const SimplexMesh& reference);
+
 /// Euler characteristic V - E + F of the used vertices, and the count of boundary loops.
 struct SurfaceTopology
 {
@@ -71,6 +80,28 @@ struct SurfaceTopology
 /// Topology of a triangle surface; boundary loops are the cycles of boundary edges (a vertex
 /// with more than two boundary edges joins its loops into one).
 SurfaceTopology ComputeSurfaceTopology(const SimplexMesh& surface);
+
+/// All fidelity measures of a remeshed surface (EvaluateSurfaceFidelity).
+struct SurfaceFidelityResult
+{
+  SurfaceTopology Topology;
+  std::size_t SelfIntersections = 0;
+  bool HasReference = false; ///< the fields below are set only with a reference
+  SurfaceTopology ReferenceTopology;
+  HausdorffResult Hausdorff;
+  std::size_t Flipped = 0;
+  std::vector<std::uint8_t> FlippedFlags; ///< one per triangle of the surface
+};
+
+/**
+ * Topology and self-intersections of `surface`; with a `reference` (may be null), also the
+ * reference's topology, the sampled Hausdorff distance (`samplesPerEdge`) and the triangles
+ * flipped against the reference's closest-triangle normals (ClosestTriangleNormals).
+ * Throws InputError for inputs that are not non-empty triangle surfaces in 3D.
+ */
+SurfaceFidelityResult EvaluateSurfaceFidelity(const SimplexMesh& surface,
+  const SimplexMesh* reference,
+  int samplesPerEdge = 3);
 
 } // namespace av
 

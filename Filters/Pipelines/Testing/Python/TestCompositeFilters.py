@@ -106,6 +106,36 @@ assert mesh.GetNumberOfPoints() == 100 and mesh.GetNumberOfCells() > 100
 assert fd.GetArray("inverted").GetTuple1(0) == 0
 assert fd.GetArray("L_avg") is not None and fd.GetArray("MetricScale") is not None
 assert m.GetOutputDataObject(1).GetNumberOfRows() > 0
+assert fd.GetArray("euler") is None and fd.GetArray("hausdorff") is None  # surfaces only
+
+# On a surface (a sphere, identity metric) the mesh also gets the fidelity measures against
+# the surface it was made from: a closed dual of chi 2, close to the sphere, no
+# self-intersection and no triangle flipped against the sphere's normals.
+from vtkmodules.vtkFiltersSources import vtkSphereSource
+ball = vtkSphereSource()
+ball.SetThetaResolution(40)
+ball.SetPhiResolution(30)
+ball.Update()
+ball_mesh = ball.GetOutput()
+ident = vtkDoubleArray()
+ident.SetName("Metric")
+ident.SetNumberOfComponents(6)
+for i in range(ball_mesh.GetNumberOfPoints()):
+    ident.InsertNextTuple((1, 1, 1, 0, 0, 0))
+ball_mesh.GetPointData().AddArray(ident)
+sm = configure(vtkAnisoAnisotropicMesh(), ball_mesh, POINTS, "Metric")
+sm.SetFieldModeToMetricField()
+sm.Update()
+sfd = sm.GetOutput().GetFieldData()
+value = lambda name: sfd.GetArray(name).GetTuple1(0)
+print("surface mesh: %d triangles, euler %g, hausdorff %.3f %%, self-intersections %g, flipped %g"
+      % (sm.GetOutput().GetNumberOfCells(), value("euler"), value("hausdorff"),
+         value("self_intersections"), value("flipped")))
+assert value("euler") == 2 and value("input_euler") == 2 and value("boundary_loops") == 0
+# 100 sites on a sphere of radius 0.5: chords of about 0.2, sagitta about 0.01 (0.6 % of the
+# diagonal); a mesh off the surface, or the wrong reference, is far above 3 %.
+assert 0 < value("hausdorff") < 3.0
+assert value("self_intersections") == 0 and value("flipped") == 0
 
 # Error path: a NaN in the tensor field -> this filter's error, empty output, no crash.
 bad = cube.NewInstance()

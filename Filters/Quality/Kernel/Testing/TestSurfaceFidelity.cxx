@@ -137,6 +137,32 @@ int TestSurfaceFidelity(int, char*[])
     AV_CHECK_THROWS(av::CountFlippedTriangles(sq, std::vector<double>(3)));
   }
 
+  // Reference normals from the closest reference triangle, and all measures at once: a fine
+  // sphere against a coarser one. One reversed triangle is found; a reversed reference flips all.
+  {
+    av::SimplexMesh fine = av::MakeIcosphere(1.0, 3);
+    const av::SimplexMesh coarse = av::MakeIcosphere(1.0, 2);
+    const std::vector<double> n = av::ClosestTriangleNormals(fine, coarse);
+    for (std::size_t i = 0; i < fine.NumPoints(); ++i)
+    {
+      const Eigen::Vector3d p(fine.Point(i)[0], fine.Point(i)[1], fine.Point(i)[2]);
+      AV_CHECK(Eigen::Map<const Eigen::Vector3d>(n.data() + 3 * i).dot(p.normalized()) > 0.95);
+    }
+    AV_CHECK(av::CountFlippedTriangles(fine, n) == 0);
+    std::swap(fine.Cells[3 * 17 + 1], fine.Cells[3 * 17 + 2]);
+    const av::SurfaceFidelityResult f = av::EvaluateSurfaceFidelity(fine, &coarse);
+    AV_CHECK(f.HasReference && f.Flipped == 1 && f.FlippedFlags.size() == fine.NumCells() &&
+      f.FlippedFlags[17] == 1);
+    AV_CHECK(f.Topology.Euler == 2 && f.ReferenceTopology.Euler == 2 && f.SelfIntersections == 0);
+    AV_CHECK(f.Hausdorff.Max > 1e-3 && f.Hausdorff.MaxPercent < 5.0);
+    av::SimplexMesh inward = coarse;
+    for (std::size_t t = 0; t < inward.NumCells(); ++t)
+      std::swap(inward.Cells[3 * t + 1], inward.Cells[3 * t + 2]);
+    AV_CHECK(av::EvaluateSurfaceFidelity(fine, &inward).Flipped == fine.NumCells() - 1);
+    const av::SurfaceFidelityResult alone = av::EvaluateSurfaceFidelity(fine, nullptr);
+    AV_CHECK(!alone.HasReference && alone.Flipped == 0 && alone.Topology.Euler == 2);
+  }
+
   // Topology: closed torus (chi 0), half torus (a tube: chi 0, 2 loops), a quarter patch (a
   // disk: chi 1, 1 loop), a cyclide (chi 0), a sphere (chi 2).
   {
