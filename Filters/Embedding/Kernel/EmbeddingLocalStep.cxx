@@ -83,6 +83,58 @@ bool InverseSqrtSpd3(const Eigen::Matrix3d& c, Eigen::Matrix3d& cinv)
   return true;
 }
 
+/**
+ * Surfaces: R = V A for the polar factor V of the rank-2 B = T A (T is zero along the triangle
+ * normal), without an SVD. B's null vector w is the largest column of adj(BᵀB) (rank 1 when BᵀB
+ * has rank 2); with Q an orthonormal basis of w's complement, V Q = B Q (QᵀBᵀBQ)^{-1/2} and
+ * R = (V Q)(Qᵀ A). The third column of a full polar factor (any unit u ⟂ range B, times wᵀ)
+ * changes neither the right-hand side (G's rows are in the triangle plane) nor the optimum;
+ * it adds ‖A w‖² to ‖T − R‖², returned in `normalTerm` so that the energy is the SVD route's.
+ * False when B has rank below 2 (the caller then takes the SVD).
+ */
+template <typename MatB>
+bool RankTwoRotatedMetric(const MatB& b, const Eigen::Matrix3d& a, MatB& r, double& normalTerm)
+{
+  const Eigen::Matrix3d s = b.transpose() * b;
+  // Cofactors of the symmetric s: adj(s) = λ1 λ2 w wᵀ + O(λ3).
+  Eigen::Matrix3d adj;
+  adj(0, 0) = s(1, 1) * s(2, 2) - s(1, 2) * s(1, 2);
+  adj(1, 1) = s(0, 0) * s(2, 2) - s(0, 2) * s(0, 2);
+  adj(2, 2) = s(0, 0) * s(1, 1) - s(0, 1) * s(0, 1);
+  adj(0, 1) = adj(1, 0) = s(0, 2) * s(1, 2) - s(0, 1) * s(2, 2);
+  adj(0, 2) = adj(2, 0) = s(0, 1) * s(1, 2) - s(0, 2) * s(1, 1);
+  adj(1, 2) = adj(2, 1) = s(0, 1) * s(0, 2) - s(0, 0) * s(1, 2);
+  int k = 0;
+  adj.diagonal().maxCoeff(&k); // the largest column has the largest diagonal entry (PSD)
+  const double tr = s.trace();
+  if (!(adj(k, k) > 1e-16 * tr * tr))
+  {
+    return false;
+  }
+  const Eigen::Vector3d w = adj.col(k).normalized();
+  // Orthonormal q0, q1 with w: start from the axis least aligned with w.
+  int axis = 0;
+  w.cwiseAbs().minCoeff(&axis);
+  Eigen::Vector3d q0 = -w(axis) * w;
+  q0(axis) += 1.0;
+  q0.normalize();
+  Eigen::Matrix<double, 3, 2> q;
+  q.col(0) = q0;
+  q.col(1) = w.cross(q0);
+  const Eigen::Matrix2d c = q.transpose() * s * q;
+  const SymmetricEigen2 es = EigenDecompose(c);
+  if (!(es.Values(0) > 1e-8 * es.Values(1) && es.Values(0) > 0.0))
+  {
+    return false;
+  }
+  const Eigen::Vector2d inv = es.Values.cwiseSqrt().cwiseInverse();
+  const Eigen::Matrix<double, 2, 3> qa = q.transpose() * a;
+  const Eigen::Matrix<double, 2, 3> n = es.Vectors * inv.asDiagonal() * es.Vectors.transpose() * qa;
+  r.noalias() = (b * q) * n;
+  normalTerm = (a * w).squaredNorm();
+  return true;
+}
+
 /// Polar factor V (orthonormal columns) of B (rows x M): V = B (B^T B)^{-1/2}; SVD fallback for
 /// (nearly) rank-deficient B (surfaces with rank-2 metrics).
 template <int M, bool RankDeficient, typename MatB>
@@ -210,10 +262,19 @@ double EmbeddingSolver::Internals::LocalStepT()
         t.noalias() += x * g.row(l);
       }
       b.noalias() = t * a; // A is symmetric: T A^T = T A
-      PolarFactor<MT, (KT < MT)>(b, v);
-      r.noalias() = v * a;
+      double normalTerm = 0.0;
+      bool done = false;
+      if constexpr (KT < MT && MT == 3)
+      {
+        done = RankTwoRotatedMetric(b, Eigen::Matrix3d(a), r, normalTerm);
+      }
+      if (!done)
+      {
+        PolarFactor<MT, (KT < MT)>(b, v);
+        r.noalias() = v * a;
+      }
       const double w = this->W[j];
-      e += w * (t - r).squaredNorm();
+      e += w * ((t - r).squaredNorm() + normalTerm);
       Eigen::Map<MatC> c(this->C.data() + j * NV * nf, NV, nf);
       c.noalias() = w * g * r.bottomRows(nf).transpose();
     }

@@ -7,8 +7,11 @@
 #include "EdgeLengthError.h"
 #include "EmbeddingSolver.h"
 #include "MeshTopology.h"
+#include "MetricAlgebra.h"
 #include "SurfaceCurvatureMetric.h"
 #include "SurfaceGenerators.h"
+
+#include <Eigen/SVD>
 
 #include <cmath>
 #include <iostream>
@@ -45,6 +48,38 @@ double Regularizer(const av::SimplexMesh& mesh,
   }
   return sum;
 }
+/// E_em (Eq. 11, unweighted) recomputed the slow way: per triangle T = X G (G from the
+/// pseudo-inverse of the edge matrix), A = sqrt of the mean vertex metric, V the polar factor of
+/// T A from a full SVD, E = sum ||T - V A||^2. Checks the solver's closed-form rank-2 route.
+double EmbeddingEnergyBySvd(const av::SimplexMesh& mesh,
+  const av::MetricField& metric,
+  const av::Embedding& e)
+{
+  using MatX = Eigen::Matrix<double, Eigen::Dynamic, 3>;
+  double sum = 0.0;
+  for (std::size_t j = 0; j < mesh.NumCells(); ++j)
+  {
+    const std::int32_t* c = mesh.Cell(j);
+    Eigen::Matrix<double, 3, 2> w;
+    Eigen::Matrix3d m = Eigen::Matrix3d::Zero();
+    for (int l = 0; l < 3; ++l)
+      m += av::UnpackSymmetric(metric.At(c[l])) / 3.0;
+    for (int l = 0; l < 2; ++l)
+      for (int d = 0; d < 3; ++d)
+        w(d, l) = mesh.Point(c[l + 1])[d] - mesh.Point(c[0])[d];
+    const Eigen::Matrix<double, 2, 3> wp = (w.transpose() * w).inverse() * w.transpose();
+    MatX t = MatX::Zero(e.Dim, 3);
+    for (int l = 0; l < 2; ++l)
+      for (int d = 0; d < e.Dim; ++d)
+        t.row(d) += (e.At(c[l + 1])[d] - e.At(c[0])[d]) * wp.row(l);
+    const Eigen::Matrix3d a = av::SymmetricSqrt(m);
+    const MatX b = t * a;
+    Eigen::JacobiSVD<Eigen::MatrixXd> svd(b, Eigen::ComputeThinU | Eigen::ComputeThinV);
+    const MatX r = svd.matrixU() * svd.matrixV().transpose() * a;
+    sum += (t - r).squaredNorm();
+  }
+  return sum;
+}
 } // namespace
 
 int TestSurfaceEmbedding(int, char*[])
@@ -76,6 +111,11 @@ int TestSurfaceEmbedding(int, char*[])
     AV_CHECK(everything > 1.05 * inner); // the boundary rows would matter
     AV_CHECK_MSG(std::abs(reported - inner) <= 1e-9 * inner,
       "E_reg " << reported << " is not the interior sum " << inner);
+    const double em = r.EnergyHistory.front().Embedding;
+    const double bySvd = EmbeddingEnergyBySvd(patch, metric, r.Embedded);
+    std::cout << "E_em reported " << em << ", by SVD " << bySvd << std::endl;
+    AV_CHECK_MSG(
+      std::abs(em - bySvd) <= 1e-9 * bySvd, "E_em " << em << " is not the SVD route's " << bySvd);
   }
 
   // 40 iterations on the patch and on the closed torus: monotone energy, first three
