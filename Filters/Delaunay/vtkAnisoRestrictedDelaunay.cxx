@@ -353,6 +353,15 @@ int vtkAnisoRestrictedDelaunay::RequestData(vtkInformation* request,
   if (this->ImproveMesh)
   {
     vtkDataArray* metricArray = this->GetInputArrayToProcess(1, inputVector);
+    // ParaView leaves the name at its XML default, the index "1", until the array domain sees
+    // the input's arrays (a pvbatch script that builds the proxy before its input ran): then the
+    // metric that Aniso Embedding passes through, "Metric". A name the user gave is kept.
+    vtkInformation* chosen = this->GetInputArrayInformation(1);
+    const char* requested = chosen && chosen->Has(vtkDataObject::FIELD_NAME())
+      ? chosen->Get(vtkDataObject::FIELD_NAME())
+      : nullptr;
+    if (!metricArray && requested && std::string(requested) == "1" && input->GetPointData())
+      metricArray = input->GetPointData()->GetArray("Metric");
     if (!metricArray)
     {
       vtkWarningMacro(<< "ImproveMesh: the embedded mesh has no metric point array (input array "

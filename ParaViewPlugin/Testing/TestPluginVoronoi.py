@@ -67,6 +67,10 @@ assert field(delaunay, "NumInverted") == 0
 assert inserted == 0 or field(delaunay, "NumInvertedBeforeRepair") > 0
 assert mesh.GetNumberOfPoints() == 80 + inserted
 assert mesh.GetNumberOfCells() > 80
+# The mesh improvement (on by default) found the metric the embedding passes through, although
+# the script built the proxy before its input ran (it used to be skipped with a warning).
+assert delaunay.ImproveMesh == 1
+assert field(delaunay, "NumImprovementFlips") + field(delaunay, "NumImprovementMoves") > 0
 q = servermanager.Fetch(quality)
 gavg, gmin = q.GetFieldData().GetArray("G_avg").GetTuple1(0), q.GetFieldData().GetArray("G_min").GetTuple1(0)
 print("quality: G_min %.3f G_avg %.3f theta_min %.2f" % (
@@ -75,6 +79,25 @@ assert 0.0 <= gmin <= gavg <= 1.0 and gavg > 0.5
 hist = servermanager.Fetch(quality, idx=1)
 assert sum(hist.GetValueByName(r, "Count").ToInt() for r in range(hist.GetNumberOfRows())) == \
     mesh.GetNumberOfCells()
+
+# A surface: Sphere -> curvature metric -> embedding -> sites -> dual triangles, with the sphere
+# as the quality filter's Reference Surface: the fidelity measures come back to the client.
+ball = Sphere(ThetaResolution=40, PhiResolution=30)
+ball_metric = AnisoCurvatureMetric(Input=ball)
+ball_embedding = AnisoEmbedding(Input=ball_metric, TargetDimension=5, Iterations=10)
+ball_sites = AnisoParticleSampler(Input=ball_embedding, NumberOfSites=100, Iterations=10)
+ball_mesh = AnisoRestrictedDelaunay(Input=ball_embedding, Sites=ball_sites)
+ball_quality = AnisoMeshQuality(Input=ball_mesh, ReferenceSurface=ball)
+assert ball_quality.SurfaceFidelity == 1 and ball_quality.HausdorffSamplesPerEdge == 3
+ball_quality.UpdatePipeline()
+print("surface: euler %g, hausdorff %.3f %%, self-intersections %g, flipped %g" % (
+    field(ball_quality, "euler"), field(ball_quality, "hausdorff"),
+    field(ball_quality, "self_intersections"), field(ball_quality, "flipped")))
+assert field(ball_quality, "euler") == 2 and field(ball_quality, "input_euler") == 2
+assert 0 < field(ball_quality, "hausdorff") < 3.0
+assert field(ball_quality, "self_intersections") == 0 and field(ball_quality, "flipped") == 0
+flags = servermanager.Fetch(ball_quality).GetCellData().GetArray("Flipped")
+assert flags is not None and flags.GetRange()[1] == 0
 
 # Render the shrunken cells colored by SiteId; the picture must not be blank.
 view = CreateView("RenderView")
