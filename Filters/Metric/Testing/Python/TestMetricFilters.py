@@ -3,13 +3,12 @@
 vtkAnisoTensorToMetric, vtkAnisoSimplexMesh and vtkAnisoCurvatureMetric, chained with
 vtkAnisoAnalyticMetricSource and vtkAnisoEmbedding. Asserts values, not only that it ran."""
 import math
+import os
 import sys
 
 import numpy as np
-from vtkmodules.util.misc import calldata_type
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
-from vtkmodules.util.vtkConstants import VTK_STRING
-from vtkmodules.vtkCommonCore import vtkCommand, vtkPoints
+from vtkmodules.vtkCommonCore import vtkPoints
 from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkImageData, vtkPolyData
 from vtkmodules.vtkFiltersCore import vtkCleanPolyData, vtkTriangleFilter
 from vtkmodules.vtkFiltersSources import vtkCubeSource, vtkPlaneSource, vtkSphereSource
@@ -17,31 +16,10 @@ from vtkmodules.vtkFiltersSources import vtkCubeSource, vtkPlaneSource, vtkSpher
 from anisovoronoi import (vtkAnisoAnalyticMetricSource, vtkAnisoCurvatureMetric,
                           vtkAnisoEmbedding, vtkAnisoSimplexMesh, vtkAnisoTensorToMetric)
 
-failures = []
-
-
-def check(cond, what):
-    if not cond:
-        failures.append(what)
-        print("FAILED:", what)
-
-
-class Messages:
-    """Collects error/warning messages of an algorithm and its executive (quiet output)."""
-
-    def __init__(self, alg):
-        self.errors, self.warnings = [], []
-        for obj in (alg, alg.GetExecutive()):
-            obj.AddObserver(vtkCommand.ErrorEvent, self.on_error)
-            obj.AddObserver(vtkCommand.WarningEvent, self.on_warning)
-
-    @calldata_type(VTK_STRING)
-    def on_error(self, obj, event, msg):
-        self.errors.append(msg)
-
-    @calldata_type(VTK_STRING)
-    def on_warning(self, obj, event, msg):
-        self.warnings.append(msg)
+# The shared check() / Messages helpers (Testing/Python/vtk_test_checks.py).
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), *[os.pardir] * 4,
+                                "Testing", "Python"))
+from vtk_test_checks import Messages, check, finish  # noqa: E402
 
 
 def field(ds, name):
@@ -263,7 +241,4 @@ msgs = Messages(curv)
 check(curv.GetExecutive().Update() == 0 and any("vtkTriangleFilter" in e for e in msgs.errors),
       "quads rejected with a hint: %s" % msgs.errors)
 
-if failures:
-    print("%d failure(s)" % len(failures))
-    sys.exit(1)
-print("TestMetricFilters passed")
+finish("TestMetricFilters")

@@ -3,13 +3,12 @@
 self-intersections, and with a reference surface on input 1 the Hausdorff distance and the
 flipped triangles, each with a known answer; the warning / error paths."""
 import math
+import os
 import sys
 
 import numpy as np
-from vtkmodules.util.misc import calldata_type
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
-from vtkmodules.util.vtkConstants import VTK_STRING
-from vtkmodules.vtkCommonCore import vtkCommand, vtkPoints
+from vtkmodules.vtkCommonCore import vtkPoints
 from vtkmodules.vtkCommonDataModel import VTK_TETRA, vtkPolyData, vtkUnstructuredGrid
 from vtkmodules.vtkFiltersCore import vtkAppendPolyData
 from vtkmodules.vtkFiltersGeneral import vtkTransformPolyDataFilter
@@ -18,31 +17,10 @@ from vtkmodules.vtkFiltersSources import vtkSphereSource
 
 from anisovoronoi import vtkAnisoMeshQuality
 
-failures = []
-
-
-def check(cond, what):
-    if not cond:
-        failures.append(what)
-        print("FAILED:", what)
-
-
-class Messages:
-    """Collects error/warning messages of an algorithm and its executive (quiet output)."""
-
-    def __init__(self, alg):
-        self.errors, self.warnings = [], []
-        for obj in (alg, alg.GetExecutive()):
-            obj.AddObserver(vtkCommand.ErrorEvent, self.on_error)
-            obj.AddObserver(vtkCommand.WarningEvent, self.on_warning)
-
-    @calldata_type(VTK_STRING)
-    def on_error(self, obj, event, msg):
-        self.errors.append(msg)
-
-    @calldata_type(VTK_STRING)
-    def on_warning(self, obj, event, msg):
-        self.warnings.append(msg)
+# The shared check() / Messages helpers (Testing/Python/vtk_test_checks.py).
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), *[os.pardir] * 4,
+                                "Testing", "Python"))
+from vtk_test_checks import Messages, check, finish  # noqa: E402
 
 
 def with_metric(data):
@@ -162,7 +140,4 @@ check(ok == 0 and any("reference surface" in e and "tetrahedra" in e for e in ms
 q, ok, msgs = run(sphere(0.5), vtkPolyData())
 check(ok == 0 and any("empty" in e for e in msgs.errors), "empty reference rejected: %s" % msgs.errors)
 
-if failures:
-    print("%d failure(s)" % len(failures))
-    sys.exit(1)
-print("TestMeshQualityFidelity passed")
+finish("TestMeshQualityFidelity")
