@@ -8,14 +8,9 @@ import subprocess
 from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.vtkIOXML import vtkXMLPolyDataReader, vtkXMLUnstructuredGridReader
 
+from vtk_test_checks import check, failures  # noqa: F401 (re-exported to the CLI tests)
+
 CLI = os.path.join(os.environ["AV_BUILD"], "bin", "anisovoronoi")
-failures = []
-
-
-def check(cond, what):
-    if not cond:
-        failures.append(what)
-        print("FAILED:", what)
 
 
 def is_timing(name):
