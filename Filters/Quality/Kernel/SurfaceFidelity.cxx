@@ -198,19 +198,14 @@ std::int32_t Find(std::vector<std::int32_t>& parent, std::int32_t x)
   }
   return x;
 }
-} // namespace
 
-HausdorffResult SampledHausdorffDistance(const SimplexMesh& surface,
+/// SampledHausdorffDistance on trees already built (EvaluateSurfaceFidelity shares them).
+HausdorffResult HausdorffWith(const SimplexMesh& surface,
   const SimplexMesh& reference,
+  const TriangleBvh& toReference,
+  const TriangleBvh& toSurface,
   int samplesPerEdge)
 {
-  CheckSurface(surface, "SampledHausdorffDistance");
-  CheckSurface(reference, "SampledHausdorffDistance");
-  if (samplesPerEdge < 1 || samplesPerEdge > 64)
-  {
-    throw InputError("SampledHausdorffDistance: samplesPerEdge must be in [1, 64]");
-  }
-  const TriangleBvh toReference(reference), toSurface(surface);
   const DistanceSums forward = SampleDistances(surface, toReference, samplesPerEdge);
   const DistanceSums backward = SampleDistances(reference, toSurface, samplesPerEdge);
   HausdorffResult r;
@@ -224,10 +219,17 @@ HausdorffResult SampledHausdorffDistance(const SimplexMesh& surface,
   return r;
 }
 
-std::size_t CountSelfIntersections(const SimplexMesh& surface)
+void CheckSamplesPerEdge(int samplesPerEdge)
 {
-  CheckSurface(surface, "CountSelfIntersections");
-  const TriangleBvh bvh(surface);
+  if (samplesPerEdge < 1 || samplesPerEdge > 64)
+  {
+    throw InputError("SampledHausdorffDistance: samplesPerEdge must be in [1, 64]");
+  }
+}
+
+/// CountSelfIntersections with the surface's tree already built.
+std::size_t SelfIntersectionsWith(const SimplexMesh& surface, const TriangleBvh& bvh)
+{
   return tbb::parallel_reduce(
     tbb::blocked_range<std::size_t>(0, surface.NumCells(), 128),
     std::size_t(0),
@@ -256,6 +258,51 @@ std::size_t CountSelfIntersections(const SimplexMesh& surface)
       return count;
     },
     [](std::size_t x, std::size_t y) { return x + y; });
+}
+
+/// ClosestTriangleNormals with the reference's tree already built.
+std::vector<double> NormalsWith(const SimplexMesh& surface,
+  const SimplexMesh& reference,
+  const TriangleBvh& bvh)
+{
+  std::vector<double> normals(3 * surface.NumPoints(), 0.0);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, surface.NumPoints(), 512),
+    [&](const tbb::blocked_range<std::size_t>& r)
+    {
+      for (std::size_t i = r.begin(); i != r.end(); ++i)
+      {
+        std::int32_t t = -1;
+        bvh.ClosestDistance2(P(surface, static_cast<std::int32_t>(i)), &t);
+        if (t < 0)
+          continue;
+        const std::int32_t* v = reference.Cell(static_cast<std::size_t>(t));
+        const Vec3 a = P(reference, v[0]);
+        const Vec3 n = (P(reference, v[1]) - a).cross(P(reference, v[2]) - a);
+        const double len = n.norm();
+        if (len > 0.0)
+          Eigen::Map<Vec3>(normals.data() + 3 * i) = n / len;
+      }
+    });
+  return normals;
+}
+} // namespace
+
+HausdorffResult SampledHausdorffDistance(const SimplexMesh& surface,
+  const SimplexMesh& reference,
+  int samplesPerEdge)
+{
+  CheckSurface(surface, "SampledHausdorffDistance");
+  CheckSurface(reference, "SampledHausdorffDistance");
+  CheckSamplesPerEdge(samplesPerEdge);
+  const TriangleBvh toReference(reference), toSurface(surface);
+  return HausdorffWith(surface, reference, toReference, toSurface, samplesPerEdge);
+}
+
+std::size_t CountSelfIntersections(const SimplexMesh& surface)
+{
+  CheckSurface(surface, "CountSelfIntersections");
+  const TriangleBvh bvh(surface);
+  return SelfIntersectionsWith(surface, bvh);
 }
 
 std::size_t CountFlippedTriangles(const SimplexMesh& surface,
@@ -348,25 +395,7 @@ std::vector<double> ClosestTriangleNormals(const SimplexMesh& surface, const Sim
   CheckSurface(surface, "ClosestTriangleNormals");
   CheckSurface(reference, "ClosestTriangleNormals");
   const TriangleBvh bvh(reference);
-  std::vector<double> normals(3 * surface.NumPoints(), 0.0);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, surface.NumPoints(), 512),
-    [&](const tbb::blocked_range<std::size_t>& r)
-    {
-      for (std::size_t i = r.begin(); i != r.end(); ++i)
-      {
-        std::int32_t t = -1;
-        bvh.ClosestDistance2(P(surface, static_cast<std::int32_t>(i)), &t);
-        if (t < 0)
-          continue;
-        const std::int32_t* v = reference.Cell(static_cast<std::size_t>(t));
-        const Vec3 a = P(reference, v[0]);
-        const Vec3 n = (P(reference, v[1]) - a).cross(P(reference, v[2]) - a);
-        const double len = n.norm();
-        if (len > 0.0)
-          Eigen::Map<Vec3>(normals.data() + 3 * i) = n / len;
-      }
-    });
-  return normals;
+  return NormalsWith(surface, reference, bvh);
 }
 
 SurfaceFidelityResult EvaluateSurfaceFidelity(const SimplexMesh& surface,
@@ -374,15 +403,18 @@ SurfaceFidelityResult EvaluateSurfaceFidelity(const SimplexMesh& surface,
   int samplesPerEdge)
 {
   SurfaceFidelityResult r;
-  r.Topology = ComputeSurfaceTopology(surface);
-  r.SelfIntersections = CountSelfIntersections(surface);
+  r.Topology = ComputeSurfaceTopology(surface); // checks `surface`
+  const TriangleBvh toSurface(surface);         // one tree per surface, shared by the measures
+  r.SelfIntersections = SelfIntersectionsWith(surface, toSurface);
   if (!reference)
     return r;
   r.HasReference = true;
   r.ReferenceTopology = ComputeSurfaceTopology(*reference);
-  r.Hausdorff = SampledHausdorffDistance(surface, *reference, samplesPerEdge);
+  CheckSamplesPerEdge(samplesPerEdge);
+  const TriangleBvh toReference(*reference);
+  r.Hausdorff = HausdorffWith(surface, *reference, toReference, toSurface, samplesPerEdge);
   r.Flipped =
-    CountFlippedTriangles(surface, ClosestTriangleNormals(surface, *reference), &r.FlippedFlags);
+    CountFlippedTriangles(surface, NormalsWith(surface, *reference, toReference), &r.FlippedFlags);
   return r;
 }
 
