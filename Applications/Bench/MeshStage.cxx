@@ -89,10 +89,13 @@ av::MeshingPipelineOptions PipelineOptions(const MeshStageOptions& options,
   po.OdtIterations = options.OdtIterations;
   po.PerturbSlivers = options.PerturbSlivers;
   po.FixedSites = fixed;
+  po.OdtKeepsFixedSites = options.OdtKeepsFeatureSites;
   po.Repair = options.Repair;
   po.MaxRepairRounds = options.MaxRepairRounds;
   po.RepairNonManifold = options.RepairNonManifold;
   po.ValidDual = options.ValidDual;
+  po.FeatureAngle =
+    options.PreserveSharpFeatures && options.RecoverFeatureEdges ? options.FeatureAngle : 180.0;
   po.ImproveMesh = options.ImproveMesh;
   po.Improvement.PlanarBoundary = options.PlanarBoundary;
   po.Improvement.StraightCreases = options.StraightCreases;
@@ -117,6 +120,10 @@ void CopyMeshingCounts(const av::MeshingPipelineResult& m, MeshStageResult& r)
     m.Improvement.NumBoundaryEdgeRemovals + m.Improvement.NumBoundarySmoothed;
   r.ImprovementVolumeChange = m.Improvement.BoundaryVolumeChange;
   r.ImprovementCreaseMoves = m.Improvement.NumCreaseSmoothed;
+  r.FeatureEdgesRequired = m.FeatureEdges.Required;
+  r.FeatureEdgesMissingBefore = m.FeatureEdges.Required - m.FeatureEdges.Present;
+  r.FeatureEdgesRecovered = m.FeatureEdges.Recovered;
+  r.FeatureEdgesMissing = m.FeatureEdges.Missing;
   r.InvertedBeforeImprovement = m.InvertedBeforeImprovement;
   r.ValidDualReplaced = m.ValidDual.Replaced;
   r.ValidDualSeconds = m.ValidDualSeconds;

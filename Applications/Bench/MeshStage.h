@@ -49,6 +49,8 @@ struct MeshStageOptions
   double BoundaryFlipMaxDihedral = 10.0; ///< ...and edges of nearly coplanar boundary faces
   double BoundaryFlipVolumeBudget = 1e-3; ///< ...changing at most this share of the volume
   bool PreserveSharpFeatures = true; ///< corner / feature-line particles (ParticleSamplerOptions)
+  bool OdtKeepsFeatureSites = false; ///< MeshingPipelineOptions::OdtKeepsFixedSites
+  bool RecoverFeatureEdges = true;   ///< surfaces: MeshingPipelineOptions::FeatureAngle < 180
   double FeatureAngle = 30.0;        ///< degrees
 };
 
@@ -73,6 +75,10 @@ struct MeshStageResult
   /// Of those, on planar boundary patches: edge removals and in-plane vertex moves (tets)
   std::size_t ImprovementBoundaryOps = 0;
   std::size_t ImprovementCreaseMoves = 0; ///< of those, moves along straight creases
+  /// Surfaces: site pairs consecutive along the feature lines, and of those the edges missing
+  /// from the dual, made by flips, and still missing (RecoverFeatureEdges).
+  std::size_t FeatureEdgesRequired = 0, FeatureEdgesMissingBefore = 0, FeatureEdgesRecovered = 0,
+              FeatureEdgesMissing = 0;
   double ImprovementVolumeChange = 0.0; ///< fraction of the volume moved by curved-boundary flips
   std::size_t InvertedBeforeImprovement = 0; ///< dual's inverted (or flat) cells before it
   bool ValidDualReplaced = false;  ///< the repaired dual was invalid: Delaunay of the sites

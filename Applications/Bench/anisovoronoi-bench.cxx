@@ -96,6 +96,8 @@ struct Args
   double BoundaryFlipDihedral = 10.0; // ...and nearly planar ones (degrees)
   double BoundaryVolumeBudget = 1e-3; // ...changing at most this fraction of the volume
   bool Features = true;      // corner / feature-line particles
+  bool OdtKeepsFeatures = false; // the ODT steps keep the feature sites (surfaces)
+  bool FeatureEdges = true;      // surfaces: feature-line edges put back by flips
   bool Reference = false;    // closed-form isometric embedding instead of the solver
   double FeatureAngle = 30.0;
   std::string DataDir;       // real cases: --data-dir, else AV_REAL_DATA_DIR, else build/real-data
@@ -549,6 +551,8 @@ avbench::MeshStageOptions MeshStageOptionsFor(const Args& a, const Case& c)
   o.BoundaryFlipMaxDihedral = a.BoundaryFlipDihedral;
   o.BoundaryFlipVolumeBudget = a.BoundaryVolumeBudget;
   o.PreserveSharpFeatures = a.Features;
+  o.OdtKeepsFeatureSites = a.OdtKeepsFeatures;
+  o.RecoverFeatureEdges = a.FeatureEdges;
   o.FeatureAngle = a.FeatureAngle;
   return o;
 }
@@ -560,6 +564,8 @@ void ReportMesh(const Case& c, const avbench::MeshStageOptions& o,
   const avbench::PaperMeshValues& p = c.PaperMesh;
   out.Set("sites", r.Sites);
   out.Set("sharp_features", o.PreserveSharpFeatures);
+  out.Set("odt_keeps_feature_sites", o.OdtKeepsFeatureSites);
+  out.Set("recover_feature_edges", o.RecoverFeatureEdges);
   out.Set("feature_angle", o.FeatureAngle);
   out.Set("corner_sites", r.CornerSites);
   out.Set("feature_line_sites", r.FeatureLineSites);
@@ -587,6 +593,10 @@ void ReportMesh(const Case& c, const avbench::MeshStageOptions& o,
   out.Set("mesh_improvement_smoothed", r.ImprovementSmoothed);
   out.Set("mesh_improvement_boundary_ops", r.ImprovementBoundaryOps);
   out.Set("mesh_improvement_crease_moves", r.ImprovementCreaseMoves);
+  out.Set("feature_edges_required", r.FeatureEdgesRequired);
+  out.Set("feature_edges_missing_before", r.FeatureEdgesMissingBefore);
+  out.Set("feature_edges_recovered", r.FeatureEdgesRecovered);
+  out.Set("feature_edges_missing", r.FeatureEdgesMissing);
   out.Set("mesh_improvement_volume_change", r.ImprovementVolumeChange);
   out.Set("valid_dual_replaced", r.ValidDualReplaced);
   out.Set("valid_dual_seconds", r.ValidDualSeconds);
@@ -700,99 +710,109 @@ const std::map<std::string, StageFn>& Stages()
 
 void Usage(std::ostream& os)
 {
-  os << "usage: anisovoronoi-bench CASE [options]\n"
-        "  CASE: gaussian2d | cube1 | cube2 | cube3 | sphere-cyl | sphere-cos | all\n"
-        "        | cyclide | cyclide2 | torus | surfaces (Tab. 3 surfaces, curvature metric Eq. 19)\n"
-        "        | real:NAME | real:all  (real data of scripts/make-real-data.sh; NAME:\n"
-        "        compressor rotor segmenttet cubef2f1 hueeber1 squarebend mixer (tensor\n"
-        "        fields, default 3000 sites) turbine knot1 mushroom fandisk (curvature,\n"
-        "        default 2000 sites); Documentation/real-data.md)\n"
-        "  --data-dir D      real-data directory (default $AV_REAL_DATA_DIR, else\n"
-        "                    real-data next to the bin/ folder of this program)\n"
-        "  --min-eigenvalue F, --max-anisotropy A, --smooth N  real tensor cases: the tensor ->\n"
-        "                    metric options of the anisovoronoi tool (defaults 1e-3, 25, 0)\n"
+  os
+    << "usage: anisovoronoi-bench CASE [options]\n"
+       "  CASE: gaussian2d | cube1 | cube2 | cube3 | sphere-cyl | sphere-cos | all\n"
+       "        | cyclide | cyclide2 | torus | surfaces (Tab. 3 surfaces, curvature metric Eq. "
+       "19)\n"
+       "        | real:NAME | real:all  (real data of scripts/make-real-data.sh; NAME:\n"
+       "        compressor rotor segmenttet cubef2f1 hueeber1 squarebend mixer (tensor\n"
+       "        fields, default 3000 sites) turbine knot1 mushroom fandisk (curvature,\n"
+       "        default 2000 sites); Documentation/real-data.md)\n"
+       "  --data-dir D      real-data directory (default $AV_REAL_DATA_DIR, else\n"
+       "                    real-data next to the bin/ folder of this program)\n"
+       "  --min-eigenvalue F, --max-anisotropy A, --smooth N  real tensor cases: the tensor ->\n"
+       "                    metric options of the anisovoronoi tool (defaults 1e-3, 25, 0)\n"
 
-        "  --stage S         embed | mesh (embedding, then sampling + RVD + RDT + quality) | all\n"
-        "                    (both reports) | voronoi (embedding, sampling, then the RVD alone:\n"
-        "                    best-of-N times and peak RSS without / with geometry and without /\n"
-        "                    with the whole-element fast path); default embed\n"
-        "  --rvd-repeats N   voronoi: runs per configuration, the best time is kept (default 3)\n"
-        "  --no-rvd-geometry voronoi: only the runs without geometry\n"
-        "  --rvd-embedded-points  voronoi: the geometry runs keep the vertices in R^Dim too\n"
-        "                    (KeepEmbeddedPoints, off by default)\n"
-        "  --dim D           target dimension (default 3 for gaussian2d, else 8)\n"
-        "  --iterations N    solver iterations (default 20 for gaussian2d as Fig. 4, else 50)\n"
-        "  --resolution N    N vertices per side (cube2/3 keep 5:1:1, spheres ~pi/6 N^3 vertices);\n"
-        "                    default: gaussian2d 101^2, cube1 21^3, cube2/3 101x21x21, spheres 50,000\n"
-        "  --vertices V      target vertex count of the sphere meshes (TetGen)\n"
-        "  --threads T       limit TBB threads (default: all cores)\n"
-        "  --seed S          random seed of the initial field (default 1)\n"
-        "  --mu M            regularizer weight (default 100)\n"
-        "  --anderson W      Anderson window, 0 = plain local/global (default 5)\n"
-        "  --double-solve    global steps with CHOLMOD's double solve (default: float factor copy)\n"
-        "  --no-separate-bodies  parts of the input with no shared point stay where the solve\n"
-        "                    leaves them in R^m (default: moved apart, meshed as separate domains)\n"
-        "  --solver S        global step: auto (direct below 150,000 vertices) | direct | iterative\n"
-        "  --cg-tolerance T  iterative: relative residual of each CG solve (default 1e-6)\n"
-        "  --max-iterations N  run to convergence up to N iterations (default 500; <= --iterations:\n"
-        "                    exactly --iterations)\n"
-        "  --convergence-tolerance T  stop past --iterations when the energy drops by less than T\n"
-        "                    per iteration (mean of the last 10; default 1e-4)\n"
-        "  --error-target P  past --iterations, stop once L_avg <= P % (default 2; 0 = none)\n"
-        "  --init smooth|random  initial free coordinates (default smooth)\n"
-        "  --weighted        element-measure weighted energy (default: paper's unweighted)\n"
-        "  --no-track        do not evaluate L_avg per iteration (iterations_to_paper_error)\n"
-        "  --sites N         sites for mesh (default: cube1 2000, cube2 5000, cube3 5600,\n"
-        "                    sphere-cyl 5000, sphere-cos 1000, gaussian2d 4000)\n"
-        "  --sample-iterations N  sampler iterations (default 150; the paper: 50)\n"
-        "  --warmup-iterations N  sampler warm-up iterations at sigma factor 0.25 (default 100)\n"
-        "  --kernel-width F  sampler sigma factor (default 0.3)\n"
-        "  --lloyd N         Lloyd (CVT) steps after sampling (default 0)\n"
-        "  --no-repair       mesh: keep inverted dual elements (default: insert sites at their\n"
-        "                    Voronoi vertices until none is left)\n"
-        "  --repair-rounds N mesh: insertion rounds at most (default 10)\n"
-        "  --no-repair-nonmanifold  mesh: leave non-manifold faces of the dual (default: insert\n"
-        "                    sites at the Voronoi vertices around them too)\n"
-        "  --no-valid-dual   mesh: keep a volume dual still invalid after the repair (default:\n"
-        "                    Delaunay of its sites, carved, flipped towards the metric)\n"
-        "  --improve-rounds N  mesh: site improvement rounds before the repair: ODT steps\n"
-        "                    and sliver pushes, then RVD + RDT again (default 1, 0 = the\n"
-        "                    paper's pipeline)\n"
-        "  --odt-iterations N  mesh: ODT steps per improvement round (default 3, 0 = none)\n"
-        "  --no-sliver-push  mesh: no sliver pushes in the improvement rounds\n"
-        "  --no-mesh-improvement  mesh: keep the repaired dual as it is (default: flips and\n"
-        "                    vertex smoothing raise its worst element in the metric)\n"
-        "  --no-planar-boundary  mesh: the improvement leaves every boundary vertex and face\n"
-        "                    as it is (default: it also moves vertices and removes edges in\n"
-        "                    planar boundary patches)\n"
-        "  --no-straight-creases  mesh: feature-line vertices of tet meshes stay (default: they\n"
-        "                    slide along straight creases, the two planes kept exactly)\n"
-        "  --boundary-flip-dihedral D  mesh: the improvement also removes boundary edges whose\n"
-        "                    two faces are at most D degrees from coplanar (default 10; 0 =\n"
-        "                    planar only), at most 0.1 % of the volume in all\n"
-        "  --boundary-volume-budget F  mesh: that share of the volume (default 1e-3)\n"
-        "  --no-features     mesh: no corner / feature-line particles (paper §4.1 sharp features)\n"
-        "  --feature-angle A mesh: dihedral angle in degrees above which a boundary edge is a\n"
-        "                    feature line (default 30)\n"
-        "  --adapt L         embed on the adapted background mesh (MetricAdaptedMesh) with edges of\n"
-        "                    at most L output edges for the sites (0.5: two per output edge)\n"
-        "  --reference-embedding  the preset's exact isometric embedding (x, y, z, H) instead\n"
-        "                    of the solver (all presets but sphere-cos): separates the\n"
-        "                    embedding's share of a quality loss from the rest\n"
-        "  --prepare-metric  prepare the preset's metric for the sites (gradation 1.3), as do\n"
-        "  --hmin H --hmax H --hgrad B --size-mode tensor|uniform|blend --size-blend A\n"
-        "                    (--no-gradation: none); adds L_avg_raw, metric_prep_* keys\n"
-        "  --min-cells-across K  cells across thin parts of volumes (default 1.25, 0 = off)\n"
-        "  --no-prepare-metric  real tensor cases (prepared by default, as the CLI does):\n"
-        "                    the raw metric\n"
-        "  --crease-angle A  real surface cases: edges sharper than A degrees are creases the\n"
-        "                    curvature metric is not estimated across (default 180 = none)\n"
-        "  --max-stretch S   surface cases: cap on the curvature metric's stretch ratio\n"
-        "                    (default: cyclide, torus 10; cyclide2 29 as Tab. 3)\n"
-        "  surface cases: --resolution N scales the parameter grid by N / 100; the mesh\n"
-        "  report adds hausdorff (% of the bounding-box diagonal, both directions),\n"
-        "  self_intersections, flipped, euler, boundary_loops\n"
-        "Prints one JSON object per case on stdout.\n";
+       "  --stage S         embed | mesh (embedding, then sampling + RVD + RDT + quality) | all\n"
+       "                    (both reports) | voronoi (embedding, sampling, then the RVD alone:\n"
+       "                    best-of-N times and peak RSS without / with geometry and without /\n"
+       "                    with the whole-element fast path); default embed\n"
+       "  --rvd-repeats N   voronoi: runs per configuration, the best time is kept (default 3)\n"
+       "  --no-rvd-geometry voronoi: only the runs without geometry\n"
+       "  --rvd-embedded-points  voronoi: the geometry runs keep the vertices in R^Dim too\n"
+       "                    (KeepEmbeddedPoints, off by default)\n"
+       "  --dim D           target dimension (default 3 for gaussian2d, else 8)\n"
+       "  --iterations N    solver iterations (default 20 for gaussian2d as Fig. 4, else 50)\n"
+       "  --resolution N    N vertices per side (cube2/3 keep 5:1:1, spheres ~pi/6 N^3 vertices);\n"
+       "                    default: gaussian2d 101^2, cube1 21^3, cube2/3 101x21x21, spheres "
+       "50,000\n"
+       "  --vertices V      target vertex count of the sphere meshes (TetGen)\n"
+       "  --threads T       limit TBB threads (default: all cores)\n"
+       "  --seed S          random seed of the initial field (default 1)\n"
+       "  --mu M            regularizer weight (default 100)\n"
+       "  --anderson W      Anderson window, 0 = plain local/global (default 5)\n"
+       "  --double-solve    global steps with CHOLMOD's double solve (default: float factor copy)\n"
+       "  --no-separate-bodies  parts of the input with no shared point stay where the solve\n"
+       "                    leaves them in R^m (default: moved apart, meshed as separate domains)\n"
+       "  --solver S        global step: auto (direct below 150,000 vertices) | direct | "
+       "iterative\n"
+       "  --cg-tolerance T  iterative: relative residual of each CG solve (default 1e-6)\n"
+       "  --max-iterations N  run to convergence up to N iterations (default 500; <= "
+       "--iterations:\n"
+       "                    exactly --iterations)\n"
+       "  --convergence-tolerance T  stop past --iterations when the energy drops by less than T\n"
+       "                    per iteration (mean of the last 10; default 1e-4)\n"
+       "  --error-target P  past --iterations, stop once L_avg <= P % (default 2; 0 = none)\n"
+       "  --init smooth|random  initial free coordinates (default smooth)\n"
+       "  --weighted        element-measure weighted energy (default: paper's unweighted)\n"
+       "  --no-track        do not evaluate L_avg per iteration (iterations_to_paper_error)\n"
+       "  --sites N         sites for mesh (default: cube1 2000, cube2 5000, cube3 5600,\n"
+       "                    sphere-cyl 5000, sphere-cos 1000, gaussian2d 4000)\n"
+       "  --sample-iterations N  sampler iterations (default 150; the paper: 50)\n"
+       "  --warmup-iterations N  sampler warm-up iterations at sigma factor 0.25 (default 100)\n"
+       "  --kernel-width F  sampler sigma factor (default 0.3)\n"
+       "  --lloyd N         Lloyd (CVT) steps after sampling (default 0)\n"
+       "  --no-repair       mesh: keep inverted dual elements (default: insert sites at their\n"
+       "                    Voronoi vertices until none is left)\n"
+       "  --repair-rounds N mesh: insertion rounds at most (default 10)\n"
+       "  --no-repair-nonmanifold  mesh: leave non-manifold faces of the dual (default: insert\n"
+       "                    sites at the Voronoi vertices around them too)\n"
+       "  --no-valid-dual   mesh: keep a volume dual still invalid after the repair (default:\n"
+       "                    Delaunay of its sites, carved, flipped towards the metric)\n"
+       "  --improve-rounds N  mesh: site improvement rounds before the repair: ODT steps\n"
+       "                    and sliver pushes, then RVD + RDT again (default 1, 0 = the\n"
+       "                    paper's pipeline)\n"
+       "  --odt-iterations N  mesh: ODT steps per improvement round (default 3, 0 = none)\n"
+       "  --no-sliver-push  mesh: no sliver pushes in the improvement rounds\n"
+       "  --no-mesh-improvement  mesh: keep the repaired dual as it is (default: flips and\n"
+       "                    vertex smoothing raise its worst element in the metric)\n"
+       "  --no-planar-boundary  mesh: the improvement leaves every boundary vertex and face\n"
+       "                    as it is (default: it also moves vertices and removes edges in\n"
+       "                    planar boundary patches)\n"
+       "  --no-straight-creases  mesh: feature-line vertices of tet meshes stay (default: they\n"
+       "                    slide along straight creases, the two planes kept exactly)\n"
+       "  --boundary-flip-dihedral D  mesh: the improvement also removes boundary edges whose\n"
+       "                    two faces are at most D degrees from coplanar (default 10; 0 =\n"
+       "                    planar only), at most 0.1 % of the volume in all\n"
+       "  --boundary-volume-budget F  mesh: that share of the volume (default 1e-3)\n"
+       "  --no-features     mesh: no corner / feature-line particles (paper §4.1 sharp features)\n"
+       "  --keep-feature-sites  mesh: the ODT steps keep the corner and feature-line sites on\n"
+       "                    surfaces too (default: only the sliver push does)\n"
+       "  --no-feature-edges  mesh: surfaces: no flips that put the edges between sites\n"
+       "                    consecutive along a feature line into the dual\n"
+       "  --feature-angle A mesh: dihedral angle in degrees above which a boundary edge is a\n"
+       "                    feature line (default 30)\n"
+       "  --adapt L         embed on the adapted background mesh (MetricAdaptedMesh) with edges "
+       "of\n"
+       "                    at most L output edges for the sites (0.5: two per output edge)\n"
+       "  --reference-embedding  the preset's exact isometric embedding (x, y, z, H) instead\n"
+       "                    of the solver (all presets but sphere-cos): separates the\n"
+       "                    embedding's share of a quality loss from the rest\n"
+       "  --prepare-metric  prepare the preset's metric for the sites (gradation 1.3), as do\n"
+       "  --hmin H --hmax H --hgrad B --size-mode tensor|uniform|blend --size-blend A\n"
+       "                    (--no-gradation: none); adds L_avg_raw, metric_prep_* keys\n"
+       "  --min-cells-across K  cells across thin parts of volumes (default 1.25, 0 = off)\n"
+       "  --no-prepare-metric  real tensor cases (prepared by default, as the CLI does):\n"
+       "                    the raw metric\n"
+       "  --crease-angle A  real surface cases: edges sharper than A degrees are creases the\n"
+       "                    curvature metric is not estimated across (default 180 = none)\n"
+       "  --max-stretch S   surface cases: cap on the curvature metric's stretch ratio\n"
+       "                    (default: cyclide, torus 10; cyclide2 29 as Tab. 3)\n"
+       "  surface cases: --resolution N scales the parameter grid by N / 100; the mesh\n"
+       "  report adds hausdorff (% of the bounding-box diagonal, both directions),\n"
+       "  self_intersections, flipped, euler, boundary_loops\n"
+       "Prints one JSON object per case on stdout.\n";
 }
 
 /// Throws std::runtime_error for option values out of range.
@@ -930,6 +950,10 @@ bool Parse(int argc, char** argv, Args& a)
       a.PerturbSlivers = false;
     else if (k == "--no-features")
       a.Features = false;
+    else if (k == "--keep-feature-sites")
+      a.OdtKeepsFeatures = true;
+    else if (k == "--no-feature-edges")
+      a.FeatureEdges = false;
     else if (k == "--reference-embedding")
       a.Reference = true;
     else if (k == "--max-stretch")

@@ -4,12 +4,15 @@
 
 #include "MeshQuality.h"
 
+#include "FeatureEdgeRecovery.h"
 #include "FinalMeshImprovement.h"
 #include "MeshTopology.h"
 #include "RestrictedDelaunay.h"
 #include "RestrictedVoronoi.h"
+#include "SharpFeatures.h"
 #include "SiteImprovement.h"
 #include "Stopwatch.h"
+#include "ValidDualMesh.h"
 
 #include <algorithm>
 #include <string>
@@ -27,6 +30,8 @@ void ValidateOptions(
     fail("ImproveRounds, OdtIterations and MaxRepairRounds must be >= 0");
   if (options.FixedSites && options.FixedSites->size() != numSites)
     fail("FixedSites must have one flag per site");
+  if (!(options.FeatureAngle > 0.0))
+    fail("FeatureAngle must be > 0 (180 or more: no feature-edge recovery)");
   if (options.ImproveMesh && options.Metric && options.Metric->NumPoints() != numPoints)
     fail("Metric must have 6 values per input mesh vertex");
 }
@@ -66,6 +71,8 @@ bool ImproveSiteRounds(const SimplexMesh& mesh,
   improve.PerturbSlivers = options.PerturbSlivers;
   improve.ElementAdjacency = voronoi.ElementAdjacency;
   improve.Sliver.FixedSites = options.FixedSites;
+  if (options.OdtKeepsFixedSites)
+    improve.Odt.FixedSites = options.FixedSites;
   for (int round = 0; round < options.ImproveRounds; ++round)
   {
     SiteImprovementResult im = ImproveSites(mesh, embedding, sites, rvd, rdt, improve);
@@ -148,6 +155,17 @@ MeshingPipelineResult RunMeshingPipeline(const SimplexMesh& mesh,
     result.ValidDual = MakeDualValid(mesh, adjacency, result.Repaired.Sites,
       options.Metric ? &siteMetric : nullptr, result.Repaired.Delaunay);
     result.ValidDualSeconds = watch.Seconds();
+  }
+  if (options.FeatureAngle < 180.0 && mesh.SimplexDim == 2 && mesh.AmbientDim == 3)
+  {
+    const SharpFeatures features = DetectSharpFeatures(mesh, options.FeatureAngle);
+    DelaunayRepairResult& repaired = result.Repaired;
+    result.FeatureEdges = RecoverFeatureEdges(mesh,
+      repaired.Sites,
+      ConsecutiveFeatureSites(mesh, features, repaired.Sites),
+      repaired.Delaunay);
+    if (result.FeatureEdges.Recovered > 0)
+      RecountFinalDual(mesh, repaired.Delaunay, repaired.Sites);
   }
   result.InvertedBeforeImprovement = result.Repaired.Delaunay.NumInverted;
   if (options.ImproveMesh && options.Metric)

@@ -36,6 +36,8 @@ void ValidateOdtInput(const SimplexMesh& mesh, const Embedding& embedding, const
   if (options.ElementAdjacency &&
     options.ElementAdjacency->size() != mesh.NumCells() * static_cast<std::size_t>(rdt.SimplexDim + 1))
     fail("ElementAdjacency does not match the mesh (pass ComputeElementAdjacency of this mesh)");
+  if (options.FixedSites && options.FixedSites->size() != ns)
+    fail("FixedSites must have one flag per site");
 }
 
 // Circumcenter (Dim values) and measure (times k!, last value; 0 when degenerate) of every
@@ -125,6 +127,11 @@ OdtSmoothingResult SmoothSitesOdt(const SimplexMesh& mesh, const Embedding& embe
   std::vector<char> fixed(ns, 0);
   for (std::int32_t id : rvd.BoundaryDualFaces)
     fixed[static_cast<std::size_t>(id)] = 1;
+  if (options.FixedSites)
+  {
+    for (std::size_t s = 0; s < ns; ++s)
+      fixed[s] = fixed[s] || (*options.FixedSites)[s] != 0;
+  }
 
   std::vector<std::int32_t> ownAdjacency;
   if (!options.ElementAdjacency)

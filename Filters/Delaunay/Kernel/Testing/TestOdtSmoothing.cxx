@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Tests of SmoothSitesOdt: one ODT step regularizes the restricted Delaunay mesh of random
 // sites, moves each free site exactly to the measure-weighted mean of its star's
-// circumcenters, keeps boundary sites and stays on the mesh; bad input throws.
+// circumcenters, keeps boundary sites and the caller's fixed sites and stays on the mesh; bad
+// input throws.
 #include "OdtSmoothing.h"
 #include "RestrictedDelaunayRefinement.h"
 #include "StructuredMeshes.h"
@@ -10,7 +11,10 @@
 
 #include <Eigen/Dense>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <vector>
 
 namespace
 {
@@ -136,6 +140,37 @@ void CheckOdt(const av::SimplexMesh& mesh, int dim, std::size_t numSites)
   const av::RestrictedDelaunayMesh rdt2 = av::ComputeRestrictedDelaunay(mesh, emb, r.Sites, rvd2);
   const double after = MeanQuality(rdt2, r.Sites);
   AV_CHECK(after > before + 0.03);
+
+  // FixedSites: every other site that moved is flagged; those keep their exact values, the
+  // unflagged ones move as before (the steps do not depend on each other within one step).
+  std::vector<std::uint8_t> flags(sites.NumSites(), 0);
+  std::size_t flagged = 0;
+  for (std::size_t s = 0; s < sites.NumSites(); s += 2)
+  {
+    const bool moved = r.Sites.CellIds[s] != sites.CellIds[s] ||
+      !std::equal(r.Sites.At(s), r.Sites.At(s) + dim, sites.At(s));
+    flags[s] = moved ? 1 : 0;
+    flagged += moved;
+  }
+  AV_CHECK(flagged > numSites / 10);
+  av::OdtSmoothingOptions keep = o;
+  keep.FixedSites = &flags;
+  const av::OdtSmoothingResult k = av::SmoothSitesOdt(mesh, emb, sites, rvd, rdt, keep);
+  bool flaggedKept = true, same = true;
+  for (std::size_t s = 0; s < sites.NumSites(); ++s)
+  {
+    const av::SiteSet& expect = flags[s] ? sites : r.Sites;
+    flaggedKept =
+      flaggedKept && (!flags[s] || std::equal(k.Sites.At(s), k.Sites.At(s) + dim, expect.At(s)));
+    same = same && (flags[s] || std::equal(k.Sites.At(s), k.Sites.At(s) + dim, expect.At(s)));
+  }
+  AV_CHECK(flaggedKept);
+  AV_CHECK(same);
+  AV_CHECK(k.NumMovedSites + flagged == r.NumMovedSites);
+  AV_CHECK(k.NumFixedSites == r.NumFixedSites + flagged);
+  std::vector<std::uint8_t> short_(sites.NumSites() - 1, 0);
+  keep.FixedSites = &short_;
+  AV_CHECK_THROWS(av::SmoothSitesOdt(mesh, emb, sites, rvd, rdt, keep));
 
   // StepFraction 0 moves nothing.
   o.StepFraction = 0.0;
