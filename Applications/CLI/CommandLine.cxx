@@ -93,6 +93,9 @@ meshing:
   --no-boundary-improvement  the mesh improvement leaves every boundary vertex and face of a
                            tet mesh as it is (default: planar patches exactly, smooth curved
                            ones within 0.1 % of the volume)
+  --keep-feature-sites     surfaces: the ODT steps keep the corner and feature-line sites on
+                           the creases, and the edges along the creases are flipped into the
+                           mesh (default: those sites move like the others)
   --improve-rounds N       site improvement rounds before the repair (default 1; 0 = the
                            paper's pipeline): ODT steps and sliver pushes, diagram redone
   --odt-iterations N       ODT steps per improvement round (default 3; 0 = sliver pushes only)
@@ -323,6 +326,8 @@ Options ParseCommandLine(int argc, char* argv[])
       o.ImproveMesh = false;
     else if (a == "--no-boundary-improvement")
       o.ImproveBoundary = false;
+    else if (a == "--keep-feature-sites")
+      o.KeepFeatureSites = true;
     else if (!a.empty() && a[0] == '-')
       Fail("unknown option " + a + " (see --help)", 2);
     else if (o.Input.empty())

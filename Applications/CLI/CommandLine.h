@@ -28,6 +28,7 @@ struct Options
   bool ValidDual = true;
   bool RepairNonManifold = true, DoubleSolve = false, ImproveMesh = true, SeparateBodies = true;
   bool ImproveBoundary = true; // the mesh improvement also works on the tet boundary
+  bool KeepFeatureSites = false; // surfaces: the ODT steps keep the crease sites on the creases
   /// Metric preparation (on for tensor:ARRAY; metric, preset and .sol inputs only when a
   /// preparation option is given, PrepareAsked). SitesGiven: --sites was on the command line.
   double HMin = 0.0, HMax = 0.0, HGrad = 1.3, SizeBlend = 0.5, MinCellsAcross = 1.25;

@@ -408,6 +408,7 @@ void RunMeshingStages(const Options& o,
   s.Delaunay->SetValidDual(o.ValidDual);
   s.Delaunay->SetImproveMesh(o.ImproveMesh);
   s.Delaunay->SetImproveBoundary(o.ImproveBoundary);
+  s.Delaunay->SetKeepFeatureSites(o.KeepFeatureSites);
   runner.Run(s.Delaunay, DelaunayStage);
   s.Voronoi->SetInputConnection(0, s.Embedding->GetOutputPort(0));
   s.Voronoi->SetInputConnection(1, s.Delaunay->GetOutputPort(0));
@@ -481,11 +482,9 @@ std::vector<std::pair<std::string, std::string>> ReportEntries(const Options& o,
     { "dim", std::to_string(o.Dim) },
     { "iterations", std::to_string(o.Iterations) },
     { "embedding_iterations", JsonNumber(FieldValue(embedded, "EmbeddingIterations")) },
-    { "embedding_converged",
-      FieldValue(embedded, "EmbeddingConverged") > 0.0 ? "true" : "false" },
+    { "embedding_converged", FieldValue(embedded, "EmbeddingConverged") > 0.0 ? "true" : "false" },
     { "iterative_solve", FieldValue(embedded, "IterativeSolve") > 0.0 ? "true" : "false" },
-    { "cells_above_error_threshold",
-      JsonNumber(FieldValue(embedded, "CellsAboveErrorThreshold")) },
+    { "cells_above_error_threshold", JsonNumber(FieldValue(embedded, "CellsAboveErrorThreshold")) },
     { "input_bodies", JsonNumber(FieldValue(embedded, "InputBodies")) },
     { "metric_scale", JsonNumber(FieldValue(embedded, "MetricScale")) },
     { "stretch_min", JsonNumber(stretchRange[0]) },
@@ -527,6 +526,9 @@ std::vector<std::pair<std::string, std::string>> ReportEntries(const Options& o,
     { "mesh_improvement_seconds", JsonNumber(FieldValue(rdtOut, "MeshImprovementSeconds")) },
     { "mesh_improvement_flips", JsonNumber(FieldValue(rdtOut, "NumImprovementFlips")) },
     { "mesh_improvement_moves", JsonNumber(FieldValue(rdtOut, "NumImprovementMoves")) },
+    { "feature_edges_required", JsonNumber(FieldValue(rdtOut, "NumFeatureEdgesRequired")) },
+    { "feature_edges_recovered", JsonNumber(FieldValue(rdtOut, "NumFeatureEdgesRecovered")) },
+    { "feature_edges_missing", JsonNumber(FieldValue(rdtOut, "NumFeatureEdgesMissing")) },
     { "inverted_before_mesh_improvement",
       JsonNumber(FieldValue(rdtOut, "NumInvertedBeforeMeshImprovement")) },
     { "mesh_seconds", JsonNumber(meshSeconds) },

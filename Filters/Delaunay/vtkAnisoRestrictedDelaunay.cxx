@@ -119,6 +119,18 @@ void ExtendPointData(vtkDataSet* sitesInput,
   }
 }
 
+/// The feature angle the sampler found its feature lines with (its "FeatureAngle" field value),
+/// for the feature-edge flips on surfaces; 180 (none) for sites without it.
+double SamplerFeatureAngle(vtkDataSet* sitesInput)
+{
+  vtkDataArray* angle =
+    sitesInput->GetFieldData() ? sitesInput->GetFieldData()->GetArray("FeatureAngle") : nullptr;
+  if (!angle || angle->GetNumberOfTuples() < 1 || angle->GetNumberOfComponents() != 1)
+    return 180.0;
+  const double a = angle->GetTuple1(0);
+  return a > 0.0 && a < 180.0 ? a : 180.0;
+}
+
 /// The sampler's corner and feature-line sites ("FeatureKind" != 0), which the improvement
 /// rounds must not push off their features (feature-line sites, FeatureLinePoint, may slide
 /// along straight creases of the final tet mesh); empty when the sites have no such array. False
@@ -227,6 +239,11 @@ void AddRunFieldData(const av::MeshingPipelineResult& result, double seconds, vt
   AddFieldValue(fd, "NumImprovementSplits", static_cast<double>(im.NumSplits));
   AddFieldValue(fd, "NumImprovementCollapses", static_cast<double>(im.NumCollapses));
   AddFieldValue(fd, "MeshImprovementSeconds", result.MeshImprovementSeconds);
+  // Surfaces: site pairs consecutive along the feature lines, and how many of their edges the
+  // flips made and could not make.
+  AddFieldValue(fd, "NumFeatureEdgesRequired", static_cast<double>(result.FeatureEdges.Required));
+  AddFieldValue(fd, "NumFeatureEdgesRecovered", static_cast<double>(result.FeatureEdges.Recovered));
+  AddFieldValue(fd, "NumFeatureEdgesMissing", static_cast<double>(result.FeatureEdges.Missing));
 }
 
 /// The pipeline options of the filter's parameters; progress and abort go through `self`.
@@ -243,6 +260,7 @@ av::MeshingPipelineOptions MeshingOptions(vtkAnisoRestrictedDelaunay* self,
   options.ValidDual = self->GetValidDual();
   options.ImproveMesh = self->GetImproveMesh();
   options.Improvement.PlanarBoundary = self->GetImproveBoundary();
+  options.OdtKeepsFixedSites = self->GetKeepFeatureSites();
   options.Progress = [self](av::MeshingStep step)
   {
     if (self->GetAbortExecute())
@@ -384,6 +402,7 @@ int vtkAnisoRestrictedDelaunay::RequestData(vtkInformation* request,
           av::MeshingPipelineOptions options =
             MeshingOptions(this, fixedSites.empty() ? nullptr : &fixedSites);
           options.Metric = metric.Values.empty() ? nullptr : &metric;
+          options.FeatureAngle = SamplerFeatureAngle(sitesInput);
           result = av::RunMeshingPipeline(mesh, embedding, sites, options);
         }))
   {
@@ -425,6 +444,7 @@ void vtkAnisoRestrictedDelaunay::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ValidDual: " << (this->ValidDual ? "On" : "Off") << "\n";
   os << indent << "ImproveMesh: " << (this->ImproveMesh ? "On" : "Off") << "\n";
   os << indent << "ImproveBoundary: " << (this->ImproveBoundary ? "On" : "Off") << "\n";
+  os << indent << "KeepFeatureSites: " << (this->KeepFeatureSites ? "On" : "Off") << "\n";
   os << indent << "MaxRepairRounds: " << this->MaxRepairRounds << "\n";
   os << indent << "ImprovementRounds: " << this->ImprovementRounds << "\n";
   os << indent << "OdtIterations: " << this->OdtIterations << "\n";

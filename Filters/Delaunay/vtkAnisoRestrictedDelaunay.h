@@ -121,6 +121,20 @@ public:
   ///@}
 
   ///@{
+  /// Surfaces: the ODT steps of the improvement rounds keep the corner and feature-line sites
+  /// ("FeatureKind" != 0) where the sampler put them, on the creases (default off: they move
+  /// like the others, and leave the creases). On fandisk it halves the distance to the input
+  /// at the creases' corners; on other CAD parts it makes the dual less valid where the
+  /// embedding is poor (Filters/Delaunay/README.md, "Feature sites on surfaces"). In volumes
+  /// those sites stay anyway. Either way, on surfaces the edges between sites consecutive along
+  /// a feature line are then flipped into the mesh (the feature lines at the sampler's
+  /// "FeatureAngle", from the sites' field data; sites without it: none).
+  vtkSetMacro(KeepFeatureSites, bool);
+  vtkGetMacro(KeepFeatureSites, bool);
+  vtkBooleanMacro(KeepFeatureSites, bool);
+  ///@}
+
+  ///@{
   /// Insertion rounds at most (default 10, range 0..1000); each recomputes the diagram.
   vtkSetClampMacro(MaxRepairRounds, int, 0, 1000);
   vtkGetMacro(MaxRepairRounds, int);
@@ -142,6 +156,7 @@ protected:
   bool RepairInverted = true;
   bool ImproveMesh = true;
   bool ImproveBoundary = true;
+  bool KeepFeatureSites = false;
   bool RepairNonManifold = true;
   bool ValidDual = true;
   int MaxRepairRounds = 10;

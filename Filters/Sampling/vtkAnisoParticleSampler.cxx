@@ -216,6 +216,10 @@ int vtkAnisoParticleSampler::RequestData(vtkInformation* request,
 
   FillSites(output, mesh.AmbientDim, result, haveMetric ? &siteMetric : nullptr);
   AddSummary(output->GetFieldData(), result);
+  // The angle its feature lines were found with: the Delaunay filter finds the same lines.
+  vtkAnisoFilterUtilities::AddFieldValue(output->GetFieldData(),
+    "FeatureAngle",
+    this->PreserveSharpFeatures ? this->FeatureAngle : 180.0);
   FillEnergyTable(energyTable, result);
   this->UpdateProgress(1.0);
   return 1;

@@ -7,13 +7,18 @@ Gaussian2D (paper §6.2) on a 25 x 25 grid: embedding in 3D, 200 sites, then
 - the edges output: boundary edges have total length 8 (the square's perimeter);
 - the dual mesh uses every site, has no inverted triangle and its quality is good;
 - ShrinkFactor scales areas by its square.
+Then Cube1 tets (feature sites kept, sliver push, boundary improvement) and a box surface
+(feature sites on the creases with KeepFeatureSites, closer to the box).
 """
 import math
 import sys
 
 from vtkmodules.vtkCommonCore import vtkCommand
 from vtkmodules.vtkCommonDataModel import vtkPolyData, vtkUnstructuredGrid
-from anisovoronoi import (vtkAnisoAnalyticMetricSource, vtkAnisoEmbedding,
+from vtkmodules.vtkFiltersCore import vtkCleanPolyData, vtkTriangleFilter
+from vtkmodules.vtkFiltersModeling import vtkLinearSubdivisionFilter
+from vtkmodules.vtkFiltersSources import vtkCubeSource
+from anisovoronoi import (vtkAnisoAnalyticMetricSource, vtkAnisoCurvatureMetric, vtkAnisoEmbedding,
                           vtkAnisoParticleSampler, vtkAnisoRestrictedVoronoi,
                           vtkAnisoRestrictedDelaunay, vtkAnisoMeshQuality)
 
@@ -242,6 +247,52 @@ for i in moved_boundary:
 cube_rdt.SetImproveMesh(False)  # the final mesh improvement moves sites too
 cube_rdt.Update()
 assert field(cube_rdt.GetOutput(), "NumMovedSites") == 0
+
+# A surface with creases (a 2 x 1 x 1 box, its squares cut into 512 triangles each): the
+# sampler puts sites on the 12 edges and the 8 corners and records its FeatureAngle. By default
+# the ODT steps move them off the creases; with KeepFeatureSites they stay where the sampler put
+# them, the edges along the creases are flipped into the mesh and the mesh is closer to the box.
+box = vtkCubeSource()
+box.SetXLength(2.0)
+box_tris = vtkTriangleFilter()
+box_tris.SetInputConnection(box.GetOutputPort())
+box_clean = vtkCleanPolyData()
+box_clean.SetInputConnection(box_tris.GetOutputPort())
+box_fine = vtkLinearSubdivisionFilter()
+box_fine.SetInputConnection(box_clean.GetOutputPort())
+box_fine.SetNumberOfSubdivisions(4)
+box_metric = vtkAnisoCurvatureMetric()
+box_metric.SetInputConnection(box_fine.GetOutputPort())
+box_embedding = vtkAnisoEmbedding()
+box_embedding.SetInputConnection(box_metric.GetOutputPort())
+box_sites = vtkAnisoParticleSampler()
+box_sites.SetInputConnection(box_embedding.GetOutputPort())
+box_sites.SetNumberOfSites(600)
+box_sites.Update()
+box_sampled = box_sites.GetOutput()
+assert field(box_sampled, "FeatureAngle") == 30.0 and field(box_sampled, "NumCornerSites") == 8
+box_kind = box_sampled.GetPointData().GetArray("FeatureKind")
+box_features = [i for i in range(box_sampled.GetNumberOfPoints()) if box_kind.GetValue(i) != 0]
+box_results = {}
+for keep in (False, True):
+    box_rdt = vtkAnisoRestrictedDelaunay()
+    box_rdt.SetInputConnection(0, box_embedding.GetOutputPort())
+    box_rdt.SetInputConnection(1, box_sites.GetOutputPort())
+    box_rdt.SetKeepFeatureSites(keep)
+    box_quality = vtkAnisoMeshQuality()
+    box_quality.SetInputConnection(box_rdt.GetOutputPort())
+    box_quality.SetReferenceSurfaceConnection(box_fine.GetOutputPort())
+    box_quality.Update()
+    out = box_quality.GetOutput()
+    moved = [i for i in box_features if out.GetPoint(i) != box_sampled.GetPoint(i)]
+    box_results[keep] = (len(moved), field(out, "hausdorff"), field(out, "NumFeatureEdgesRequired"))
+    assert field(out, "euler") == 2 and field(out, "flipped") == 0
+    assert field(out, "self_intersections") == 0 and field(out, "NumInverted") == 0
+print("box, feature sites moved / Hausdorff %% / crease pairs: default %s, kept %s" % (
+    box_results[False], box_results[True]))
+assert box_results[False][0] > 0 and box_results[True][0] == 0
+assert box_results[True][2] > len(box_features) / 2
+assert box_results[True][1] < 0.5 * box_results[False][1]
 
 # Bad input: no embedding array -> error event, empty output, no exception.
 errors = []

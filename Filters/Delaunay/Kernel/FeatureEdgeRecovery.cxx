@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "FeatureEdgeRecovery.h"
 
+#include "TriangleBvh.h"
+
 #include <Eigen/Dense>
 
 #include <algorithm>
@@ -202,12 +204,28 @@ FeatureEdgeRecoveryResult RecoverFeatureEdges(const SimplexMesh& mesh,
     const Eigen::Map<const Eigen::Vector3d> a(mesh.Point(e[0])), b(mesh.Point(e[1])), c(mesh.Point(e[2]));
     return Eigen::Vector3d((b - a).cross(c - a));
   };
-  // Whether triangle (p, q, o) is not degenerate and faces the input's way at o.
-  auto faces = [&](std::int32_t p, std::int32_t q, std::int32_t o)
+  const TriangleBvh bvh(mesh);
+  auto normal = [&](std::int32_t p, std::int32_t q, std::int32_t o)
+  { return Eigen::Vector3d((point(q) - point(p)).cross(point(o) - point(p))); };
+  // Whether triangle (p, q, o) is not degenerate, faces the input's way at o and the way of the
+  // two triangles it replaces (`before`: the sum of their unit normals; a site on a crease may
+  // hold an input triangle of either face, so o's alone can be misleading).
+  auto faces = [&](std::int32_t p, std::int32_t q, std::int32_t o, const Eigen::Vector3d& before)
   {
-    const Eigen::Vector3d n = (point(q) - point(p)).cross(point(o) - point(p));
+    const Eigen::Vector3d n = normal(p, q, o);
     const double scale = (point(q) - point(p)).squaredNorm() + (point(o) - point(p)).squaredNorm();
-    return n.norm() > 1e-9 * scale && n.dot(inputNormal(o)) > 0.0;
+    if (!(n.norm() > 1e-9 * scale && n.dot(inputNormal(o)) > 0.0 && n.dot(before) > 0.0))
+      return false;
+    // And the way of the input triangle nearest its centroid (a triangle between two sites on
+    // parallel creases lies on the narrow face between them, whose normal is neither's).
+    std::int32_t nearest = -1;
+    bvh.ClosestDistance2((point(p) + point(q) + point(o)) / 3.0, &nearest);
+    if (nearest < 0)
+      return false;
+    const std::int32_t* e = mesh.Cell(static_cast<std::size_t>(nearest));
+    const Eigen::Map<const Eigen::Vector3d> x(mesh.Point(e[0])), y(mesh.Point(e[1])),
+      z(mesh.Point(e[2]));
+    return n.dot((y - x).cross(z - x)) > 0.0;
   };
   auto eraseFrom = [](std::vector<std::int32_t>& list, std::int32_t t)
   { list.erase(std::remove(list.begin(), list.end(), t), list.end()); };
@@ -235,7 +253,9 @@ FeatureEdgeRecoveryResult RecoverFeatureEdges(const SimplexMesh& mesh,
       const int id = w[0] == d ? 0 : (w[1] == d ? 1 : (w[2] == d ? 2 : -1));
       if (id < 0 || w[(id + 1) % 3] != c || w[(id + 2) % 3] != b)
         continue;
-      if (!faces(b, a, c) || !faces(a, b, d)) // new (a, c, b) = (b, a, c) and (a, b, d)
+      const Eigen::Vector3d before =
+        normal(a, c, d).normalized() + normal(w[0], w[1], w[2]).normalized();
+      if (!faces(b, a, c, before) || !faces(a, b, d, before)) // new (a, c, b) and (a, b, d)
         continue;
       v[0] = a, v[1] = c, v[2] = b;
       w[0] = a, w[1] = b, w[2] = d;

@@ -45,7 +45,8 @@ struct FeatureEdgeRecoveryResult
  * `required` site pairs become edges: where a pair (a, b) are the two opposite vertices of the
  * two triangles of an edge (c, d), the edge is replaced by (a, b). A flip is made only when
  * both new triangles face the same way as the input surface at their third vertex (the input
- * triangle holding that site), are not degenerate, the edge (c, d) is manifold and not required
+ * triangle holding that site), as the two triangles they replace and as the input triangle
+ * nearest their centroid, are not degenerate, the edge (c, d) is manifold and not required
  * itself, and (a, b) is not an edge already. Repeats over the missing pairs while flips happen
  * (at most `maxPasses` passes). Cell orientation is kept; the caller recounts the per-cell data
  * (RecountFinalDual). Surfaces only (SimplexDim 2 in 3D); other meshes are left unchanged.

@@ -15,6 +15,7 @@
 #include "ValidDualMesh.h"
 
 #include <algorithm>
+#include <array>
 #include <string>
 #include <utility>
 
@@ -54,6 +55,54 @@ void MarkMoved(const SiteSet& before, const SiteSet& after, std::vector<std::uin
   }
 }
 
+/// Unflags (sets to 0) the sites of the cells of `rdt` that are inverted or that have a facet
+/// shared by more than two cells: around those, the fixed sites do not make a valid dual.
+void ReleaseSitesOfBadCells(const RestrictedDelaunayMesh& rdt, std::vector<std::uint8_t>& fixed)
+{
+  const int nv = rdt.SimplexDim + 1;
+  const std::size_t nc = rdt.NumCells();
+  std::vector<std::uint8_t> bad(nc, 0);
+  for (std::size_t c = 0; c < nc && c < rdt.Inverted.size(); ++c)
+    bad[c] = rdt.Inverted[c];
+  // Facets (sorted vertex ids) with their cell, sorted: runs of more than two are non-manifold.
+  std::vector<std::pair<std::array<std::int32_t, 3>, std::int32_t>> facets;
+  facets.reserve(nc * static_cast<std::size_t>(nv));
+  for (std::size_t c = 0; c < nc; ++c)
+  {
+    const std::int32_t* v = rdt.Cells.data() + c * static_cast<std::size_t>(nv);
+    for (int skip = 0; skip < nv; ++skip)
+    {
+      std::array<std::int32_t, 3> f = { -1, -1, -1 };
+      int k = 0;
+      for (int i = 0; i < nv; ++i)
+        if (i != skip)
+          f[static_cast<std::size_t>(k++)] = v[i];
+      std::sort(f.begin(), f.begin() + k);
+      facets.emplace_back(f, static_cast<std::int32_t>(c));
+    }
+  }
+  std::sort(facets.begin(), facets.end());
+  for (std::size_t i = 0; i < facets.size();)
+  {
+    std::size_t j = i + 1;
+    while (j < facets.size() && facets[j].first == facets[i].first)
+      ++j;
+    if (j - i > 2)
+      for (std::size_t q = i; q < j; ++q)
+        bad[static_cast<std::size_t>(facets[q].second)] = 1;
+    i = j;
+  }
+  for (std::size_t c = 0; c < nc; ++c)
+    if (bad[c])
+      for (int i = 0; i < nv; ++i)
+      {
+        const std::int32_t s =
+          rdt.Cells[c * static_cast<std::size_t>(nv) + static_cast<std::size_t>(i)];
+        if (s >= 0 && static_cast<std::size_t>(s) < fixed.size())
+          fixed[static_cast<std::size_t>(s)] = 0;
+      }
+}
+
 /// The improvement rounds: ImproveSites, then the RVD and its dual of the moved sites, until
 /// ImproveRounds rounds are done or one moves no site. Updates `sites`, `rvd`, `rdt` and the
 /// round counts of `result`; false when the caller aborted.
@@ -71,10 +120,15 @@ bool ImproveSiteRounds(const SimplexMesh& mesh,
   improve.PerturbSlivers = options.PerturbSlivers;
   improve.ElementAdjacency = voronoi.ElementAdjacency;
   improve.Sliver.FixedSites = options.FixedSites;
-  if (options.OdtKeepsFixedSites)
-    improve.Odt.FixedSites = options.FixedSites;
+  std::vector<std::uint8_t> odtFixed;
   for (int round = 0; round < options.ImproveRounds; ++round)
   {
+    if (options.OdtKeepsFixedSites && options.FixedSites)
+    {
+      odtFixed = *options.FixedSites;
+      ReleaseSitesOfBadCells(rdt, odtFixed);
+      improve.Odt.FixedSites = &odtFixed;
+    }
     SiteImprovementResult im = ImproveSites(mesh, embedding, sites, rvd, rdt, improve);
     if (round == 0)
     {

@@ -285,6 +285,39 @@ std::vector<double> NormalsWith(const SimplexMesh& surface,
     });
   return normals;
 }
+/// Triangles of `surface` whose normal does not agree with that of the reference triangle
+/// closest to their centroid. Per-vertex closest normals (CountFlippedTriangles with
+/// NormalsWith) are ambiguous on a crease: every triangle sharing the crease edge is at
+/// distance 0 from a vertex on it, so a triangle lying exactly in one face is flagged when its
+/// crease vertices pick the other face's normal (turbine with the crease sites kept: 2 such
+/// triangles, normal = the face's). This test has the opposite ambiguity: the centroid of a
+/// triangle that cuts across a crease may project onto the face nearly perpendicular to it
+/// (turbine, fandisk: normal products -0.05 and -0.01).
+std::size_t FlippedAtCentroids(const SimplexMesh& surface,
+  const SimplexMesh& reference,
+  const TriangleBvh& bvh,
+  std::vector<std::uint8_t>& flags)
+{
+  flags.assign(surface.NumCells(), 0);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, surface.NumCells(), 512),
+    [&](const tbb::blocked_range<std::size_t>& range)
+    {
+      for (std::size_t t = range.begin(); t != range.end(); ++t)
+      {
+        const std::int32_t* v = surface.Cell(t);
+        const Vec3 a = P(surface, v[0]), b = P(surface, v[1]), c = P(surface, v[2]);
+        std::int32_t closest = -1;
+        bvh.ClosestDistance2((a + b + c) / 3.0, &closest);
+        if (closest < 0)
+          continue;
+        const std::int32_t* w = reference.Cell(static_cast<std::size_t>(closest));
+        const Vec3 o = P(reference, w[0]);
+        const Vec3 ref = (P(reference, w[1]) - o).cross(P(reference, w[2]) - o);
+        flags[t] = (b - a).cross(c - a).dot(ref) > 0.0 ? 0 : 1;
+      }
+    });
+  return static_cast<std::size_t>(std::count(flags.begin(), flags.end(), std::uint8_t(1)));
+}
 } // namespace
 
 HausdorffResult SampledHausdorffDistance(const SimplexMesh& surface,
@@ -413,8 +446,15 @@ SurfaceFidelityResult EvaluateSurfaceFidelity(const SimplexMesh& surface,
   CheckSamplesPerEdge(samplesPerEdge);
   const TriangleBvh toReference(*reference);
   r.Hausdorff = HausdorffWith(surface, *reference, toReference, toSurface, samplesPerEdge);
-  r.Flipped =
-    CountFlippedTriangles(surface, NormalsWith(surface, *reference, toReference), &r.FlippedFlags);
+  // Flipped by both tests: each alone flags unflipped triangles at creases (see
+  // FlippedAtCentroids), a triangle that faces against the surface fails both.
+  std::vector<std::uint8_t> byVertices;
+  CountFlippedTriangles(surface, NormalsWith(surface, *reference, toReference), &byVertices);
+  FlippedAtCentroids(surface, *reference, toReference, r.FlippedFlags);
+  for (std::size_t t = 0; t < r.FlippedFlags.size(); ++t)
+    r.FlippedFlags[t] = r.FlippedFlags[t] && byVertices[t] ? 1 : 0;
+  r.Flipped = static_cast<std::size_t>(
+    std::count(r.FlippedFlags.begin(), r.FlippedFlags.end(), std::uint8_t(1)));
   return r;
 }
 

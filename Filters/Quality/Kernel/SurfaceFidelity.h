@@ -96,7 +96,11 @@ struct SurfaceFidelityResult
 /**
  * Topology and self-intersections of `surface`; with a `reference` (may be null), also the
  * reference's topology, the sampled Hausdorff distance (`samplesPerEdge`) and the triangles
- * flipped against the reference's closest-triangle normals (ClosestTriangleNormals).
+ * flipped: whose normal disagrees both with the reference's closest-triangle normals at its
+ * vertices (CountFlippedTriangles with ClosestTriangleNormals) and with the normal of the
+ * reference triangle closest to its centroid. Each test alone flags unflipped triangles at
+ * creases (at a vertex on a crease the closest triangle may be either face's; the centroid of
+ * a triangle cutting across a crease may project onto the face nearly perpendicular to it).
  * Throws InputError for inputs that are not non-empty triangle surfaces in 3D.
  */
 SurfaceFidelityResult EvaluateSurfaceFidelity(const SimplexMesh& surface,
