@@ -163,6 +163,32 @@ int TestSurfaceFidelity(int, char*[])
     AV_CHECK(!alone.HasReference && alone.Flipped == 0 && alone.Topology.Euler == 2);
   }
 
+  // A sharp crease (a sheet folded back over itself, normals 150 degrees apart): a triangle
+  // lying in the lower face, correctly oriented, whose two vertices on the crease are nearest
+  // the upper face. Its per-vertex reference normals call it flipped, the one at its centroid
+  // does not: it is not counted. Reversed inside the lower face, it is.
+  {
+    const double c30 = std::cos(M_PI / 6.0), s30 = 0.5;
+    av::SimplexMesh fold;
+    fold.AmbientDim = 3;
+    fold.SimplexDim = 2;
+    fold.Points = { 0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 1, c30, s30, 0, c30, s30 };
+    fold.Cells = { 0, 2, 1, 0, 3, 2, 0, 1, 4, 0, 4, 5 }; // lower normals -z, upper (0, -1/2, c30)
+    const double e = 1e-6;
+    av::SimplexMesh tri;
+    tri.AmbientDim = 3;
+    tri.SimplexDim = 2;
+    tri.Points = { 0.2, c30 * e, s30 * e, 0.5, 0.6, 0.0, 0.8, c30 * e, s30 * e };
+    tri.Cells = { 0, 1, 2 }; // normal -z
+    AV_CHECK(av::CountFlippedTriangles(tri, av::ClosestTriangleNormals(tri, fold)) == 1);
+    AV_CHECK(av::EvaluateSurfaceFidelity(tri, &fold).Flipped == 0);
+    av::SimplexMesh inside = tri;
+    inside.Points = { 0.2, 0.2, 0.0, 0.5, 0.6, 0.0, 0.8, 0.2, 0.0 };
+    AV_CHECK(av::EvaluateSurfaceFidelity(inside, &fold).Flipped == 0);
+    std::swap(inside.Cells[1], inside.Cells[2]);
+    AV_CHECK(av::EvaluateSurfaceFidelity(inside, &fold).Flipped == 1);
+  }
+
   // Topology: closed torus (chi 0), half torus (a tube: chi 0, 2 loops), a quarter patch (a
   // disk: chi 1, 1 loop), a cyclide (chi 0), a sphere (chi 2).
   {
