@@ -10,7 +10,9 @@
 
 #include <Eigen/Dense>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <memory>
 
 namespace av
@@ -125,6 +127,92 @@ SimplexMesh BoundaryTriangles(const SimplexMesh& mesh, const std::vector<std::in
   return surface;
 }
 
+/// The feature lines of a surface as segments, grouped into lines that end at corners and
+/// junctions, for sliding feature-line vertices along them.
+class FeatureLineProjector
+{
+public:
+  FeatureLineProjector(const SimplexMesh& mesh, const SharpFeatures& f)
+  {
+    const std::size_t ne = f.NumEdges();
+    std::vector<std::int32_t> parent(ne);
+    for (std::size_t e = 0; e < ne; ++e)
+      parent[e] = static_cast<std::int32_t>(e);
+    auto find = [&](std::int32_t e)
+    {
+      while (parent[e] != e)
+        e = parent[e] = parent[parent[e]];
+      return e;
+    };
+    // Two edges meeting at a point of exactly two feature edges (not a corner) are one line.
+    for (std::size_t p = 0; p + 1 < f.PointEdgeOffsets.size(); ++p)
+      if (f.PointEdgeOffsets[p + 1] - f.PointEdgeOffsets[p] == 2 && !f.IsCorner[p])
+      {
+        const std::int32_t a = find(f.PointEdges[f.PointEdgeOffsets[p]]);
+        const std::int32_t b = find(f.PointEdges[f.PointEdgeOffsets[p] + 1]);
+        parent[a] = b;
+      }
+    Lines.resize(ne);
+    for (std::size_t e = 0; e < ne; ++e)
+    {
+      Lines[static_cast<std::size_t>(find(static_cast<std::int32_t>(e)))].push_back(
+        static_cast<std::int32_t>(e));
+      A.emplace_back(mesh.Point(f.Edges[2 * e]));
+      B.emplace_back(mesh.Point(f.Edges[2 * e + 1]));
+      LineOf.push_back(find(static_cast<std::int32_t>(e)));
+    }
+  }
+
+  /// The line holding x (within `tolerance`), or -1.
+  std::int32_t LineAt(const Eigen::Vector3d& x, double tolerance) const
+  {
+    std::int32_t best = -1;
+    double bestDistance = tolerance;
+    for (std::size_t e = 0; e < A.size(); ++e)
+    {
+      const double d = (Closest(e, x) - x).norm();
+      if (d <= bestDistance)
+      {
+        bestDistance = d;
+        best = LineOf[e];
+      }
+    }
+    return best;
+  }
+
+  /// The closest point of line `line` to x and the unit tangent there.
+  void Project(std::int32_t line, const Eigen::Vector3d& x, double* placed, double* tangent) const
+  {
+    double best = std::numeric_limits<double>::infinity();
+    for (std::int32_t e : Lines[static_cast<std::size_t>(line)])
+    {
+      const Eigen::Vector3d c = Closest(static_cast<std::size_t>(e), x);
+      const double d = (c - x).squaredNorm();
+      if (d < best)
+      {
+        best = d;
+        const Eigen::Vector3d t = (B[e] - A[e]).normalized();
+        for (int k = 0; k < 3; ++k)
+        {
+          placed[k] = c[k];
+          tangent[k] = t[k];
+        }
+      }
+    }
+  }
+
+private:
+  Eigen::Vector3d Closest(std::size_t e, const Eigen::Vector3d& x) const
+  {
+    const Eigen::Vector3d d = B[e] - A[e];
+    const double t = std::clamp((x - A[e]).dot(d) / d.squaredNorm(), 0.0, 1.0);
+    return A[e] + t * d;
+  }
+
+  std::vector<Eigen::Vector3d> A, B;
+  std::vector<std::int32_t> LineOf;              // per segment
+  std::vector<std::vector<std::int32_t>> Lines;  // per line id (a root segment): its segments
+};
 } // namespace
 
 MeshImprovementResult ImproveFinalMesh(const SimplexMesh& mesh,
@@ -134,7 +222,8 @@ MeshImprovementResult ImproveFinalMesh(const SimplexMesh& mesh,
   const std::vector<std::uint8_t>* fixedSites,
   const MeshImprovementOptions& options,
   DelaunayRepairResult& repaired,
-  std::vector<std::uint8_t>& moved)
+  std::vector<std::uint8_t>& moved,
+  const SharpFeatures* features)
 {
   RestrictedDelaunayMesh& rdt = repaired.Delaunay;
   SiteSet& sites = repaired.Sites;
@@ -221,6 +310,8 @@ MeshImprovementResult ImproveFinalMesh(const SimplexMesh& mesh,
       };
     }
   }
+  std::unique_ptr<FeatureLineProjector> lines; // outlive ImproveMesh: o's callbacks use them
+  std::vector<std::int32_t> lineOf;
   if (dual.SimplexDim == 2)
   {
     o.PlacePoint = [&](
@@ -239,6 +330,35 @@ MeshImprovementResult ImproveFinalMesh(const SimplexMesh& mesh,
       MetricAt(mesh, metric, cell, lambda, m);
       return true;
     };
+    // Feature-line sites on a line of the input slide along it (between its corners).
+    if (surface && features && features->NumEdges() > 0)
+    {
+      lines = std::make_unique<FeatureLineProjector>(mesh, *features);
+      double diagonal2 = 0.0;
+      {
+        Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
+        Eigen::Vector3d hi = -lo;
+        for (std::size_t p = 0; p < mesh.NumPoints(); ++p)
+        {
+          const Eigen::Map<const Eigen::Vector3d> q(mesh.Point(p));
+          lo = lo.cwiseMin(q);
+          hi = hi.cwiseMax(q);
+        }
+        diagonal2 = (hi - lo).squaredNorm();
+      }
+      lineOf.assign(sites.NumSites(), -1);
+      for (std::size_t s = 0; s < fixed.size() && s < sites.NumSites(); ++s)
+        if (fixed[s] == FeatureLinePoint)
+          lineOf[s] = lines->LineAt(
+            Eigen::Map<const Eigen::Vector3d>(dual.Points.data() + 3 * s), 1e-9 * std::sqrt(diagonal2));
+      o.ProjectToFeatureLine = [&](std::int32_t v, const double* x, double* placed, double* tangent)
+      {
+        if (v < 0 || static_cast<std::size_t>(v) >= lineOf.size() || lineOf[v] < 0)
+          return false;
+        lines->Project(lineOf[v], Eigen::Map<const Eigen::Vector3d>(x), placed, tangent);
+        return true;
+      };
+    }
     // A split's vertex becomes an inserted site (after the repair's, before nothing else).
     o.AddPoint = [&](std::int32_t v, std::int32_t near, const double* x)
     {

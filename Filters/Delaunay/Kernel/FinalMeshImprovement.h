@@ -6,6 +6,7 @@
 
 #include "MeshImprovement.h"
 #include "RestrictedDelaunayRefinement.h"
+#include "SharpFeatures.h"
 
 #include <cstdint>
 #include <vector>
@@ -22,7 +23,9 @@ namespace av
  * Sites flagged in `fixedSites` (nullptr: none; the input sites only) never move. The dual's
  * cells are replaced: CellElement becomes the element of each cell's first site, Inverted and
  * NumInverted are recounted from the signed input-space measure (flat: as in
- * ComputeRestrictedDelaunay). Only volume tets and flat triangles are improved.
+ * ComputeRestrictedDelaunay). On a surface with `features` (DetectSharpFeatures of `mesh`), the
+ * sites flagged FeatureLinePoint that lie on one of its lines slide along that line (between
+ * the corners and junctions that end it) in the smoothing.
  */
 MeshImprovementResult ImproveFinalMesh(const SimplexMesh& mesh,
   const Embedding& embedding,
@@ -31,7 +34,8 @@ MeshImprovementResult ImproveFinalMesh(const SimplexMesh& mesh,
   const std::vector<std::uint8_t>* fixedSites,
   const MeshImprovementOptions& options,
   DelaunayRepairResult& repaired,
-  std::vector<std::uint8_t>& moved);
+  std::vector<std::uint8_t>& moved,
+  const SharpFeatures* features = nullptr);
 
 } // namespace av
 

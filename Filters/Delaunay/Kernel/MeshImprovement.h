@@ -94,6 +94,13 @@ struct MeshImprovementOptions
   std::function<
     bool(std::int32_t near, const double* x, double* placed, double* normal, double* metric)>
     PlacePoint;
+  /// Surfaces: puts a trial position x (3 values) of a FeatureLinePoint vertex v on the input's
+  /// feature line it lies on (the same line, near its current position), writing the point and
+  /// the line's unit tangent there; false when there is none. With it those vertices slide along
+  /// their lines in the smoothing (flips, collapses and splits still treat them as fixed, and
+  /// never remove an edge between two fixed vertices). Empty: they stay.
+  std::function<bool(std::int32_t v, const double* x, double* placed, double* tangent)>
+    ProjectToFeatureLine;
   /// Triangles: called when a new vertex is committed (its id is the point count before it),
   /// with a known vertex near it (as PlacePoint's) and its position; false refuses the operation.
   std::function<bool(std::int32_t id, std::int32_t near, const double* x)> AddPoint;

@@ -210,9 +210,10 @@ MeshingPipelineResult RunMeshingPipeline(const SimplexMesh& mesh,
       options.Metric ? &siteMetric : nullptr, result.Repaired.Delaunay);
     result.ValidDualSeconds = watch.Seconds();
   }
+  SharpFeatures features;
   if (options.FeatureAngle < 180.0 && mesh.SimplexDim == 2 && mesh.AmbientDim == 3)
   {
-    const SharpFeatures features = DetectSharpFeatures(mesh, options.FeatureAngle);
+    features = DetectSharpFeatures(mesh, options.FeatureAngle);
     DelaunayRepairResult& repaired = result.Repaired;
     result.FeatureEdges = RecoverFeatureEdges(mesh,
       repaired.Sites,
@@ -226,7 +227,8 @@ MeshingPipelineResult RunMeshingPipeline(const SimplexMesh& mesh,
   {
     watch.Restart();
     result.Improvement = ImproveFinalMesh(mesh, embedding, adjacency, *options.Metric,
-      options.FixedSites, options.Improvement, result.Repaired, result.Moved);
+      options.FixedSites, options.Improvement, result.Repaired, result.Moved,
+      features.NumEdges() > 0 ? &features : nullptr);
     result.NumMovedSites =
       static_cast<std::size_t>(std::count(result.Moved.begin(), result.Moved.end(), 1));
     result.MeshImprovementSeconds = watch.Seconds();

@@ -59,6 +59,22 @@ TriangleMeshImprover::TriangleMeshImprover(SimplexMesh& mesh,
         N[i] = n.normalized();
     }
   CosFlipDihedral = std::cos(Options.SurfaceFlipMaxDihedral * Pi / 180.0);
+  Slides.assign(np, 0);
+  if (Surface && fixed && Options.ProjectToFeatureLine && Options.PlacePoint)
+  {
+    for (std::size_t i = 0; i < np && i < fixed->size(); ++i)
+      Slides[i] = (*fixed)[i] == FeatureLinePoint ? 1 : 0;
+    // Steps along the line only: the rest of the ascent would be undone by the projection.
+    Smoother.SetDirectionFilter(
+      [this](std::int32_t v, Eigen::Vector3d& g)
+      {
+        double placed[3], tangent[3];
+        if (!Slides[v] || !Options.ProjectToFeatureLine(v, P[v].data(), placed, tangent))
+          return;
+        const Eigen::Map<const Eigen::Vector3d> t(tangent);
+        g = t * t.dot(g);
+      });
+  }
   MarkBoundaryAndNonManifold();
 }
 
@@ -82,7 +98,10 @@ void TriangleMeshImprover::MarkBoundaryAndNonManifold()
     while (j < edges.size() && edges[j] == edges[i])
       ++j;
     if (j - i != 2)
+    {
       Fixed[edges[i].first] = Fixed[edges[i].second] = 1;
+      Slides[edges[i].first] = Slides[edges[i].second] = 0;
+    }
     i = j;
   }
 }
@@ -112,9 +131,13 @@ bool TriangleMeshImprover::Place(std::int32_t v, std::int32_t near, const Eigen:
     return true;
   }
   double placed[3], normal[3], metric[6];
-  if (!Options.PlacePoint(near, x.data(), placed, normal, metric))
+  Eigen::Vector3d onLine = x;
+  double tangent[3];
+  if (Slides[v] && !Options.ProjectToFeatureLine(v, x.data(), onLine.data(), tangent))
     return false;
-  P[v] = Eigen::Map<const Eigen::Vector3d>(placed);
+  if (!Options.PlacePoint(near, onLine.data(), placed, normal, metric))
+    return false;
+  P[v] = Slides[v] ? onLine : Eigen::Vector3d(Eigen::Map<const Eigen::Vector3d>(placed));
   if (Surface)
   {
     N[v] = Eigen::Map<const Eigen::Vector3d>(normal);
@@ -191,6 +214,7 @@ std::int32_t TriangleMeshImprover::AddVertex(const Eigen::Vector3d& p,
   std::int32_t hint)
 {
   Hint.push_back(hint);
+  Slides.push_back(0);
   P.push_back(p);
   S.push_back(s);
   N.push_back(n);
@@ -235,6 +259,7 @@ void TriangleMeshImprover::Rollback()
   N.resize(Undo.NumPoints);
   Fixed.resize(Undo.NumPoints);
   Hint.resize(Undo.NumPoints);
+  Slides.resize(Undo.NumPoints);
   Star.resize(Undo.NumPoints);
   Moved.resize(Undo.NumPoints);
   Flips = Undo.Flips;
@@ -344,10 +369,15 @@ bool TriangleMeshImprover::TryFlip(std::int32_t tri, int edge)
 // onto it); inside a compound operation the journal's Commit asks AcceptMove and marks moves.
 bool TriangleMeshImprover::TrySmooth(std::int32_t v)
 {
-  if (!Work.CanMove(v) || (Surface && !Options.PlacePoint))
+  const bool slides = Slides[v] && !Star[v].empty();
+  if ((!Work.CanMove(v) && !slides) || (Surface && !Options.PlacePoint))
     return false;
   SaveVertex(v);
-  if (!Smoother.TrySmooth(v, Undo.Active))
+  // A sliding vertex is movable for the smoother only (Fixed keeps it out of the collapses).
+  Fixed[v] = slides ? 0 : Fixed[v];
+  const bool smoothed = Smoother.TrySmooth(v, Undo.Active);
+  Fixed[v] = slides ? 1 : Fixed[v];
+  if (!smoothed)
     return false;
   ++Smoothed;
   return true;

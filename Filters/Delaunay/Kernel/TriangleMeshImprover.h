@@ -21,7 +21,8 @@ class TriangleMeshImprover
 {
 public:
   /// `sqrtMetrics`: one symmetric square root per point (2D: the 2x2 one padded with zeros);
-  /// `fixed`: per point, nonzero = never moves.
+  /// `fixed`: per point, nonzero = never moves (FeatureLinePoint: slides along its line on a
+  /// surface when Options.ProjectToFeatureLine is set).
   TriangleMeshImprover(SimplexMesh& mesh,
     std::vector<Eigen::Matrix3d> sqrtMetrics,
     const std::vector<std::uint8_t>* fixed,
@@ -96,6 +97,9 @@ private:
   std::vector<char>& Fixed;
   std::vector<std::uint8_t>& Moved;
   std::vector<std::int32_t> Hint; // a vertex the caller knows, near each one (PlacePoint's near)
+  /// Feature-line vertices that slide along their line (ProjectToFeatureLine); still Fixed for
+  /// flips, collapses and splits.
+  std::vector<char> Slides;
   VertexStarSmoother<2> Smoother;
   Journal Undo;
   double CosFlipDihedral = 0.0;

@@ -363,10 +363,106 @@ void TestSphere()
             << std::endl;
   AV_CHECK_MSG(!CheckSphereRun(w, wr).Ok, "the checks miss a worsening run");
 }
+// The roof z = 1 - |y| (a 90-degree ridge along y = 0): the closest point of the side of x,
+// its normal and the isotropic metric of that plane.
+bool PlaceOnRoof(std::int32_t, const double* x, double* placed, double* normal, double* m)
+{
+  const double side = x[1] >= 0.0 ? 1.0 : -1.0;
+  const Eigen::Vector3d n = Eigen::Vector3d(0.0, side, 1.0).normalized();
+  const Eigen::Vector3d p = Eigen::Map<const Eigen::Vector3d>(x);
+  const Eigen::Vector3d q = p - n * (p - Eigen::Vector3d(0.0, 0.0, 1.0)).dot(n);
+  for (int d = 0; d < 3; ++d)
+  {
+    placed[d] = q[d];
+    normal[d] = n[d];
+  }
+  const double packed[6] = { 1, 1, 1, 0, 0, 0 };
+  std::copy(packed, packed + 6, m);
+  return true;
+}
+
+// A ridge vertex placed badly along the ridge (x = 0.3 between 0 and 2): with
+// ProjectToFeatureLine it slides along the ridge, staying exactly on it, the worst angle rises
+// and every ridge edge stays; without it, it stays where it is.
+void TestCreaseSlide()
+{
+  const double ridge[5] = { 0.0, 0.3, 2.0, 3.0, 4.0 };
+  av::SimplexMesh m;
+  m.AmbientDim = 3;
+  m.SimplexDim = 2;
+  for (double x : ridge)
+    m.Points.insert(m.Points.end(), { x, 0.0, 1.0 }); // 0..4
+  for (int side = 0; side < 2; ++side)
+    for (int i = 0; i <= 4; ++i)
+      m.Points.insert(m.Points.end(), { double(i), side == 0 ? 1.0 : -1.0, 0.0 }); // 5..9, 10..14
+  // Zip the ridge with each row, by x; each triangle oriented with an upward normal.
+  auto add = [&](std::int32_t a, std::int32_t b, std::int32_t c)
+  {
+    const Eigen::Vector3d n = (At(m, b) - At(m, a)).cross(At(m, c) - At(m, a));
+    if (n.z() > 0.0)
+      m.Cells.insert(m.Cells.end(), { a, b, c });
+    else
+      m.Cells.insert(m.Cells.end(), { a, c, b });
+  };
+  for (int side = 0; side < 2; ++side)
+  {
+    const std::int32_t row = side == 0 ? 5 : 10;
+    int i = 0, j = 0;
+    while (i < 4 || j < 4)
+    {
+      const bool ridgeNext = j == 4 || (i < 4 && ridge[i + 1] <= double(j + 1));
+      if (ridgeNext)
+      {
+        add(i, i + 1, row + j);
+        ++i;
+      }
+      else
+      {
+        add(i, row + j, row + j + 1);
+        ++j;
+      }
+    }
+  }
+  std::vector<std::uint8_t> fixed(m.NumPoints(), 0);
+  fixed[0] = fixed[4] = 1; // the ridge's ends (corners)
+  fixed[1] = fixed[2] = fixed[3] = av::FeatureLinePoint;
+  av::MeshImprovementOptions o;
+  o.PlacePoint = PlaceOnRoof;
+  o.ProjectToFeatureLine = [](std::int32_t, const double* x, double* placed, double* tangent)
+  {
+    placed[0] = std::min(4.0, std::max(0.0, x[0]));
+    placed[1] = 0.0;
+    placed[2] = 1.0;
+    tangent[0] = 1.0;
+    tangent[1] = tangent[2] = 0.0;
+    return true;
+  };
+  av::SimplexMesh slid = m;
+  const av::MeshImprovementResult r = av::ImproveMesh(slid, IsotropicMetric(m.NumPoints()), &fixed, o);
+  std::cerr << "crease slide: worst " << r.WorstBefore << " -> " << r.WorstAfter << ", ridge x "
+            << slid.Point(1)[0] << " " << slid.Point(2)[0] << " " << slid.Point(3)[0] << std::endl;
+  AV_CHECK(slid.Point(1)[0] > 0.5 && slid.Point(1)[0] < slid.Point(2)[0]);
+  bool onRidge = true;
+  for (int v = 0; v < 5; ++v)
+    onRidge = onRidge && slid.Point(v)[1] == 0.0 && slid.Point(v)[2] == 1.0;
+  AV_CHECK(onRidge);
+  AV_CHECK(r.WorstAfter > r.WorstBefore + 5.0);
+  const auto edges = EdgeUse(slid);
+  for (std::int32_t v = 0; v < 4; ++v)
+    AV_CHECK_MSG(edges.count({ v, v + 1 }) && edges.at({ v, v + 1 }) == 2, "ridge edge " << v);
+  AV_CHECK(slid.Point(0)[0] == 0.0 && slid.Point(4)[0] == 4.0);
+
+  av::MeshImprovementOptions still = o;
+  still.ProjectToFeatureLine = nullptr;
+  av::SimplexMesh kept = m;
+  av::ImproveMesh(kept, IsotropicMetric(m.NumPoints()), &fixed, still);
+  AV_CHECK(std::equal(kept.Points.begin(), kept.Points.begin() + 15, m.Points.begin()));
+}
 } // namespace
 
 int TestTriangleMeshImprovement(int, char*[])
 {
+  TestCreaseSlide();
   TestCollapse();
   TestSplit();
   TestPlanarGrid();
