@@ -48,6 +48,10 @@ options:
   --no-features            no corner / feature-line sites (paper §4.1 sharp features)
   --feature-angle A        dihedral angle (degrees) above which an edge is a feature line
                            (default 30; 180 = none)
+  --feature-patches ARRAY  surfaces: the feature lines are the borders between the patches of
+                           this integer cell array (CAD faces, a .mesh file's triangle "Ref")
+                           instead of the edges sharper than --feature-angle
+  --feature-corners ARRAY  with --feature-patches: point array, nonzero points are corners
   --seed S                 random seed (default 1)
   --mu X                   regularization weight (default 100)
   --shrink F               shrink factor of the Voronoi cells (default 0.8; 1 = none)
@@ -184,6 +188,8 @@ void CheckOptions(const Options& o)
     Fail("--solver must be auto, direct or iterative", 2);
   if (!(o.FeatureAngle > 0 && o.FeatureAngle <= 180))
     Fail("--feature-angle must be in (0, 180]", 2);
+  if (!o.FeatureCorners.empty() && o.FeaturePatches.empty())
+    Fail("--feature-corners needs --feature-patches", 2);
   if (!(o.Shrink > 0 && o.Shrink <= 1))
     Fail("--shrink must be in (0, 1]", 2);
   if (!(o.AdaptLength >= 0 && o.AdaptLength <= 10))
@@ -278,6 +284,10 @@ Options ParseCommandLine(int argc, char* argv[])
       o.Features = false;
     else if (a == "--feature-angle")
       o.FeatureAngle = ParseDouble(a, next());
+    else if (a == "--feature-patches")
+      o.FeaturePatches = next();
+    else if (a == "--feature-corners")
+      o.FeatureCorners = next();
     else if (a == "--double-solve")
       o.DoubleSolve = true;
     else if (a == "--no-separate-bodies")

@@ -20,6 +20,9 @@ struct Options
   int MaxIterations = 500;          // embedding: run to convergence up to this many
   std::string Solver = "auto";      // embedding global step: auto | direct | iterative
   double FeatureAngle = 30.0;
+  std::string
+    FeaturePatches; // surfaces: cell array of patch ids whose borders are the feature lines
+  std::string FeatureCorners; // with it: point array, nonzero = corner
   double AdaptLength = 0.0; ///< --adapt / --adapt-length: L_bg of the adapted background (0 = off)
   bool Features = true;
   double Mu = 100.0, Shrink = 0.8, MinEigenvalue = 1e-3, MaxAnisotropy = 25.0;

@@ -395,6 +395,8 @@ void RunMeshingStages(const Options& o,
   s.Sampler->SetWarmupIterations(o.WarmupIterations);
   s.Sampler->SetPreserveSharpFeatures(o.Features);
   s.Sampler->SetFeatureAngle(o.FeatureAngle);
+  s.Sampler->SetFeaturePatchArray(o.FeaturePatches.empty() ? nullptr : o.FeaturePatches.c_str());
+  s.Sampler->SetFeatureCornerArray(o.FeatureCorners.empty() ? nullptr : o.FeatureCorners.c_str());
   s.Sampler->SetSeed(o.Seed);
   runner.Run(s.Sampler, SamplingStage(o));
 

@@ -3,7 +3,9 @@
 // site improvement rounds, repair) and builds the dual mesh with its point and field data.
 #include "vtkAnisoRestrictedDelaunay.h"
 
+#include "InputError.h"
 #include "MeshingPipeline.h"
+#include "SharpFeatures.h"
 #include "Stopwatch.h"
 #include "vtkAnisoDataConversion.h"
 #include "vtkAnisoFilterUtilities.h"
@@ -129,6 +131,47 @@ double SamplerFeatureAngle(vtkDataSet* sitesInput)
     return 180.0;
   const double a = angle->GetTuple1(0);
   return a > 0.0 && a < 180.0 ? a : 180.0;
+}
+
+/// The features the sampler placed its sites on ("FeatureEdges", "FeatureCorners" field data,
+/// point ids of the embedded mesh): `found` false when the sites have none. False with `error`
+/// when they do not fit `mesh`.
+bool SamplerFeatures(vtkDataSet* sitesInput,
+  const av::SimplexMesh& mesh,
+  av::SharpFeatures& out,
+  bool& found,
+  std::string& error)
+{
+  found = false;
+  vtkFieldData* fd = sitesInput->GetFieldData();
+  vtkDataArray* edges = fd ? fd->GetArray("FeatureEdges") : nullptr;
+  if (!edges)
+    return true;
+  vtkDataArray* corners = fd->GetArray("FeatureCorners");
+  if (edges->GetNumberOfComponents() != 2 || (corners && corners->GetNumberOfComponents() != 1))
+  {
+    error = "sites: FeatureEdges must have 2 components and FeatureCorners 1";
+    return false;
+  }
+  std::vector<std::int32_t> e(static_cast<std::size_t>(2 * edges->GetNumberOfTuples()));
+  for (vtkIdType i = 0; i < edges->GetNumberOfTuples(); ++i)
+    for (int k = 0; k < 2; ++k)
+      e[static_cast<std::size_t>(2 * i + k)] = static_cast<std::int32_t>(edges->GetComponent(i, k));
+  std::vector<std::int32_t> c;
+  for (vtkIdType i = 0; corners && i < corners->GetNumberOfTuples(); ++i)
+    c.push_back(static_cast<std::int32_t>(corners->GetTuple1(i)));
+  try
+  {
+    out = av::SharpFeaturesFromEdges(mesh, e, c);
+  }
+  catch (const av::InputError& x)
+  {
+    error = std::string("sites: their FeatureEdges do not fit the embedded mesh (") + x.what() +
+      "); connect the mesh the sites were sampled on";
+    return false;
+  }
+  found = true;
+  return true;
 }
 
 /// The sampler's corner and feature-line sites ("FeatureKind" != 0), which the improvement
@@ -355,6 +398,8 @@ int vtkAnisoRestrictedDelaunay::RequestData(vtkInformation* request,
   av::SiteSet sites;
   std::string error;
   std::vector<std::uint8_t> fixedSites;
+  av::SharpFeatures features;
+  bool haveFeatures = false;
   if (!vtkAnisoDataConversion::ToVoronoiInputs(input,
         this->GetInputArrayToProcess(0, inputVector),
         sitesInput,
@@ -362,7 +407,8 @@ int vtkAnisoRestrictedDelaunay::RequestData(vtkInformation* request,
         embedding,
         sites,
         error) ||
-    !FixedSitesFromFeatureKind(sitesInput, sites.NumSites(), fixedSites, error))
+    !FixedSitesFromFeatureKind(sitesInput, sites.NumSites(), fixedSites, error) ||
+    !SamplerFeatures(sitesInput, mesh, features, haveFeatures, error))
   {
     vtkErrorMacro(<< error);
     return 0;
@@ -403,6 +449,7 @@ int vtkAnisoRestrictedDelaunay::RequestData(vtkInformation* request,
             MeshingOptions(this, fixedSites.empty() ? nullptr : &fixedSites);
           options.Metric = metric.Values.empty() ? nullptr : &metric;
           options.FeatureAngle = SamplerFeatureAngle(sitesInput);
+          options.Features = haveFeatures ? &features : nullptr;
           result = av::RunMeshingPipeline(mesh, embedding, sites, options);
         }))
   {

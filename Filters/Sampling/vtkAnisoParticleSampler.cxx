@@ -3,18 +3,24 @@
 // polydata and the energy table.
 #include "vtkAnisoParticleSampler.h"
 
+#include "InputError.h"
 #include "MeshQuality.h" // InterpolateMetricAtSites
 #include "ParticleSampler.h"
+#include "SharpFeatures.h"
 #include "vtkAnisoDataConversion.h"
 #include "vtkAnisoFilterUtilities.h"
 
 #include <vtkCellArray.h>
+#include <vtkCellData.h>
+#include <vtkCellType.h>
 #include <vtkDataSet.h>
 #include <vtkDoubleArray.h>
 #include <vtkFieldData.h>
+#include <vtkIdTypeArray.h>
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
 #include <vtkIntArray.h>
+#include <vtkNew.h>
 #include <vtkObjectFactory.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
@@ -90,6 +96,75 @@ void FillSites(vtkPolyData* output, int ambientDim, const av::ParticleSamplerRes
   }
 }
 
+/// Given features (FeaturePatchArray, FeatureCornerArray) of `input` as converted to `mesh`
+/// (its triangles in input order); false with `error` on a missing or bad array.
+bool GivenFeatures(vtkAnisoParticleSampler* self,
+  vtkDataSet* input,
+  const av::SimplexMesh& mesh,
+  av::SharpFeatures& features,
+  std::string& error)
+{
+  const std::string patches = self->GetFeaturePatchArray() ? self->GetFeaturePatchArray() : "";
+  const std::string corners = self->GetFeatureCornerArray() ? self->GetFeatureCornerArray() : "";
+  vtkDataArray* ids = input->GetCellData()->GetArray(patches.c_str());
+  if (!ids || ids->GetNumberOfComponents() != 1)
+  {
+    error = "FeaturePatchArray: no one-component cell array \"" + patches + "\" on the input";
+    return false;
+  }
+  std::vector<std::int32_t> patch;
+  patch.reserve(mesh.NumCells());
+  for (vtkIdType c = 0; c < input->GetNumberOfCells(); ++c)
+  {
+    const int type = input->GetCellType(c);
+    if (type == VTK_TRIANGLE || type == VTK_TETRA) // the cells ToSimplexMesh keeps, in order
+      patch.push_back(static_cast<std::int32_t>(ids->GetTuple1(c)));
+  }
+  std::vector<std::uint8_t> flags;
+  if (!corners.empty())
+  {
+    vtkDataArray* marks = input->GetPointData()->GetArray(corners.c_str());
+    if (!marks || marks->GetNumberOfComponents() != 1)
+    {
+      error = "FeatureCornerArray: no one-component point array \"" + corners + "\" on the input";
+      return false;
+    }
+    flags.resize(mesh.NumPoints());
+    for (std::size_t p = 0; p < flags.size(); ++p)
+      flags[p] = marks->GetTuple1(static_cast<vtkIdType>(p)) != 0.0 ? 1 : 0;
+  }
+  try
+  {
+    features = av::SharpFeaturesFromPatches(
+      mesh, patch, flags.empty() ? nullptr : &flags, self->GetFeatureAngle());
+  }
+  catch (const av::InputError& e)
+  {
+    error = std::string("FeaturePatchArray: ") + e.what();
+    return false;
+  }
+  return true;
+}
+
+/// The features the sites were placed on, as field data for vtkAnisoRestrictedDelaunay:
+/// "FeatureEdges" (two input point ids per feature edge) and "FeatureCorners".
+void AddFeatureFieldData(vtkFieldData* fd, const av::SharpFeatures& f)
+{
+  vtkNew<vtkIdTypeArray> edges;
+  edges->SetName("FeatureEdges");
+  edges->SetNumberOfComponents(2);
+  edges->SetNumberOfTuples(static_cast<vtkIdType>(f.NumEdges()));
+  for (std::size_t i = 0; i < f.Edges.size(); ++i)
+    edges->SetValue(static_cast<vtkIdType>(i), f.Edges[i]);
+  vtkNew<vtkIdTypeArray> corners;
+  corners->SetName("FeatureCorners");
+  corners->SetNumberOfTuples(static_cast<vtkIdType>(f.Corners.size()));
+  for (std::size_t i = 0; i < f.Corners.size(); ++i)
+    corners->SetValue(static_cast<vtkIdType>(i), f.Corners[i]);
+  fd->AddArray(edges);
+  fd->AddArray(corners);
+}
+
 /// The run's summary values as one-value field arrays.
 void AddSummary(vtkFieldData* fd, const av::ParticleSamplerResult& result)
 {
@@ -126,6 +201,12 @@ vtkAnisoParticleSampler::vtkAnisoParticleSampler()
 {
   this->SetNumberOfOutputPorts(2);
   this->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "Embedding");
+}
+
+vtkAnisoParticleSampler::~vtkAnisoParticleSampler()
+{
+  this->SetFeaturePatchArray(nullptr);
+  this->SetFeatureCornerArray(nullptr);
 }
 
 int vtkAnisoParticleSampler::FillInputPortInformation(int, vtkInformation* info)
@@ -188,7 +269,17 @@ int vtkAnisoParticleSampler::RequestData(vtkInformation* request,
   const bool haveMetric = metricArray &&
     vtkAnisoDataConversion::ToMetricField(metricArray, mesh.NumPoints(), metric, error);
 
-  const av::ParticleSamplerOptions options = MakeOptions(this);
+  av::ParticleSamplerOptions options = MakeOptions(this);
+  av::SharpFeatures given;
+  if (this->PreserveSharpFeatures && this->FeaturePatchArray && *this->FeaturePatchArray)
+  {
+    if (!GivenFeatures(this, input, mesh, given, error))
+    {
+      vtkErrorMacro(<< error);
+      return 0;
+    }
+    options.Features = &given;
+  }
   av::ParticleSamplerResult result;
   av::MetricField siteMetric;
   if (!vtkAnisoFilterUtilities::RunKernel(this, "particle sampling",
@@ -220,6 +311,8 @@ int vtkAnisoParticleSampler::RequestData(vtkInformation* request,
   vtkAnisoFilterUtilities::AddFieldValue(output->GetFieldData(),
     "FeatureAngle",
     this->PreserveSharpFeatures ? this->FeatureAngle : 180.0);
+  if (result.Features.NumEdges() > 0 || !result.Features.Corners.empty())
+    AddFeatureFieldData(output->GetFieldData(), result.Features);
   FillEnergyTable(energyTable, result);
   this->UpdateProgress(1.0);
   return 1;
@@ -233,6 +326,11 @@ void vtkAnisoParticleSampler::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "WarmupIterations: " << this->WarmupIterations << "\n";
   os << indent << "PreserveSharpFeatures: " << (this->PreserveSharpFeatures ? "on" : "off") << "\n";
   os << indent << "FeatureAngle: " << this->FeatureAngle << "\n";
+  os << indent << "FeaturePatchArray: " << (this->FeaturePatchArray ? this->FeaturePatchArray : "")
+     << "\n";
+  os << indent
+     << "FeatureCornerArray: " << (this->FeatureCornerArray ? this->FeatureCornerArray : "")
+     << "\n";
   os << indent << "Seed: " << this->Seed << "\n";
   os << indent << "KernelWidthFactor: " << this->KernelWidthFactor << "\n";
   os << indent << "NeighborCutoff: " << this->NeighborCutoff << "\n";

@@ -93,6 +93,19 @@ public:
   ///@}
 
   ///@{
+  /// Feature lines given instead of found by FeatureAngle (triangle surfaces): the name of an
+  /// integer cell array of patch ids (CAD faces, the Medit reader's triangle "Ref", region
+  /// ids); the edges between triangles of different ids are the feature lines, whatever their
+  /// angle. Corners as usual, plus the points where FeatureCornerArray (an optional point
+  /// array) is nonzero. Empty (default): found by FeatureAngle. A named array that is missing
+  /// or has more than one component is an error.
+  vtkSetStringMacro(FeaturePatchArray);
+  vtkGetStringMacro(FeaturePatchArray);
+  vtkSetStringMacro(FeatureCornerArray);
+  vtkGetStringMacro(FeatureCornerArray);
+  ///@}
+
+  ///@{
   /// Seed of the initial random sampling (default 1): same seed, same sites.
   vtkSetMacro(Seed, int);
   vtkGetMacro(Seed, int);
@@ -115,7 +128,7 @@ public:
 
 protected:
   vtkAnisoParticleSampler();
-  ~vtkAnisoParticleSampler() override = default;
+  ~vtkAnisoParticleSampler() override;
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int FillOutputPortInformation(int port, vtkInformation* info) override;
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
@@ -126,6 +139,8 @@ protected:
   int WarmupIterations = 100;
   bool PreserveSharpFeatures = true;
   double FeatureAngle = 30.0;
+  char* FeaturePatchArray = nullptr;
+  char* FeatureCornerArray = nullptr;
   int Seed = 1;
   double KernelWidthFactor = 0.3;
   double NeighborCutoff = 5.0;

@@ -114,6 +114,42 @@ with tempfile.TemporaryDirectory() as tmp:
               r["hausdorff"] >= max(r["hausdorff_to_input"], r["hausdorff_from_input"]) - 1e-12,
               "surface report: Hausdorff %r %% of the diagonal" % r["hausdorff"])
 
+    # Feature lines from a Medit file's triangle references (--feature-patches Ref): a sphere
+    # whose hemispheres have refs 1 and 2 gets sites on the equator, none without the option.
+    halves = vtkSphereSource()
+    halves.SetThetaResolution(40)
+    halves.SetPhiResolution(31)  # a ring of points at z = 0
+    halves.Update()
+    hp = halves.GetOutput()
+    medit = os.path.join(tmp, "halves.mesh")
+    with open(medit, "w") as f:
+        f.write("MeshVersionFormatted 2\nDimension 3\nVertices\n%d\n" % hp.GetNumberOfPoints())
+        for i in range(hp.GetNumberOfPoints()):
+            f.write("%r %r %r 0\n" % hp.GetPoint(i))
+        f.write("Triangles\n%d\n" % hp.GetNumberOfCells())
+        for c in range(hp.GetNumberOfCells()):
+            ids = [hp.GetCell(c).GetPointIds().GetId(k) for k in range(3)]
+            z = sum(hp.GetPoint(i)[2] for i in ids) / 3.0
+            f.write("%d %d %d %d\n" % (ids[0] + 1, ids[1] + 1, ids[2] + 1, 1 if z > 0 else 2))
+        f.write("End\n")
+    for patches in (False, True):
+        args = [medit, "--metric", "curvature", "--sites", "200", "--output-dir",
+                "halves%d" % patches, "--quiet", "--keep-feature-sites"]
+        p, _ = run(args + (["--feature-patches", "Ref"] if patches else []), work)
+        check(p.returncode == 0, "Medit surface runs (stderr: %s)" % p.stderr.strip()[-300:])
+        if p.returncode == 0:
+            r = json.load(open(os.path.join(work, "halves%d" % patches, "report.json")))
+            if patches:
+                check(r["feature_line_sites"] > 10 and r["feature_edges_required"] >= r["feature_line_sites"],
+                      "--feature-patches Ref: %r sites on the equator, %r crease pairs" % (
+                          r["feature_line_sites"], r["feature_edges_required"]))
+                check(r["euler"] == 2 and r["flipped"] == 0 and r["self_intersections"] == 0,
+                      "--feature-patches Ref: a valid sphere")
+            else:
+                check(r["feature_line_sites"] == 0, "no feature lines on a sphere by angle")
+    p, _ = run([medit, "--metric", "curvature", "--feature-corners", "Ref", "--output-dir", "e9"], work)
+    check(p.returncode == 2 and "--feature-patches" in p.stderr, "--feature-corners alone is refused")
+
     # Error paths: exit != 0, one line on stderr naming the problem, within seconds.
     bad_mesh = os.path.join(tmp, "bad.mesh")
     with open(bad_mesh, "w") as f:

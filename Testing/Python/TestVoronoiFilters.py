@@ -7,8 +7,9 @@ Gaussian2D (paper §6.2) on a 25 x 25 grid: embedding in 3D, 200 sites, then
 - the edges output: boundary edges have total length 8 (the square's perimeter);
 - the dual mesh uses every site, has no inverted triangle and its quality is good;
 - ShrinkFactor scales areas by its square.
-Then Cube1 tets (feature sites kept, sliver push, boundary improvement) and a box surface
-(feature sites on the creases with KeepFeatureSites, closer to the box).
+Then Cube1 tets (feature sites kept, sliver push, boundary improvement), a box surface
+(feature sites on the creases with KeepFeatureSites, closer to the box) and a sphere whose
+hemispheres are given as feature patches (sites on the equator).
 """
 import math
 import sys
@@ -17,7 +18,8 @@ from vtkmodules.vtkCommonCore import vtkCommand
 from vtkmodules.vtkCommonDataModel import vtkPolyData, vtkUnstructuredGrid
 from vtkmodules.vtkFiltersCore import vtkCleanPolyData, vtkTriangleFilter
 from vtkmodules.vtkFiltersModeling import vtkLinearSubdivisionFilter
-from vtkmodules.vtkFiltersSources import vtkCubeSource
+from vtkmodules.vtkCommonCore import vtkIntArray
+from vtkmodules.vtkFiltersSources import vtkCubeSource, vtkSphereSource
 from anisovoronoi import (vtkAnisoAnalyticMetricSource, vtkAnisoCurvatureMetric, vtkAnisoEmbedding,
                           vtkAnisoParticleSampler, vtkAnisoRestrictedVoronoi,
                           vtkAnisoRestrictedDelaunay, vtkAnisoMeshQuality)
@@ -300,6 +302,58 @@ print("box, feature sites off their edge / Hausdorff %% / crease pairs: default 
 assert box_results[False][0] > 0 and box_results[True][0] == 0
 assert box_results[True][2] > len(box_features) / 2
 assert box_results[True][1] < 0.5 * box_results[False][1]
+
+# Feature lines given as patch ids (FeaturePatchArray): a sphere has no crease, but with its two
+# hemispheres as patches the equator becomes a feature line; the sampler puts sites on it and
+# hands its features to the Delaunay filter in field data; with KeepFeatureSites the sites stay
+# on the equator. A patch array that is not there is an error.
+ball = vtkSphereSource()
+ball.SetThetaResolution(48)
+ball.SetPhiResolution(25)  # a ring of points at z = 0
+ball.Update()
+halves = vtkPolyData()
+halves.DeepCopy(ball.GetOutput())
+patch = vtkIntArray()
+patch.SetName("Patch")
+for c in range(halves.GetNumberOfCells()):
+    ids = halves.GetCell(c).GetPointIds()
+    z = sum(halves.GetPoint(ids.GetId(k))[2] for k in range(3)) / 3.0
+    patch.InsertNextValue(1 if z > 0.0 else 2)
+halves.GetCellData().AddArray(patch)
+ball_metric = vtkAnisoCurvatureMetric()
+ball_metric.SetInputData(halves)
+ball_embedding = vtkAnisoEmbedding()
+ball_embedding.SetInputConnection(ball_metric.GetOutputPort())
+ball_sites = vtkAnisoParticleSampler()
+ball_sites.SetInputConnection(ball_embedding.GetOutputPort())
+ball_sites.SetNumberOfSites(400)
+ball_sites.Update()
+assert field(ball_sites.GetOutput(), "NumFeatureLineSites") == 0  # by angle: none
+ball_sites.SetFeaturePatchArray("Patch")
+ball_rdt = vtkAnisoRestrictedDelaunay()
+ball_rdt.SetInputConnection(0, ball_embedding.GetOutputPort())
+ball_rdt.SetInputConnection(1, ball_sites.GetOutputPort())
+ball_rdt.SetKeepFeatureSites(True)
+ball_rdt.Update()
+ball_sampled = ball_sites.GetOutput()
+on_line = field(ball_sampled, "NumFeatureLineSites")
+edges = ball_sampled.GetFieldData().GetArray("FeatureEdges")
+assert on_line > 10 and edges is not None and edges.GetNumberOfTuples() == 48, on_line
+ball_kind = ball_sampled.GetPointData().GetArray("FeatureKind")
+ball_mesh = ball_rdt.GetOutput()
+equator = [i for i in range(ball_sampled.GetNumberOfPoints()) if ball_kind.GetValue(i) == 1]
+assert all(abs(ball_mesh.GetPoint(i)[2]) < 1e-9 for i in equator)
+print("sphere halves: %d sites on the equator, %d of %d consecutive pairs flipped into the mesh" % (
+    len(equator), field(ball_mesh, "NumFeatureEdgesRecovered"), field(ball_mesh, "NumFeatureEdgesRequired")))
+assert field(ball_mesh, "NumFeatureEdgesRequired") >= len(equator)
+assert field(ball_mesh, "NumInverted") == 0
+errors = []
+missing = vtkAnisoParticleSampler()
+missing.AddObserver(vtkCommand.ErrorEvent, lambda obj, ev: errors.append(ev))
+missing.SetInputConnection(ball_embedding.GetOutputPort())
+missing.SetFeaturePatchArray("NoSuchArray")
+missing.Update()
+assert errors and missing.GetOutput().GetNumberOfPoints() == 0
 
 # Bad input: no embedding array -> error event, empty output, no exception.
 errors = []

@@ -211,9 +211,11 @@ MeshingPipelineResult RunMeshingPipeline(const SimplexMesh& mesh,
     result.ValidDualSeconds = watch.Seconds();
   }
   SharpFeatures features;
-  if (options.FeatureAngle < 180.0 && mesh.SimplexDim == 2 && mesh.AmbientDim == 3)
+  if ((options.Features || options.FeatureAngle < 180.0) && mesh.SimplexDim == 2 &&
+    mesh.AmbientDim == 3)
   {
-    features = DetectSharpFeatures(mesh, options.FeatureAngle);
+    features =
+      options.Features ? *options.Features : DetectSharpFeatures(mesh, options.FeatureAngle);
     DelaunayRepairResult& repaired = result.Repaired;
     result.FeatureEdges = RecoverFeatureEdges(mesh,
       repaired.Sites,

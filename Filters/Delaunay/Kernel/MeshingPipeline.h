@@ -7,6 +7,7 @@
 #include "FeatureEdgeRecovery.h"
 #include "MeshImprovement.h"
 #include "RestrictedDelaunayRefinement.h"
+#include "SharpFeatures.h"
 #include "SimplexMesh.h"
 #include "ValidDualMesh.h"
 
@@ -62,6 +63,10 @@ struct MeshingPipelineOptions
   /// put into the final dual by edge flips (RecoverFeatureEdges, FeatureEdgeRecovery.h), before
   /// the mesh improvement, which keeps them. 180 or more: off. Volumes: unused.
   double FeatureAngle = 30.0;
+  /// Surfaces: the sampler's features (ParticleSamplerResult::Features, or rebuilt with
+  /// SharpFeaturesFromEdges) for those flips and the crease slide, instead of detecting them at
+  /// FeatureAngle. Must outlive the call.
+  const SharpFeatures* Features = nullptr;
   /// Mesh improvement of the final dual (ImproveFinalMesh: flips and vertex smoothing in the
   /// metric); runs when ImproveMesh is true and Metric is given. false: the paper's dual.
   bool ImproveMesh = true;

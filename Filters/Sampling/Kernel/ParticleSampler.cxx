@@ -74,6 +74,10 @@ void CheckOptions(const SimplexMesh& mesh, const ParticleSamplerOptions& opt)
                      "FeatureSpacingFactor >= 0 and a positive, finite "
                      "KernelWidthFactor, "
                      "WarmupKernelWidthFactor and NeighborCutoff are required");
+  if (opt.Features &&
+    (opt.Features->IsCorner.size() != mesh.NumPoints() ||
+      opt.Features->PointEdgeOffsets.size() != mesh.NumPoints() + 1))
+    throw InputError("SampleParticles: the given Features are not of this mesh");
 }
 
 /// Removes the sites at exactly the position of a lower-id site (see NumCoincidentRemoved),
@@ -143,7 +147,8 @@ ParticleSamplerResult MakeResult(std::size_t n, int dim)
 }
 
 /**
- * Sharp features (options.PreserveSharpFeatures): `features` detected on the input mesh and
+ * Sharp features (options.PreserveSharpFeatures): `features` (options.Features, else detected
+ * on the input mesh) and
  * the corner and feature-line sites placed on them (one per `spacing` of embedded length),
  * cut back to what fits in half of the sites (corners only, or none) with res.FeatureWarning
  * saying so. Fills res.NumCornerSites and NumFeatureLineSites.
@@ -157,9 +162,9 @@ FeatureSitePlacement PlaceSharpFeatureSites(const SimplexMesh& mesh,
 {
   FeatureSitePlacement placed;
   placed.Sites.Dim = embedding.Dim;
-  if (!opt.PreserveSharpFeatures || !(opt.FeatureAngle < 180.0))
+  if (!opt.PreserveSharpFeatures || (!opt.Features && !(opt.FeatureAngle < 180.0)))
     return placed;
-  features = DetectSharpFeatures(mesh, opt.FeatureAngle);
+  features = opt.Features ? *opt.Features : DetectSharpFeatures(mesh, opt.FeatureAngle);
   if (features.Corners.empty() && features.NumEdges() == 0)
     return placed;
   const std::size_t n = opt.NumSites;
@@ -223,6 +228,8 @@ ParticleSamplerResult SampleParticles(const SimplexMesh& mesh,
   sampling::DrawInitialSites(mesh, embedding, meas, opt, placed, res);
 
   const SharpFeatures* featurePtr = placed.Sites.NumSites() > 0 ? &features : nullptr;
+  if (featurePtr)
+    res.Features = features;
   auto run = [&]() { sampling::OptimizeParticles(mesh, embedding, featurePtr, opt, res); };
   if (opt.MaxThreads > 0)
   {

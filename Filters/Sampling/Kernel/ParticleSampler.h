@@ -4,6 +4,7 @@
 #ifndef av_ParticleSampler_h
 #define av_ParticleSampler_h
 
+#include "SharpFeatures.h"
 #include "SimplexMesh.h"
 
 #include <cstddef>
@@ -49,6 +50,9 @@ struct ParticleSamplerOptions
   /// domains (no dihedral angle above FeatureAngle) are unaffected.
   bool PreserveSharpFeatures = true;
   double FeatureAngle = 30.0; ///< degrees, in (0, 180]; 180 = no features
+  /// Given features (SharpFeaturesFromPatches / SharpFeaturesFromEdges of this mesh) instead of
+  /// DetectSharpFeatures; used with PreserveSharpFeatures. Must outlive the call.
+  const SharpFeatures* Features = nullptr;
   /// The feature lines get one particle per FeatureSpacingFactor * (|embedded mesh| / n)^{1/k}
   /// of embedded length (1.26 = 2^{1/3}: the edge of the body-centered cubic cell holding two
   /// sites of volume |mesh| / n each; 1.075 for triangles: the hexagonal spacing).
@@ -65,6 +69,8 @@ struct ParticleSamplerResult
   std::vector<std::int8_t> FeatureKind;
   /// Per site: its feature edge (SharpFeatures::Edges index) for kind 1, else -1.
   std::vector<std::int32_t> FeatureEdge;
+  /// The features the sites were placed on (empty when there were none, or none fit).
+  SharpFeatures Features;
   std::size_t NumCornerSites = 0;
   std::size_t NumFeatureLineSites = 0;
   /// Non-empty when the sharp features would take more than half of the sites and were cut

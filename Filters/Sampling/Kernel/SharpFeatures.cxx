@@ -184,10 +184,37 @@ std::vector<Line> FindLines(const SimplexMesh& mesh, const OwnedEdges& owned, do
   return lines;
 }
 
-/// Corners: line degree other than 2, or a turn sharper than the feature angle. Fills
-/// IsCorner and the corners with a cell containing each (the first cell listing it).
-void FindCorners(const SimplexMesh& mesh, const std::vector<Line>& lines, double cosLimit,
-  SharpFeatures& out)
+/// Triangle surfaces with patch ids: the edges between cells of different ids and the
+/// non-manifold edges are feature lines, the surface boundary counts for the corners.
+std::vector<Line> FindPatchLines(const OwnedEdges& owned, const std::vector<std::int32_t>& patch)
+{
+  const std::vector<EdgeRecord>& edges = owned.Edges;
+  std::vector<Line> lines;
+  for (std::size_t i = 0; i < edges.size();)
+  {
+    std::size_t j = i + 1;
+    while (j < edges.size() && edges[j].A == edges[i].A && edges[j].B == edges[i].B)
+      ++j;
+    const EdgeRecord& e = edges[i];
+    if (j - i == 1)
+      lines.push_back({ e.A, e.B, e.Owner, false });
+    else if (j - i > 2 ||
+      patch[static_cast<std::size_t>(e.Owner)] !=
+        patch[static_cast<std::size_t>(edges[i + 1].Owner)])
+      lines.push_back({ e.A, e.B, e.Owner, true });
+    i = j;
+  }
+  return lines;
+}
+
+/// Corners: line degree other than 2, a turn sharper than the feature angle (cosLimit below
+/// -1: none), or flagged in `extra` (may be null). Fills IsCorner and the corners with a cell
+/// containing each (the first cell listing it).
+void FindCorners(const SimplexMesh& mesh,
+  const std::vector<Line>& lines,
+  double cosLimit,
+  SharpFeatures& out,
+  const std::vector<std::uint8_t>* extra = nullptr)
 {
   const std::size_t np = mesh.NumPoints(), nc = mesh.NumCells();
   std::vector<std::int32_t> degree(np, 0);
@@ -213,14 +240,14 @@ void FindCorners(const SimplexMesh& mesh, const std::vector<Line>& lines, double
       // Straight through: u = -v; the turn is the angle between u and -v.
       corner = uu > 0.0 && vv > 0.0 && (-u.dot(v)) / (uu * vv) < cosLimit;
     }
-    out.IsCorner[p] = corner ? 1 : 0;
+    out.IsCorner[p] = corner || (extra && (*extra)[p]) ? 1 : 0;
   }
   std::vector<std::int32_t> firstCell(np, -1);
   for (std::size_t c = nc; c-- > 0;)
     for (int j = 0; j < mesh.VerticesPerCell(); ++j)
       firstCell[static_cast<std::size_t>(mesh.Cell(c)[j])] = static_cast<std::int32_t>(c);
   for (std::size_t p = 0; p < np; ++p)
-    if (out.IsCorner[p])
+    if (out.IsCorner[p] && firstCell[p] >= 0)
     {
       out.Corners.push_back(static_cast<std::int32_t>(p));
       out.CornerCells.push_back(firstCell[p]);
@@ -282,6 +309,95 @@ SharpFeatures DetectSharpFeatures(const SimplexMesh& mesh, double featureAngleDe
   const std::vector<Line> lines = FindLines(mesh, owned, cosLimit);
   FindCorners(mesh, lines, cosLimit, out);
   AddFeatureEdges(mesh, lines, owned.OwnerCell, out);
+  return out;
+}
+
+SharpFeatures SharpFeaturesFromPatches(const SimplexMesh& mesh,
+  const std::vector<std::int32_t>& patchIds,
+  const std::vector<std::uint8_t>* corners,
+  double featureAngleDegrees)
+{
+  Validate(mesh, featureAngleDegrees);
+  if (mesh.SimplexDim != 2 || mesh.AmbientDim != 3)
+    throw InputError("sharp features: patch ids need a triangle surface in 3D");
+  if (patchIds.size() != mesh.NumCells())
+    throw InputError("sharp features: " + std::to_string(patchIds.size()) + " patch ids for " +
+      std::to_string(mesh.NumCells()) + " triangles (one per triangle)");
+  if (corners && corners->size() != mesh.NumPoints())
+    throw InputError("sharp features: " + std::to_string(corners->size()) + " corner flags for " +
+      std::to_string(mesh.NumPoints()) + " points (one per point)");
+  SharpFeatures out;
+  const std::size_t np = mesh.NumPoints();
+  out.IsCorner.assign(np, 0);
+  out.PointEdgeOffsets.assign(np + 1, 0);
+  // Turns sharper than the angle still make corners (a line site cannot go round them).
+  const double cosLimit =
+    featureAngleDegrees >= 180.0 ? -2.0 : std::cos(featureAngleDegrees * kPi / 180.0);
+  OwnedEdges owned;
+  CollectTriangles(mesh, owned);
+  std::sort(owned.Edges.begin(), owned.Edges.end());
+  const std::vector<Line> lines = FindPatchLines(owned, patchIds);
+  FindCorners(mesh, lines, cosLimit, out, corners);
+  AddFeatureEdges(mesh, lines, owned.OwnerCell, out);
+  return out;
+}
+
+SharpFeatures SharpFeaturesFromEdges(const SimplexMesh& mesh,
+  const std::vector<std::int32_t>& edges,
+  const std::vector<std::int32_t>& corners)
+{
+  Validate(mesh, 30.0);
+  if (edges.size() % 2 != 0)
+    throw InputError("sharp features: feature edges need two point ids each");
+  const std::size_t np = mesh.NumPoints(), nc = mesh.NumCells();
+  const auto inRange = [np](std::int32_t p) { return p >= 0 && static_cast<std::size_t>(p) < np; };
+  // A cell holding each mesh edge.
+  std::vector<EdgeRecord> cellEdges;
+  const int nv = mesh.VerticesPerCell();
+  cellEdges.reserve(nc * static_cast<std::size_t>(nv * (nv - 1) / 2));
+  for (std::size_t c = 0; c < nc; ++c)
+    for (int a = 0; a < nv; ++a)
+      for (int b = a + 1; b < nv; ++b)
+        cellEdges.push_back(
+          MakeEdge(mesh.Cell(c)[a], mesh.Cell(c)[b], static_cast<std::int32_t>(c)));
+  std::sort(cellEdges.begin(), cellEdges.end());
+  std::vector<Line> lines;
+  for (std::size_t e = 0; e < edges.size() / 2; ++e)
+  {
+    const std::int32_t u = edges[2 * e], v = edges[2 * e + 1];
+    if (!inRange(u) || !inRange(v) || u == v)
+      throw InputError("sharp features: feature edge " + std::to_string(e) + " (" +
+        std::to_string(u) + ", " + std::to_string(v) + ") has a bad point id");
+    const EdgeRecord key = MakeEdge(u, v, -1);
+    const auto it = std::lower_bound(cellEdges.begin(), cellEdges.end(), key);
+    if (it == cellEdges.end() || it->A != key.A || it->B != key.B)
+      throw InputError("sharp features: feature edge (" + std::to_string(u) + ", " +
+        std::to_string(v) + ") is not an edge of the mesh");
+    lines.push_back({ key.A, key.B, it->Owner, true });
+  }
+  std::sort(lines.begin(),
+    lines.end(),
+    [](const Line& x, const Line& y) { return x.A != y.A ? x.A < y.A : x.B < y.B; });
+  lines.erase(std::unique(lines.begin(),
+                lines.end(),
+                [](const Line& x, const Line& y) { return x.A == y.A && x.B == y.B; }),
+    lines.end());
+  std::vector<std::uint8_t> flags(np, 0);
+  for (std::int32_t p : corners)
+  {
+    if (!inRange(p))
+      throw InputError("sharp features: corner point id " + std::to_string(p) + " out of range");
+    flags[static_cast<std::size_t>(p)] = 1;
+  }
+  SharpFeatures out;
+  out.IsCorner.assign(np, 0);
+  out.PointEdgeOffsets.assign(np + 1, 0);
+  // Exactly the given corners: no degree or turn rule (cosLimit below -1, an empty line list).
+  FindCorners(mesh, {}, -2.0, out, &flags);
+  std::vector<std::int32_t> identity(nc);
+  for (std::size_t c = 0; c < nc; ++c)
+    identity[c] = static_cast<std::int32_t>(c);
+  AddFeatureEdges(mesh, lines, identity, out);
   return out;
 }
 

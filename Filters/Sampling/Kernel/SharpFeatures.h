@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // SharpFeatures: feature lines and corners of a simplicial mesh (paper §4.1, "Boundary and
-// Sharp Feature Handling"), VTK-free. The sampler keeps particles on the lines and fixes one at
-// each corner, so that the dual mesh reproduces the domain's edges and corners.
+// Sharp Feature Handling"), found by angle or given (patch ids, edge lists), VTK-free. The
+// sampler keeps particles on the lines and fixes one at each corner, so that the dual mesh
+// reproduces the domain's edges and corners.
 #ifndef av_SharpFeatures_h
 #define av_SharpFeatures_h
 
@@ -54,6 +55,30 @@ struct SharpFeatures
  * triangle shared by more than two tets.
  */
 SharpFeatures DetectSharpFeatures(const SimplexMesh& mesh, double featureAngleDegrees = 30.0);
+
+/**
+ * Feature lines given by patch ids, one per triangle of a surface in 3D (CAD face ids, Medit
+ * triangle references, region ids): the edges between triangles of different ids and the
+ * non-manifold edges, whatever their dihedral angle. Corners as in DetectSharpFeatures (line
+ * degree other than 2 with the surface boundary counting, or a turn sharper than
+ * featureAngleDegrees; 180: no turn rule), plus the points flagged in `corners` (one flag per
+ * point; null: none). Throws InputError when the mesh is not a triangle surface in 3D, or the
+ * ids or flags are not one per triangle / point.
+ */
+SharpFeatures SharpFeaturesFromPatches(const SimplexMesh& mesh,
+  const std::vector<std::int32_t>& patchIds,
+  const std::vector<std::uint8_t>* corners = nullptr,
+  double featureAngleDegrees = 30.0);
+
+/**
+ * Exactly the given feature edges (two point ids each, edges of `mesh`, any order, duplicates
+ * merged) and corners (point ids): the Edges and Corners of features found on the same mesh
+ * by an earlier step, passed between filters. Throws InputError on a bad id, an edge that is
+ * not an edge of the mesh or an odd edge list.
+ */
+SharpFeatures SharpFeaturesFromEdges(const SimplexMesh& mesh,
+  const std::vector<std::int32_t>& edges,
+  const std::vector<std::int32_t>& corners);
 
 } // namespace av
 

@@ -11,6 +11,7 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <vector>
 
 namespace
 {
@@ -132,6 +133,51 @@ int TestSharpFeatures(int, char*[])
       gentle.Points[3 * p + 2] *= 0.2;
     AV_CHECK(av::DetectSharpFeatures(gentle).NumEdges() == 0);
     AV_CHECK(av::DetectSharpFeatures(gentle).Corners.size() == 4);
+
+    // Given by patch ids: the gentle sheet (no angle feature) in two patches, x < 1 and x > 1
+    // (every triangle lies on one side): the line x = 1 again, the same 6 corners; a corner
+    // flag adds one in the middle of the line. Rebuilt from its edges and corners, the same.
+    std::vector<std::int32_t> patch(gentle.NumCells());
+    for (std::size_t c = 0; c < gentle.NumCells(); ++c)
+    {
+      double x = 0.0;
+      for (int j = 0; j < 3; ++j)
+        x += gentle.Point(static_cast<std::size_t>(gentle.Cell(c)[j]))[0] / 3.0;
+      patch[c] = x < 1.0 ? 7 : 9;
+    }
+    const av::SharpFeatures p = av::SharpFeaturesFromPatches(gentle, patch);
+    AV_CHECK(p.NumEdges() == 4 && p.Corners.size() == 6 && EdgeCellsConsistent(gentle, p));
+    for (std::int32_t id : p.Edges)
+      AV_CHECK(std::abs(gentle.Point(static_cast<std::size_t>(id))[0] - 1.0) < 1e-12);
+    AV_CHECK(p.Edges == f.Edges && p.Corners == f.Corners);
+    std::vector<std::uint8_t> flags(gentle.NumPoints(), 0);
+    std::int32_t middle = -1;
+    for (std::size_t q = 0; q < gentle.NumPoints(); ++q)
+      if (std::abs(gentle.Point(q)[0] - 1.0) < 1e-12 && std::abs(gentle.Point(q)[1] - 0.5) < 1e-12)
+        middle = static_cast<std::int32_t>(q);
+    AV_CHECK(middle >= 0);
+    flags[static_cast<std::size_t>(middle)] = 1;
+    const av::SharpFeatures pc = av::SharpFeaturesFromPatches(gentle, patch, &flags);
+    AV_CHECK(pc.Corners.size() == 7 && pc.IsCorner[static_cast<std::size_t>(middle)] == 1);
+    const av::SharpFeatures r = av::SharpFeaturesFromEdges(gentle, pc.Edges, pc.Corners);
+    AV_CHECK(r.Edges == pc.Edges && r.Corners == pc.Corners && r.IsCorner == pc.IsCorner &&
+      r.PointEdgeOffsets == pc.PointEdgeOffsets && r.PointEdges == pc.PointEdges);
+    AV_CHECK(EdgeCellsConsistent(gentle, r));
+    // One patch: no line, only the sheet's 4 corners (its boundary turns).
+    const av::SharpFeatures one =
+      av::SharpFeaturesFromPatches(gentle, std::vector<std::int32_t>(gentle.NumCells(), 3));
+    AV_CHECK(one.NumEdges() == 0 && one.Corners.size() == 4);
+    // Bad input: ids not one per triangle, flags not one per point, a tet mesh, an edge that
+    // is not a mesh edge, an id out of range, an odd edge list.
+    AV_CHECK_THROWS(av::SharpFeaturesFromPatches(gentle, std::vector<std::int32_t>(3, 0)));
+    std::vector<std::uint8_t> shortFlags(2, 0);
+    AV_CHECK_THROWS(av::SharpFeaturesFromPatches(gentle, patch, &shortFlags));
+    AV_CHECK_THROWS(
+      av::SharpFeaturesFromPatches(cube, std::vector<std::int32_t>(cube.NumCells(), 0)));
+    AV_CHECK_THROWS(av::SharpFeaturesFromEdges(
+      gentle, { 0, static_cast<std::int32_t>(gentle.NumPoints() - 1) }, {}));
+    AV_CHECK_THROWS(av::SharpFeaturesFromEdges(gentle, { 0, 1 }, { -1 }));
+    AV_CHECK_THROWS(av::SharpFeaturesFromEdges(gentle, { 0, 1, 2 }, {}));
   }
 
   // A ball: a smooth boundary has no features.
