@@ -63,6 +63,17 @@ int vtkAnisoMeditReader::RequestData(vtkInformation*,
       output->SetCells(mesh.SimplexDim == 3 ? VTK_TETRA : VTK_TRIANGLE, cells);
       output->GetPointData()->AddArray(vtkAnisoDataConversion::MakeIntArray("Ref", m.PointRefs));
       output->GetCellData()->AddArray(vtkAnisoDataConversion::MakeIntArray("Ref", m.CellRefs));
+      // MMG's ridges and corners, as the feature lines the sampler keeps its sites on.
+      if (!m.Ridges.empty() || !m.Corners.empty())
+      {
+        std::vector<std::int32_t> ridgeEdges;
+        for (std::int32_t r : m.Ridges)
+        {
+          ridgeEdges.push_back(m.Edges[2 * static_cast<std::size_t>(r)]);
+          ridgeEdges.push_back(m.Edges[2 * static_cast<std::size_t>(r) + 1]);
+        }
+        vtkAnisoDataConversion::AddFeatureFieldData(output->GetFieldData(), ridgeEdges, m.Corners);
+      }
 
       if (!this->SolFileName.empty())
       {

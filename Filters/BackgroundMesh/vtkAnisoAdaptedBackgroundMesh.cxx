@@ -100,6 +100,8 @@ void BuildOutput(vtkDataSet* input,
   }
   outCD->AddArray(parents);
   output->GetFieldData()->ShallowCopy(input->GetFieldData());
+  // A new mesh: the input's feature edges and corners (point ids) do not apply to it.
+  vtkAnisoDataConversion::RemoveFeatureFieldData(output->GetFieldData());
 }
 }
 

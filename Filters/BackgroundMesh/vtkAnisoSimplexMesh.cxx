@@ -2,6 +2,7 @@
 #include "vtkAnisoSimplexMesh.h"
 
 #include "SimplexSplitter.h"
+#include "vtkAnisoDataConversion.h"
 #include "vtkAnisoFilterUtilities.h"
 
 #include <vtkCellArray.h>
@@ -223,6 +224,8 @@ vtkIdType WriteSplitMesh(vtkDataSet* input,
     outPD->InterpolatePoint(inPD, i, parents, weights.data());
   }
   output->GetFieldData()->ShallowCopy(input->GetFieldData());
+  // Feature edges and corners name the input's point ids, which the split renumbers.
+  vtkAnisoDataConversion::RemoveFeatureFieldData(output->GetFieldData());
 
   const vtkIdType numSimplices = static_cast<vtkIdType>(mesh.NumCells());
   const int nv = mesh.VerticesPerCell();

@@ -2,16 +2,18 @@
 #include "vtkAnisoDataConversion.h"
 
 #include <vtkAlgorithm.h>
-#include <vtkCellData.h>
 #include <vtkCell.h>
+#include <vtkCellData.h>
 #include <vtkCellLocator.h>
 #include <vtkCellTypes.h>
 #include <vtkDataArray.h>
 #include <vtkDataSet.h>
 #include <vtkDoubleArray.h>
 #include <vtkExecutive.h>
+#include <vtkFieldData.h>
 #include <vtkGenericCell.h>
 #include <vtkIdList.h>
+#include <vtkIdTypeArray.h>
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
 #include <vtkIntArray.h>
@@ -517,6 +519,83 @@ vtkSmartPointer<vtkDataArray> MakeIntArray(const char* name,
   array->SetNumberOfTuples(static_cast<vtkIdType>(values.size()));
   std::copy(values.begin(), values.end(), array->GetPointer(0));
   return array;
+}
+
+void AddFeatureFieldData(vtkFieldData* fd,
+  const std::vector<std::int32_t>& edges,
+  const std::vector<std::int32_t>& corners)
+{
+  vtkNew<vtkIdTypeArray> e;
+  e->SetName("FeatureEdges");
+  e->SetNumberOfComponents(2);
+  e->SetNumberOfTuples(static_cast<vtkIdType>(edges.size() / 2));
+  for (std::size_t i = 0; i + 1 < edges.size(); i += 2)
+  {
+    e->SetValue(static_cast<vtkIdType>(i), edges[i]);
+    e->SetValue(static_cast<vtkIdType>(i + 1), edges[i + 1]);
+  }
+  vtkNew<vtkIdTypeArray> c;
+  c->SetName("FeatureCorners");
+  c->SetNumberOfTuples(static_cast<vtkIdType>(corners.size()));
+  for (std::size_t i = 0; i < corners.size(); ++i)
+    c->SetValue(static_cast<vtkIdType>(i), corners[i]);
+  fd->AddArray(e);
+  fd->AddArray(c);
+}
+
+bool FeatureFieldData(vtkFieldData* fd,
+  std::vector<std::int32_t>& edges,
+  std::vector<std::int32_t>& corners,
+  bool& found,
+  std::string& error)
+{
+  found = false;
+  edges.clear();
+  corners.clear();
+  vtkDataArray* e = fd ? fd->GetArray("FeatureEdges") : nullptr;
+  vtkDataArray* c = fd ? fd->GetArray("FeatureCorners") : nullptr;
+  if (!e && !c)
+    return true;
+  if ((e && e->GetNumberOfComponents() != 2) || (c && c->GetNumberOfComponents() != 1))
+  {
+    error = "field data: FeatureEdges must have 2 components and FeatureCorners 1";
+    return false;
+  }
+  const auto id = [&](double v, std::int32_t& out)
+  {
+    if (!(v >= 0.0 && v < 2147483647.0) || v != std::floor(v))
+    {
+      error = "field data: FeatureEdges / FeatureCorners hold a value that is not a point id";
+      return false;
+    }
+    out = static_cast<std::int32_t>(v);
+    return true;
+  };
+  for (vtkIdType i = 0; e && i < e->GetNumberOfTuples(); ++i)
+    for (int k = 0; k < 2; ++k)
+    {
+      std::int32_t v = 0;
+      if (!id(e->GetComponent(i, k), v))
+        return false;
+      edges.push_back(v);
+    }
+  for (vtkIdType i = 0; c && i < c->GetNumberOfTuples(); ++i)
+  {
+    std::int32_t v = 0;
+    if (!id(c->GetTuple1(i), v))
+      return false;
+    corners.push_back(v);
+  }
+  found = true;
+  return true;
+}
+
+void RemoveFeatureFieldData(vtkFieldData* fd)
+{
+  if (!fd)
+    return;
+  fd->RemoveArray("FeatureEdges");
+  fd->RemoveArray("FeatureCorners");
 }
 
 void RequestWholeInputs(vtkInformationVector** inputVector, int numberOfInputPorts)

@@ -23,6 +23,7 @@ class vtkInformation;
 class vtkInformationVector;
 class vtkDataArray;
 class vtkDataSet;
+class vtkFieldData;
 class vtkPointSet;
 class vtkUnstructuredGrid;
 class vtkPolyData;
@@ -112,6 +113,24 @@ ANISOVORONOIFILTERSCOMMON_EXPORT void CopySimplicesWithInputData(
 /// A vtkIntArray holding `values` (one component).
 ANISOVORONOIFILTERSCOMMON_EXPORT vtkSmartPointer<vtkDataArray> MakeIntArray(const char* name,
   const std::vector<std::int32_t>& values);
+
+/**
+ * Feature lines as field data, the pipeline's one form for them: "FeatureEdges" (vtkIdTypeArray,
+ * 2 components: the point ids of each feature edge) and "FeatureCorners" (1 component). The
+ * Medit reader writes a file's Ridges and Corners so, the sampler the features it placed its
+ * sites on. Filters that renumber points drop them (RemoveFeatureFieldData).
+ */
+ANISOVORONOIFILTERSCOMMON_EXPORT void AddFeatureFieldData(vtkFieldData* fd,
+  const std::vector<std::int32_t>& edges,
+  const std::vector<std::int32_t>& corners);
+/// Reads them back: `found` false when there are none; false with `error` when malformed.
+ANISOVORONOIFILTERSCOMMON_EXPORT bool FeatureFieldData(vtkFieldData* fd,
+  std::vector<std::int32_t>& edges,
+  std::vector<std::int32_t>& corners,
+  bool& found,
+  std::string& error);
+/// Removes them (for outputs whose point ids are not the input's).
+ANISOVORONOIFILTERSCOMMON_EXPORT void RemoveFeatureFieldData(vtkFieldData* fd);
 
 /**
  * Distributed runs (mpiexec pvbatch, pvserver): asks every connection of every input port for

@@ -142,24 +142,12 @@ bool SamplerFeatures(vtkDataSet* sitesInput,
   bool& found,
   std::string& error)
 {
-  found = false;
-  vtkFieldData* fd = sitesInput->GetFieldData();
-  vtkDataArray* edges = fd ? fd->GetArray("FeatureEdges") : nullptr;
-  if (!edges)
-    return true;
-  vtkDataArray* corners = fd->GetArray("FeatureCorners");
-  if (edges->GetNumberOfComponents() != 2 || (corners && corners->GetNumberOfComponents() != 1))
-  {
-    error = "sites: FeatureEdges must have 2 components and FeatureCorners 1";
+  std::vector<std::int32_t> e, c;
+  if (!vtkAnisoDataConversion::FeatureFieldData(sitesInput->GetFieldData(), e, c, found, error))
     return false;
-  }
-  std::vector<std::int32_t> e(static_cast<std::size_t>(2 * edges->GetNumberOfTuples()));
-  for (vtkIdType i = 0; i < edges->GetNumberOfTuples(); ++i)
-    for (int k = 0; k < 2; ++k)
-      e[static_cast<std::size_t>(2 * i + k)] = static_cast<std::int32_t>(edges->GetComponent(i, k));
-  std::vector<std::int32_t> c;
-  for (vtkIdType i = 0; corners && i < corners->GetNumberOfTuples(); ++i)
-    c.push_back(static_cast<std::int32_t>(corners->GetTuple1(i)));
+  if (!found)
+    return true;
+  found = false;
   try
   {
     out = av::SharpFeaturesFromEdges(mesh, e, c);

@@ -146,25 +146,6 @@ bool GivenFeatures(vtkAnisoParticleSampler* self,
   return true;
 }
 
-/// The features the sites were placed on, as field data for vtkAnisoRestrictedDelaunay:
-/// "FeatureEdges" (two input point ids per feature edge) and "FeatureCorners".
-void AddFeatureFieldData(vtkFieldData* fd, const av::SharpFeatures& f)
-{
-  vtkNew<vtkIdTypeArray> edges;
-  edges->SetName("FeatureEdges");
-  edges->SetNumberOfComponents(2);
-  edges->SetNumberOfTuples(static_cast<vtkIdType>(f.NumEdges()));
-  for (std::size_t i = 0; i < f.Edges.size(); ++i)
-    edges->SetValue(static_cast<vtkIdType>(i), f.Edges[i]);
-  vtkNew<vtkIdTypeArray> corners;
-  corners->SetName("FeatureCorners");
-  corners->SetNumberOfTuples(static_cast<vtkIdType>(f.Corners.size()));
-  for (std::size_t i = 0; i < f.Corners.size(); ++i)
-    corners->SetValue(static_cast<vtkIdType>(i), f.Corners[i]);
-  fd->AddArray(edges);
-  fd->AddArray(corners);
-}
-
 /// The run's summary values as one-value field arrays.
 void AddSummary(vtkFieldData* fd, const av::ParticleSamplerResult& result)
 {
@@ -280,6 +261,31 @@ int vtkAnisoParticleSampler::RequestData(vtkInformation* request,
     }
     options.Features = &given;
   }
+  else if (this->PreserveSharpFeatures)
+  {
+    // Feature lines that came with the input (a Medit file's Ridges and Corners).
+    std::vector<std::int32_t> edges, corners;
+    bool found = false;
+    if (!vtkAnisoDataConversion::FeatureFieldData(
+          input->GetFieldData(), edges, corners, found, error))
+    {
+      vtkErrorMacro(<< error);
+      return 0;
+    }
+    if (found)
+    {
+      try
+      {
+        given = av::SharpFeaturesFromEdges(mesh, edges, corners);
+      }
+      catch (const av::InputError& e)
+      {
+        vtkErrorMacro(<< "the input's FeatureEdges / FeatureCorners field data: " << e.what());
+        return 0;
+      }
+      options.Features = &given;
+    }
+  }
   av::ParticleSamplerResult result;
   av::MetricField siteMetric;
   if (!vtkAnisoFilterUtilities::RunKernel(this, "particle sampling",
@@ -311,8 +317,10 @@ int vtkAnisoParticleSampler::RequestData(vtkInformation* request,
   vtkAnisoFilterUtilities::AddFieldValue(output->GetFieldData(),
     "FeatureAngle",
     this->PreserveSharpFeatures ? this->FeatureAngle : 180.0);
+  // The features the sites were placed on, for vtkAnisoRestrictedDelaunay.
   if (result.Features.NumEdges() > 0 || !result.Features.Corners.empty())
-    AddFeatureFieldData(output->GetFieldData(), result.Features);
+    vtkAnisoDataConversion::AddFeatureFieldData(
+      output->GetFieldData(), result.Features.Edges, result.Features.Corners);
   FillEnergyTable(energyTable, result);
   this->UpdateProgress(1.0);
   return 1;

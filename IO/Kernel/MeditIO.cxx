@@ -253,6 +253,18 @@ void ReadSimplices(Tokenizer& tok,
   }
 }
 
+/// Reads a list section of `count` 1-based indices (Corners: vertices, Ridges: edges), checked
+/// against their range at the end (FinishMeditMesh).
+void ReadIndices(Tokenizer& tok, const char* section, std::vector<std::int32_t>& out)
+{
+  const std::size_t n = tok.Count(section, 1);
+  const std::string what = std::string("an index of ") + section + " (1-based)";
+  out.reserve(out.size() + n);
+  for (std::size_t i = 0; i < n; ++i)
+    out.push_back(static_cast<std::int32_t>(
+      tok.Int(what.c_str(), 1, std::numeric_limits<std::int32_t>::max()) - 1));
+}
+
 void CheckIds(const std::vector<std::int32_t>& ids,
               std::size_t numVertices,
               const char* section,
@@ -339,6 +351,7 @@ struct MeditMeshSections
   std::vector<std::int32_t> Tris, TriRefs, Tets, TetRefs;
   /// Section start lines for ids that could not be checked when read (vertices came later).
   std::size_t TriLine = 0, TetLine = 0, EdgeLine = 0;
+  std::size_t CornerLine = 0, RidgeLine = 0; ///< checked at the end (edges may come later)
 };
 
 /// The 'Vertices' section: coordinates and references.
@@ -408,6 +421,14 @@ void FinishMeditMesh(MeditMeshSections& m, const std::string& sourceName, MeditM
   if (m.EdgeLine)
   {
     CheckIds(out.Edges, nv, "Edges", m.EdgeLine, 2, sourceName);
+  }
+  if (m.CornerLine)
+  {
+    CheckIds(out.Corners, nv, "Corners", m.CornerLine, 1, sourceName);
+  }
+  if (m.RidgeLine)
+  {
+    CheckIds(out.Ridges, out.Edges.size() / 2, "Ridges (edge indices)", m.RidgeLine, 1, sourceName);
   }
   out.Mesh.AmbientDim = m.Dim;
   out.Mesh.Points = std::move(m.Points);
@@ -480,6 +501,16 @@ MeditMesh ParseMeditMesh(const std::string& text, const std::string& sourceName)
     {
       DeferIdCheck(m.HaveVertices, kwLine, m.EdgeLine);
       ReadSimplices(tok, "Edges", 2, nv, out.Edges, out.EdgeRefs);
+    }
+    else if (IEquals(kw, "Corners"))
+    {
+      m.CornerLine = m.CornerLine ? m.CornerLine : kwLine;
+      ReadIndices(tok, "Corners", out.Corners);
+    }
+    else if (IEquals(kw, "Ridges"))
+    {
+      m.RidgeLine = m.RidgeLine ? m.RidgeLine : kwLine;
+      ReadIndices(tok, "Ridges", out.Ridges);
     }
     else if (IEquals(kw, "Quadrilaterals") || IEquals(kw, "Hexahedra") || IEquals(kw, "Prisms"))
     {
@@ -562,6 +593,32 @@ void AppendSimplices(std::string& s,
 }
 } // namespace
 
+namespace
+{
+/// A list section of 1-based indices below `limit` (Corners: vertices, Ridges: edges).
+void AppendIndices(std::string& s,
+  const char* name,
+  const std::vector<std::int32_t>& ids,
+  std::size_t limit)
+{
+  if (ids.empty())
+    return;
+  s += "\n";
+  s += name;
+  s += "\n";
+  AppendInt(s, static_cast<std::int64_t>(ids.size()));
+  s += "\n";
+  for (std::int32_t id : ids)
+  {
+    if (id < 0 || static_cast<std::size_t>(id) >= limit)
+      throw InputError(std::string("Medit writer: ") + name + " entry " + std::to_string(id) +
+        " out of range (" + std::to_string(limit) + ")");
+    AppendInt(s, id + 1);
+    s += "\n";
+  }
+}
+} // namespace
+
 std::string FormatMeditMesh(const MeditMesh& m)
 {
   const SimplexMesh& mesh = m.Mesh;
@@ -621,6 +678,8 @@ std::string FormatMeditMesh(const MeditMesh& m)
     AppendSimplices(s, "Triangles", mesh.Cells, &m.CellRefs, 3, np);
   }
   AppendSimplices(s, "Edges", m.Edges, &m.EdgeRefs, 2, np);
+  AppendIndices(s, "Corners", m.Corners, np);
+  AppendIndices(s, "Ridges", m.Ridges, m.Edges.size() / 2);
   s += "\nEnd\n";
   return s;
 }

@@ -20,7 +20,8 @@ namespace av
  * otherwise the triangles (a 2D domain for `Dimension 2`, a surface for `Dimension 3`).
  * When tetrahedra are present the triangles are kept separately as (boundary) faces, and
  * edges are always kept separately, so a read + write round trip loses no simplex.
- * Quadrilaterals, Hexahedra, Prisms, Corners, Ridges, Required*, Normals, Tangents and any
+ * Corners (vertex ids) and Ridges (indices into Edges) are kept (ASCII files; the binary
+ * reader skips them). Quadrilaterals, Hexahedra, Prisms, Required*, Normals, Tangents and any
  * other keyword are skipped; their names are listed in IgnoredKeywords.
  * All ids are 0-based (the file is 1-based).
  */
@@ -33,6 +34,8 @@ struct MeditMesh
   std::vector<std::int32_t> FaceRefs;
   std::vector<std::int32_t> Edges; ///< 2 ids per edge
   std::vector<std::int32_t> EdgeRefs;
+  std::vector<std::int32_t> Corners;        ///< vertex ids (MMG's geometric corners)
+  std::vector<std::int32_t> Ridges;         ///< indices into Edges (MMG's ridges: sharp edges)
   int Version = 2;                          ///< MeshVersionFormatted value
   std::vector<std::string> IgnoredKeywords; ///< keywords found but not kept
 };

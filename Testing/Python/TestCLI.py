@@ -147,6 +147,31 @@ with tempfile.TemporaryDirectory() as tmp:
                       "--feature-patches Ref: a valid sphere")
             else:
                 check(r["feature_line_sites"] == 0, "no feature lines on a sphere by angle")
+    # The same equator as Medit Edges + Ridges (as MMG writes them): read as feature lines.
+    ring = set(i for i in range(hp.GetNumberOfPoints()) if abs(hp.GetPoint(i)[2]) < 1e-12)
+    ring_edges = set()
+    for c in range(hp.GetNumberOfCells()):
+        ids = [hp.GetCell(c).GetPointIds().GetId(k) for k in range(3)]
+        for k in range(3):
+            a_, b_ = ids[k], ids[(k + 1) % 3]
+            if a_ in ring and b_ in ring:
+                ring_edges.add((min(a_, b_), max(a_, b_)))
+    ridged = os.path.join(tmp, "ridges.mesh")
+    with open(medit) as src, open(ridged, "w") as f:
+        body = src.read().replace("End\n", "")
+        f.write(body + "Edges\n%d\n" % len(ring_edges))
+        for a_, b_ in sorted(ring_edges):
+            f.write("%d %d 0\n" % (a_ + 1, b_ + 1))
+        f.write("Ridges\n%d\n" % len(ring_edges))
+        f.write("".join("%d\n" % (i + 1) for i in range(len(ring_edges))) + "End\n")
+    p, _ = run([ridged, "--metric", "curvature", "--sites", "200", "--output-dir", "ridges",
+                "--quiet", "--keep-feature-sites"], work)
+    check(p.returncode == 0, "Medit surface with Ridges runs (stderr: %s)" % p.stderr.strip()[-300:])
+    if p.returncode == 0:
+        r = json.load(open(os.path.join(work, "ridges", "report.json")))
+        check(len(ring_edges) == 40 and r["feature_line_sites"] > 10,
+              "Ridges: %r sites on the %r ridge edges" % (r["feature_line_sites"], len(ring_edges)))
+        check(r["euler"] == 2 and r["flipped"] == 0, "Ridges: a valid sphere")
     p, _ = run([medit, "--metric", "curvature", "--feature-corners", "Ref", "--output-dir", "e9"], work)
     check(p.returncode == 2 and "--feature-patches" in p.stderr, "--feature-corners alone is refused")
 

@@ -392,8 +392,9 @@ SharpFeatures SharpFeaturesFromEdges(const SimplexMesh& mesh,
   SharpFeatures out;
   out.IsCorner.assign(np, 0);
   out.PointEdgeOffsets.assign(np + 1, 0);
-  // Exactly the given corners: no degree or turn rule (cosLimit below -1, an empty line list).
-  FindCorners(mesh, {}, -2.0, out, &flags);
+  // The given corners and the points where the lines meet other than two at a time (a line's
+  // end must be a corner for the sampler); no turn rule (cosLimit below -1).
+  FindCorners(mesh, lines, -2.0, out, &flags);
   std::vector<std::int32_t> identity(nc);
   for (std::size_t c = 0; c < nc; ++c)
     identity[c] = static_cast<std::int32_t>(c);

@@ -71,10 +71,12 @@ SharpFeatures SharpFeaturesFromPatches(const SimplexMesh& mesh,
   double featureAngleDegrees = 30.0);
 
 /**
- * Exactly the given feature edges (two point ids each, edges of `mesh`, any order, duplicates
- * merged) and corners (point ids): the Edges and Corners of features found on the same mesh
- * by an earlier step, passed between filters. Throws InputError on a bad id, an edge that is
- * not an edge of the mesh or an odd edge list.
+ * The given feature edges (two point ids each, edges of `mesh`, any order, duplicates merged)
+ * and corners (point ids), plus corners where the edges meet other than two at a time (a
+ * line's free end, a junction): the Edges and Corners of features found on the same mesh by
+ * an earlier step (passed between filters: the same features again), or a file's ridges and
+ * corners (Medit `Ridges`, `Corners`). Throws InputError on a bad id, an edge that is not an
+ * edge of the mesh or an odd edge list.
  */
 SharpFeatures SharpFeaturesFromEdges(const SimplexMesh& mesh,
   const std::vector<std::int32_t>& edges,

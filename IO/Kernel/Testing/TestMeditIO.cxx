@@ -78,7 +78,23 @@ void TestContent()
   AV_CHECK(m.Mesh.Point(4)[2] == 1.0);
   AV_CHECK(m.Faces.size() == 3 && m.FaceRefs.size() == 1 && m.FaceRefs[0] == 7);
   AV_CHECK(m.Edges.size() == 2 && m.EdgeRefs[0] == 9 && m.Edges[1] == 1);
-  AV_CHECK(m.IgnoredKeywords.size() == 1 && m.IgnoredKeywords[0] == "Corners");
+  AV_CHECK(m.IgnoredKeywords.empty());
+  AV_CHECK((m.Corners == std::vector<std::int32_t>{ 0, 1 }) && m.Ridges.empty());
+
+  // Ridges (indices into Edges, which may come later) and Corners survive a round trip; a
+  // ridge index past the edges or a corner past the vertices is an error naming the section.
+  const std::string ridged =
+    std::string(TetMesh).replace(std::string(TetMesh).find("Tetrahedra"), 0, "Ridges\n1\n1\n");
+  const av::MeditMesh r = av::ParseMeditMesh(ridged, "r");
+  AV_CHECK(r.Ridges == std::vector<std::int32_t>{ 0 });
+  const av::MeditMesh back = av::ParseMeditMesh(av::FormatMeditMesh(r), "back");
+  AV_CHECK(back.Ridges == r.Ridges && back.Corners == r.Corners && back.Edges == r.Edges);
+  std::string badRidge = ridged;
+  badRidge.replace(badRidge.find("Ridges\n1\n1"), 11, "Ridges\n1\n2");
+  AV_CHECK(MessageOf(badRidge).find("Ridges") != std::string::npos);
+  std::string badCorner = std::string(TetMesh);
+  badCorner.replace(badCorner.find("Corners\n2\n1 2"), 14, "Corners\n2\n1 9");
+  AV_CHECK(MessageOf(badCorner).find("Corners") != std::string::npos);
 
   const av::MeditMesh t = av::ParseMeditMesh(TriMesh2D);
   AV_CHECK(t.Mesh.AmbientDim == 2 && t.Mesh.SimplexDim == 2);
