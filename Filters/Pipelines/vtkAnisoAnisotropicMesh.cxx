@@ -44,6 +44,7 @@ int vtkAnisoAnisotropicMesh::RequestBackEnd(
   delaunay->SetImprovementRounds(this->ImprovementRounds);
   delaunay->SetOdtIterations(this->OdtIterations);
   delaunay->SetImproveMesh(this->ImproveMesh);
+  delaunay->SetKeepFeatureSites(this->KeepFeatureSites);
   delaunay->SetInputArrayToProcess(1, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "Metric");
   if (!this->RunStage(delaunay, "restricted Delaunay", 0.85, 0.95, error))
   {
@@ -89,4 +90,5 @@ void vtkAnisoAnisotropicMesh::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ImprovementRounds: " << this->ImprovementRounds << "\n";
   os << indent << "OdtIterations: " << this->OdtIterations << "\n";
   os << indent << "ImproveMesh: " << (this->ImproveMesh ? "On" : "Off") << "\n";
+  os << indent << "KeepFeatureSites: " << (this->KeepFeatureSites ? "On" : "Off") << "\n";
 }

@@ -79,6 +79,14 @@ public:
   vtkBooleanMacro(ImproveMesh, bool);
   ///@}
 
+  ///@{
+  /// Surfaces: the crease and corner sites stay on their creases (default off), as
+  /// vtkAnisoRestrictedDelaunay::KeepFeatureSites.
+  vtkSetMacro(KeepFeatureSites, bool);
+  vtkGetMacro(KeepFeatureSites, bool);
+  vtkBooleanMacro(KeepFeatureSites, bool);
+  ///@}
+
 protected:
   vtkAnisoAnisotropicMesh();
   ~vtkAnisoAnisotropicMesh() override;
@@ -94,6 +102,7 @@ protected:
   int ImprovementRounds = 2;
   int OdtIterations = 3;
   bool ImproveMesh = true;
+  bool KeepFeatureSites = false;
 
 private:
   vtkAnisoAnisotropicMesh(const vtkAnisoAnisotropicMesh&) = delete;

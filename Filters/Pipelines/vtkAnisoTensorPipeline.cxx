@@ -85,7 +85,10 @@ vtkAnisoTensorPipeline::vtkAnisoTensorPipeline()
     0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, vtkDataSetAttributes::TENSORS);
 }
 
-vtkAnisoTensorPipeline::~vtkAnisoTensorPipeline() = default;
+vtkAnisoTensorPipeline::~vtkAnisoTensorPipeline()
+{
+  this->SetFeaturePatchArray(nullptr);
+}
 
 int vtkAnisoTensorPipeline::FillInputPortInformation(int, vtkInformation* info)
 {
@@ -390,6 +393,7 @@ int vtkAnisoTensorPipeline::RequestData(vtkInformation*,
   sampler->SetWarmupIterations(this->SamplingWarmupIterations);
   sampler->SetPreserveSharpFeatures(this->PreserveSharpFeatures);
   sampler->SetFeatureAngle(this->FeatureAngle);
+  sampler->SetFeaturePatchArray(this->FeaturePatchArray);
   sampler->SetSeed(this->Seed);
   if (!this->RunStage(sampler, "particle sampler", 0.6, 0.85, error))
   {
@@ -424,6 +428,8 @@ void vtkAnisoTensorPipeline::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "SamplingWarmupIterations: " << this->SamplingWarmupIterations << "\n";
   os << indent << "PreserveSharpFeatures: " << (this->PreserveSharpFeatures ? "on" : "off") << "\n";
   os << indent << "FeatureAngle: " << this->FeatureAngle << "\n";
+  os << indent << "FeaturePatchArray: " << (this->FeaturePatchArray ? this->FeaturePatchArray : "")
+     << "\n";
   os << indent << "MaximumAnisotropy: " << this->MaximumAnisotropy << "\n";
   os << indent << "MinimumEigenvalue: " << this->MinimumEigenvalue << "\n";
   os << indent << "SmoothingIterations: " << this->SmoothingIterations << "\n";

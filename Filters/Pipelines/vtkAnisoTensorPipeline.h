@@ -107,6 +107,9 @@ public:
   vtkBooleanMacro(PreserveSharpFeatures, bool);
   vtkSetClampMacro(FeatureAngle, double, 1e-3, 180.0);
   vtkGetMacro(FeatureAngle, double);
+  /// Feature lines given as patch ids (surfaces; see vtkAnisoParticleSampler::FeaturePatchArray).
+  vtkSetStringMacro(FeaturePatchArray);
+  vtkGetStringMacro(FeaturePatchArray);
   ///@}
 
   ///@{
@@ -222,6 +225,7 @@ protected:
   int SamplingWarmupIterations = 100;
   bool PreserveSharpFeatures = true;
   double FeatureAngle = 30.0;
+  char* FeaturePatchArray = nullptr;
   double MaximumAnisotropy = 10.0;
   double MinimumEigenvalue = 0.1;
   int SmoothingIterations = 10;

@@ -137,6 +137,39 @@ assert value("euler") == 2 and value("input_euler") == 2 and value("boundary_loo
 assert 0 < value("hausdorff") < 3.0
 assert value("self_intersections") == 0 and value("flipped") == 0
 
+# Feature lines given as patch ids through the composite (FeaturePatchArray, KeepFeatureSites):
+# the two hemispheres of a sphere; the equator's sites are paired along it and kept on it.
+from vtkmodules.vtkCommonCore import vtkIntArray
+halves = vtkSphereSource()
+halves.SetThetaResolution(40)
+halves.SetPhiResolution(31)  # a ring of points at z = 0
+halves.Update()
+hm = halves.GetOutput()
+patch = vtkIntArray()
+patch.SetName("Patch")
+for c in range(hm.GetNumberOfCells()):
+    ids = hm.GetCell(c).GetPointIds()
+    patch.InsertNextValue(1 if sum(hm.GetPoint(ids.GetId(k))[2] for k in range(3)) > 0 else 2)
+hm.GetCellData().AddArray(patch)
+unit = vtkDoubleArray()
+unit.SetName("Metric")
+unit.SetNumberOfComponents(6)
+for i in range(hm.GetNumberOfPoints()):
+    unit.InsertNextTuple((1, 1, 1, 0, 0, 0))
+hm.GetPointData().AddArray(unit)
+pm = configure(vtkAnisoAnisotropicMesh(), hm, POINTS, "Metric")
+pm.SetFieldModeToMetricField()
+pm.SetFeaturePatchArray("Patch")
+pm.SetKeepFeatureSites(True)
+pm.Update()
+pfd = pm.GetOutput().GetFieldData()
+pvalue = lambda name: pfd.GetArray(name).GetTuple1(0)
+print("patches: %g crease pairs along the equator, %g missing, euler %g, flipped %g" % (
+    pvalue("NumFeatureEdgesRequired"), pvalue("NumFeatureEdgesMissing"), pvalue("euler"),
+    pvalue("flipped")))
+assert pvalue("NumFeatureEdgesRequired") > 10 and pvalue("euler") == 2 and pvalue("flipped") == 0
+assert pm.GetKeepFeatureSites() and pm.GetFeaturePatchArray() == "Patch"
+
 # Error path: a NaN in the tensor field -> this filter's error, empty output, no crash.
 bad = cube.NewInstance()
 bad.DeepCopy(cube)
