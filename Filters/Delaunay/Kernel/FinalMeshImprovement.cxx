@@ -14,6 +14,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <unordered_map>
 
 namespace av
 {
@@ -160,24 +161,33 @@ public:
       A.emplace_back(mesh.Point(f.Edges[2 * e]));
       B.emplace_back(mesh.Point(f.Edges[2 * e + 1]));
       LineOf.push_back(find(static_cast<std::int32_t>(e)));
+      EdgeIndex.emplace((static_cast<std::uint64_t>(f.Edges[2 * e]) << 32) |
+          static_cast<std::uint32_t>(f.Edges[2 * e + 1]),
+        static_cast<std::int32_t>(e)); // Edges: smaller id first
     }
   }
 
-  /// The line holding x (within `tolerance`), or -1.
-  std::int32_t LineAt(const Eigen::Vector3d& x, double tolerance) const
+  /// The line holding site s: the feature edge of its triangle whose barycentric coordinate
+  /// opposite is exactly 0 (where the sampler puts its feature-line sites), or -1.
+  std::int32_t LineOfSite(const SimplexMesh& mesh, const SiteSet& sites, std::size_t s) const
   {
-    std::int32_t best = -1;
-    double bestDistance = tolerance;
-    for (std::size_t e = 0; e < A.size(); ++e)
+    const std::int32_t cell = sites.CellIds[s];
+    if (cell < 0 || static_cast<std::size_t>(cell) >= mesh.NumCells())
+      return -1;
+    const std::int32_t* t = mesh.Cell(static_cast<std::size_t>(cell));
+    for (int i = 0; i < 3; ++i)
     {
-      const double d = (Closest(e, x) - x).norm();
-      if (d <= bestDistance)
-      {
-        bestDistance = d;
-        best = LineOf[e];
-      }
+      if (sites.Bary[4 * s + static_cast<std::size_t>(i)] != 0.0)
+        continue;
+      std::int32_t u = t[(i + 1) % 3], v = t[(i + 2) % 3];
+      if (u > v)
+        std::swap(u, v);
+      const auto it =
+        EdgeIndex.find((static_cast<std::uint64_t>(u) << 32) | static_cast<std::uint32_t>(v));
+      if (it != EdgeIndex.end())
+        return LineOf[static_cast<std::size_t>(it->second)];
     }
-    return best;
+    return -1;
   }
 
   /// The closest point of line `line` to x and the unit tangent there.
@@ -211,6 +221,7 @@ private:
 
   std::vector<Eigen::Vector3d> A, B;
   std::vector<std::int32_t> LineOf;              // per segment
+  std::unordered_map<std::uint64_t, std::int32_t> EdgeIndex; // (u, v), u < v -> segment
   std::vector<std::vector<std::int32_t>> Lines;  // per line id (a root segment): its segments
 };
 } // namespace
@@ -334,23 +345,10 @@ MeshImprovementResult ImproveFinalMesh(const SimplexMesh& mesh,
     if (surface && features && features->NumEdges() > 0)
     {
       lines = std::make_unique<FeatureLineProjector>(mesh, *features);
-      double diagonal2 = 0.0;
-      {
-        Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
-        Eigen::Vector3d hi = -lo;
-        for (std::size_t p = 0; p < mesh.NumPoints(); ++p)
-        {
-          const Eigen::Map<const Eigen::Vector3d> q(mesh.Point(p));
-          lo = lo.cwiseMin(q);
-          hi = hi.cwiseMax(q);
-        }
-        diagonal2 = (hi - lo).squaredNorm();
-      }
       lineOf.assign(sites.NumSites(), -1);
       for (std::size_t s = 0; s < fixed.size() && s < sites.NumSites(); ++s)
         if (fixed[s] == FeatureLinePoint)
-          lineOf[s] = lines->LineAt(
-            Eigen::Map<const Eigen::Vector3d>(dual.Points.data() + 3 * s), 1e-9 * std::sqrt(diagonal2));
+          lineOf[s] = lines->LineOfSite(mesh, sites, s);
       o.ProjectToFeatureLine = [&](std::int32_t v, const double* x, double* placed, double* tangent)
       {
         if (v < 0 || static_cast<std::size_t>(v) >= lineOf.size() || lineOf[v] < 0)
