@@ -28,6 +28,9 @@
 #include <vtkSignedCharArray.h>
 #include <vtkTable.h>
 
+#include <cmath>
+#include <string>
+
 vtkStandardNewMacro(vtkAnisoParticleSampler);
 
 namespace
@@ -117,8 +120,16 @@ bool GivenFeatures(vtkAnisoParticleSampler* self,
   for (vtkIdType c = 0; c < input->GetNumberOfCells(); ++c)
   {
     const int type = input->GetCellType(c);
-    if (type == VTK_TRIANGLE || type == VTK_TETRA) // the cells ToSimplexMesh keeps, in order
-      patch.push_back(static_cast<std::int32_t>(ids->GetTuple1(c)));
+    if (type != VTK_TRIANGLE && type != VTK_TETRA) // the cells ToSimplexMesh keeps, in order
+      continue;
+    const double id = ids->GetTuple1(c);
+    if (!(std::abs(id) < 2147483647.0))
+    {
+      error = "FeaturePatchArray: cell " + std::to_string(c) + " has the patch id " +
+        std::to_string(id) + ", not an integer";
+      return false;
+    }
+    patch.push_back(static_cast<std::int32_t>(id));
   }
   std::vector<std::uint8_t> flags;
   if (!corners.empty())
@@ -131,7 +142,15 @@ bool GivenFeatures(vtkAnisoParticleSampler* self,
     }
     flags.resize(mesh.NumPoints());
     for (std::size_t p = 0; p < flags.size(); ++p)
-      flags[p] = marks->GetTuple1(static_cast<vtkIdType>(p)) != 0.0 ? 1 : 0;
+    {
+      const double mark = marks->GetTuple1(static_cast<vtkIdType>(p));
+      if (!std::isfinite(mark))
+      {
+        error = "FeatureCornerArray: point " + std::to_string(p) + " has a non-finite value";
+        return false;
+      }
+      flags[p] = mark != 0.0 ? 1 : 0;
+    }
   }
   try
   {

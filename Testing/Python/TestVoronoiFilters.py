@@ -18,7 +18,7 @@ from vtkmodules.vtkCommonCore import vtkCommand
 from vtkmodules.vtkCommonDataModel import vtkPolyData, vtkUnstructuredGrid
 from vtkmodules.vtkFiltersCore import vtkCleanPolyData, vtkTriangleFilter
 from vtkmodules.vtkFiltersModeling import vtkLinearSubdivisionFilter
-from vtkmodules.vtkCommonCore import vtkIntArray
+from vtkmodules.vtkCommonCore import vtkDoubleArray, vtkIntArray
 from vtkmodules.vtkFiltersSources import vtkCubeSource, vtkSphereSource
 from anisovoronoi import (vtkAnisoAnalyticMetricSource, vtkAnisoCurvatureMetric, vtkAnisoEmbedding,
                           vtkAnisoParticleSampler, vtkAnisoRestrictedVoronoi,
@@ -354,6 +354,26 @@ missing.SetInputConnection(ball_embedding.GetOutputPort())
 missing.SetFeaturePatchArray("NoSuchArray")
 missing.Update()
 assert errors and missing.GetOutput().GetNumberOfPoints() == 0
+# A patch id that is not a number: an error, not a cast of NaN.
+nan_halves = vtkPolyData()
+nan_halves.DeepCopy(halves)
+nan_patch = vtkDoubleArray()
+nan_patch.SetName("Patch")
+for c in range(nan_halves.GetNumberOfCells()):
+    nan_patch.InsertNextValue(float("nan") if c == 5 else 1.0)
+nan_halves.GetCellData().AddArray(nan_patch)
+nan_metric = vtkAnisoCurvatureMetric()
+nan_metric.SetInputData(nan_halves)
+nan_embedding = vtkAnisoEmbedding()
+nan_embedding.SetInputConnection(nan_metric.GetOutputPort())
+errors.clear()
+nan_sites = vtkAnisoParticleSampler()
+nan_sites.AddObserver(vtkCommand.ErrorEvent, lambda obj, ev: errors.append(ev))
+nan_sites.SetInputConnection(nan_embedding.GetOutputPort())
+nan_sites.SetNumberOfSites(100)
+nan_sites.SetFeaturePatchArray("Patch")
+nan_sites.Update()
+assert errors and nan_sites.GetOutput().GetNumberOfPoints() == 0
 
 # Bad input: no embedding array -> error event, empty output, no exception.
 errors = []
