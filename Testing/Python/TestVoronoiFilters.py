@@ -40,6 +40,21 @@ def polygon_area(pts, ids):
     return 0.5 * a
 
 
+def surface_sites(surface, sites):
+    """Curvature metric -> embedding -> sampler on a surface (a port or a data object)."""
+    metric = vtkAnisoCurvatureMetric()
+    if hasattr(surface, "GetProducer"):
+        metric.SetInputConnection(surface)
+    else:
+        metric.SetInputData(surface)
+    embedded = vtkAnisoEmbedding()
+    embedded.SetInputConnection(metric.GetOutputPort())
+    sampled = vtkAnisoParticleSampler()
+    sampled.SetInputConnection(embedded.GetOutputPort())
+    sampled.SetNumberOfSites(sites)
+    return metric, embedded, sampled
+
+
 source = vtkAnisoAnalyticMetricSource()
 source.SetPreset(0)  # Gaussian2D on [-1, 1]^2
 source.SetResolution(25)
@@ -264,13 +279,7 @@ box_clean.SetInputConnection(box_tris.GetOutputPort())
 box_fine = vtkLinearSubdivisionFilter()
 box_fine.SetInputConnection(box_clean.GetOutputPort())
 box_fine.SetNumberOfSubdivisions(4)
-box_metric = vtkAnisoCurvatureMetric()
-box_metric.SetInputConnection(box_fine.GetOutputPort())
-box_embedding = vtkAnisoEmbedding()
-box_embedding.SetInputConnection(box_metric.GetOutputPort())
-box_sites = vtkAnisoParticleSampler()
-box_sites.SetInputConnection(box_embedding.GetOutputPort())
-box_sites.SetNumberOfSites(600)
+box_metric, box_embedding, box_sites = surface_sites(box_fine.GetOutputPort(), 600)
 box_sites.Update()
 box_sampled = box_sites.GetOutput()
 assert field(box_sampled, "FeatureAngle") == 30.0 and field(box_sampled, "NumCornerSites") == 8
@@ -320,13 +329,7 @@ for c in range(halves.GetNumberOfCells()):
     z = sum(halves.GetPoint(ids.GetId(k))[2] for k in range(3)) / 3.0
     patch.InsertNextValue(1 if z > 0.0 else 2)
 halves.GetCellData().AddArray(patch)
-ball_metric = vtkAnisoCurvatureMetric()
-ball_metric.SetInputData(halves)
-ball_embedding = vtkAnisoEmbedding()
-ball_embedding.SetInputConnection(ball_metric.GetOutputPort())
-ball_sites = vtkAnisoParticleSampler()
-ball_sites.SetInputConnection(ball_embedding.GetOutputPort())
-ball_sites.SetNumberOfSites(400)
+ball_metric, ball_embedding, ball_sites = surface_sites(halves, 400)
 ball_sites.Update()
 assert field(ball_sites.GetOutput(), "NumFeatureLineSites") == 0  # by angle: none
 ball_sites.SetFeaturePatchArray("Patch")
@@ -362,15 +365,9 @@ nan_patch.SetName("Patch")
 for c in range(nan_halves.GetNumberOfCells()):
     nan_patch.InsertNextValue(float("nan") if c == 5 else 1.0)
 nan_halves.GetCellData().AddArray(nan_patch)
-nan_metric = vtkAnisoCurvatureMetric()
-nan_metric.SetInputData(nan_halves)
-nan_embedding = vtkAnisoEmbedding()
-nan_embedding.SetInputConnection(nan_metric.GetOutputPort())
 errors.clear()
-nan_sites = vtkAnisoParticleSampler()
+nan_metric, nan_embedding, nan_sites = surface_sites(nan_halves, 100)
 nan_sites.AddObserver(vtkCommand.ErrorEvent, lambda obj, ev: errors.append(ev))
-nan_sites.SetInputConnection(nan_embedding.GetOutputPort())
-nan_sites.SetNumberOfSites(100)
 nan_sites.SetFeaturePatchArray("Patch")
 nan_sites.Update()
 assert errors and nan_sites.GetOutput().GetNumberOfPoints() == 0

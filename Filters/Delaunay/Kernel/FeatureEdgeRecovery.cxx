@@ -6,6 +6,7 @@
 #include <Eigen/Dense>
 
 #include <algorithm>
+#include <memory>
 #include <unordered_map>
 #include <unordered_set>
 #include <utility>
@@ -95,6 +96,12 @@ std::vector<std::array<std::int32_t, 2>> ConsecutiveFeatureSites(
     const auto it = on.AtVertex.find(w);
     return it == on.AtVertex.end() ? -1 : it->second;
   };
+  // The other feature edge at point w, which has exactly two.
+  auto otherEdgeAt = [&](std::int32_t w, std::int32_t e)
+  {
+    const std::int32_t* inc = features.PointEdges.data() + features.PointEdgeOffsets[w];
+    return inc[0] == e ? inc[1] : inc[0];
+  };
   // The first site met entering feature edge e at its point `from`, then on along the line.
   const std::size_t maxSteps = features.NumEdges();
   auto walk = [&](std::int32_t e, std::int32_t from) -> std::int32_t
@@ -112,8 +119,7 @@ std::vector<std::array<std::int32_t, 2>> ConsecutiveFeatureSites(
         return at;
       if (degree(to) != 2)
         return -1;
-      const std::int32_t* inc = features.PointEdges.data() + features.PointEdgeOffsets[to];
-      e = inc[0] == e ? inc[1] : inc[0];
+      e = otherEdgeAt(to, e);
       from = to;
     }
     return -1;
@@ -124,10 +130,7 @@ std::vector<std::array<std::int32_t, 2>> ConsecutiveFeatureSites(
     const std::int32_t at = siteAt(w);
     if (at >= 0)
       return at;
-    if (degree(w) != 2)
-      return -1;
-    const std::int32_t* inc = features.PointEdges.data() + features.PointEdgeOffsets[w];
-    return walk(inc[0] == e ? inc[1] : inc[0], w);
+    return degree(w) == 2 ? walk(otherEdgeAt(w, e), w) : -1;
   };
   auto add = [&](std::int32_t a, std::int32_t b)
   {
@@ -204,7 +207,7 @@ FeatureEdgeRecoveryResult RecoverFeatureEdges(const SimplexMesh& mesh,
     const Eigen::Map<const Eigen::Vector3d> a(mesh.Point(e[0])), b(mesh.Point(e[1])), c(mesh.Point(e[2]));
     return Eigen::Vector3d((b - a).cross(c - a));
   };
-  const TriangleBvh bvh(mesh);
+  std::unique_ptr<TriangleBvh> bvh; // built at the first flip tried (none when nothing is missing)
   auto normal = [&](std::int32_t p, std::int32_t q, std::int32_t o)
   { return Eigen::Vector3d((point(q) - point(p)).cross(point(o) - point(p))); };
   // Whether triangle (p, q, o) is not degenerate, faces the input's way at o and the way of the
@@ -219,7 +222,9 @@ FeatureEdgeRecoveryResult RecoverFeatureEdges(const SimplexMesh& mesh,
     // And the way of the input triangle nearest its centroid (a triangle between two sites on
     // parallel creases lies on the narrow face between them, whose normal is neither's).
     std::int32_t nearest = -1;
-    bvh.ClosestDistance2((point(p) + point(q) + point(o)) / 3.0, &nearest);
+    if (!bvh)
+      bvh = std::make_unique<TriangleBvh>(mesh);
+    bvh->ClosestDistance2((point(p) + point(q) + point(o)) / 3.0, &nearest);
     if (nearest < 0)
       return false;
     const std::int32_t* e = mesh.Cell(static_cast<std::size_t>(nearest));

@@ -15,7 +15,6 @@
 #include "ValidDualMesh.h"
 
 #include <algorithm>
-#include <array>
 #include <string>
 #include <utility>
 
@@ -59,45 +58,13 @@ void MarkMoved(const SiteSet& before, const SiteSet& after, std::vector<std::uin
 /// shared by more than two cells: around those, the fixed sites do not make a valid dual.
 void ReleaseSitesOfBadCells(const RestrictedDelaunayMesh& rdt, std::vector<std::uint8_t>& fixed)
 {
-  const int nv = rdt.SimplexDim + 1;
-  const std::size_t nc = rdt.NumCells();
-  std::vector<std::uint8_t> bad(nc, 0);
-  for (std::size_t c = 0; c < nc && c < rdt.Inverted.size(); ++c)
-    bad[c] = rdt.Inverted[c];
-  // Facets (sorted vertex ids) with their cell, sorted: runs of more than two are non-manifold.
-  std::vector<std::pair<std::array<std::int32_t, 3>, std::int32_t>> facets;
-  facets.reserve(nc * static_cast<std::size_t>(nv));
-  for (std::size_t c = 0; c < nc; ++c)
-  {
-    const std::int32_t* v = rdt.Cells.data() + c * static_cast<std::size_t>(nv);
-    for (int skip = 0; skip < nv; ++skip)
-    {
-      std::array<std::int32_t, 3> f = { -1, -1, -1 };
-      int k = 0;
-      for (int i = 0; i < nv; ++i)
-        if (i != skip)
-          f[static_cast<std::size_t>(k++)] = v[i];
-      std::sort(f.begin(), f.begin() + k);
-      facets.emplace_back(f, static_cast<std::int32_t>(c));
-    }
-  }
-  std::sort(facets.begin(), facets.end());
-  for (std::size_t i = 0; i < facets.size();)
-  {
-    std::size_t j = i + 1;
-    while (j < facets.size() && facets[j].first == facets[i].first)
-      ++j;
-    if (j - i > 2)
-      for (std::size_t q = i; q < j; ++q)
-        bad[static_cast<std::size_t>(facets[q].second)] = 1;
-    i = j;
-  }
-  for (std::size_t c = 0; c < nc; ++c)
-    if (bad[c])
-      for (int i = 0; i < nv; ++i)
+  const std::size_t nv = static_cast<std::size_t>(rdt.SimplexDim + 1);
+  const std::vector<std::uint8_t> nonManifold = NonManifoldCells(rdt);
+  for (std::size_t c = 0; c < rdt.NumCells(); ++c)
+    if (nonManifold[c] || (c < rdt.Inverted.size() && rdt.Inverted[c]))
+      for (std::size_t i = 0; i < nv; ++i)
       {
-        const std::int32_t s =
-          rdt.Cells[c * static_cast<std::size_t>(nv) + static_cast<std::size_t>(i)];
+        const std::int32_t s = rdt.Cells[c * nv + i];
         if (s >= 0 && static_cast<std::size_t>(s) < fixed.size())
           fixed[static_cast<std::size_t>(s)] = 0;
       }

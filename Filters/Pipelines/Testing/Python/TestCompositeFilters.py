@@ -117,12 +117,17 @@ ball.SetThetaResolution(40)
 ball.SetPhiResolution(30)
 ball.Update()
 ball_mesh = ball.GetOutput()
-ident = vtkDoubleArray()
-ident.SetName("Metric")
-ident.SetNumberOfComponents(6)
-for i in range(ball_mesh.GetNumberOfPoints()):
-    ident.InsertNextTuple((1, 1, 1, 0, 0, 0))
-ball_mesh.GetPointData().AddArray(ident)
+def add_unit_metric(surface):
+    """A point array "Metric" of identity tensors."""
+    unit = vtkDoubleArray()
+    unit.SetName("Metric")
+    unit.SetNumberOfComponents(6)
+    for i in range(surface.GetNumberOfPoints()):
+        unit.InsertNextTuple((1, 1, 1, 0, 0, 0))
+    surface.GetPointData().AddArray(unit)
+
+
+add_unit_metric(ball_mesh)
 sm = configure(vtkAnisoAnisotropicMesh(), ball_mesh, POINTS, "Metric")
 sm.SetFieldModeToMetricField()
 sm.Update()
@@ -151,12 +156,7 @@ for c in range(hm.GetNumberOfCells()):
     ids = hm.GetCell(c).GetPointIds()
     patch.InsertNextValue(1 if sum(hm.GetPoint(ids.GetId(k))[2] for k in range(3)) > 0 else 2)
 hm.GetCellData().AddArray(patch)
-unit = vtkDoubleArray()
-unit.SetName("Metric")
-unit.SetNumberOfComponents(6)
-for i in range(hm.GetNumberOfPoints()):
-    unit.InsertNextTuple((1, 1, 1, 0, 0, 0))
-hm.GetPointData().AddArray(unit)
+add_unit_metric(hm)
 pm = configure(vtkAnisoAnisotropicMesh(), hm, POINTS, "Metric")
 pm.SetFieldModeToMetricField()
 pm.SetFeaturePatchArray("Patch")
