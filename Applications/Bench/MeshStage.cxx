@@ -99,6 +99,7 @@ av::MeshingPipelineOptions PipelineOptions(const MeshStageOptions& options,
   po.ImproveMesh = options.ImproveMesh;
   po.Improvement.PlanarBoundary = options.PlanarBoundary;
   po.Improvement.StraightCreases = options.StraightCreases;
+  po.Improvement.Insertions = options.VertexInsertion;
   po.Improvement.BoundaryFlipMaxDihedral = options.BoundaryFlipMaxDihedral;
   po.Improvement.BoundaryFlipVolumeBudget = options.BoundaryFlipVolumeBudget;
   po.Metric = metric;
@@ -120,6 +121,9 @@ void CopyMeshingCounts(const av::MeshingPipelineResult& m, MeshStageResult& r)
     m.Improvement.NumBoundaryEdgeRemovals + m.Improvement.NumBoundarySmoothed;
   r.ImprovementVolumeChange = m.Improvement.BoundaryVolumeChange;
   r.ImprovementCreaseMoves = m.Improvement.NumCreaseSmoothed;
+  r.ImprovementInsertions = m.Improvement.NumInsertions;
+  r.ImprovementWorstBefore = m.Improvement.WorstBefore;
+  r.ImprovementWorstAfter = m.Improvement.WorstAfter;
   r.FeatureEdgesRequired = m.FeatureEdges.Required;
   r.FeatureEdgesMissingBefore = m.FeatureEdges.Required - m.FeatureEdges.Present;
   r.FeatureEdgesRecovered = m.FeatureEdges.Recovered;

@@ -46,6 +46,7 @@ struct MeshStageOptions
   bool ImproveMesh = true; ///< flips and smoothing of the final dual in the metric (MeshImprovement)
   bool PlanarBoundary = true; ///< ...also on planar boundary patches (MeshImprovementOptions)
   bool StraightCreases = true; ///< ...and along straight creases (MeshImprovementOptions)
+  bool VertexInsertion = true; ///< tets: vertex insertion (MeshImprovementOptions::Insertions)
   double BoundaryFlipMaxDihedral = 10.0; ///< ...and edges of nearly coplanar boundary faces
   double BoundaryFlipVolumeBudget = 1e-3; ///< ...changing at most this share of the volume
   bool PreserveSharpFeatures = true; ///< corner / feature-line particles (ParticleSamplerOptions)
@@ -75,6 +76,9 @@ struct MeshStageResult
   /// Of those, on planar boundary patches: edge removals and in-plane vertex moves (tets)
   std::size_t ImprovementBoundaryOps = 0;
   std::size_t ImprovementCreaseMoves = 0; ///< of those, moves along straight creases
+  std::size_t ImprovementInsertions = 0;  ///< tets: inserted vertices
+  /// The improvement's own worst element angle (its metric measure), degrees, before and after
+  double ImprovementWorstBefore = 0.0, ImprovementWorstAfter = 0.0;
   /// Surfaces: site pairs consecutive along the feature lines, and of those the edges missing
   /// from the dual, made by flips, and still missing (RecoverFeatureEdges).
   std::size_t FeatureEdgesRequired = 0, FeatureEdgesMissingBefore = 0, FeatureEdgesRecovered = 0,

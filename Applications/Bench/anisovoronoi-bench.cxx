@@ -93,6 +93,7 @@ struct Args
   bool ImproveMesh = true;   // flips and smoothing of the final mesh in the metric
   bool PlanarBoundary = true; // ...and on planar boundary patches
   bool StraightCreases = true; // ...and along straight creases
+  bool VertexInsertion = true; // tets: vertex insertion in the mesh improvement
   double BoundaryFlipDihedral = 10.0; // ...and nearly planar ones (degrees)
   double BoundaryVolumeBudget = 1e-3; // ...changing at most this fraction of the volume
   bool Features = true;      // corner / feature-line particles
@@ -548,6 +549,7 @@ avbench::MeshStageOptions MeshStageOptionsFor(const Args& a, const Case& c)
   o.ImproveMesh = a.ImproveMesh;
   o.PlanarBoundary = a.PlanarBoundary;
   o.StraightCreases = a.StraightCreases;
+  o.VertexInsertion = a.VertexInsertion;
   o.BoundaryFlipMaxDihedral = a.BoundaryFlipDihedral;
   o.BoundaryFlipVolumeBudget = a.BoundaryVolumeBudget;
   o.PreserveSharpFeatures = a.Features;
@@ -593,6 +595,9 @@ void ReportMesh(const Case& c, const avbench::MeshStageOptions& o,
   out.Set("mesh_improvement_smoothed", r.ImprovementSmoothed);
   out.Set("mesh_improvement_boundary_ops", r.ImprovementBoundaryOps);
   out.Set("mesh_improvement_crease_moves", r.ImprovementCreaseMoves);
+  out.Set("mesh_improvement_insertions", r.ImprovementInsertions);
+  out.Set("mesh_improvement_worst_before", r.ImprovementWorstBefore);
+  out.Set("mesh_improvement_worst_after", r.ImprovementWorstAfter);
   out.Set("feature_edges_required", r.FeatureEdgesRequired);
   out.Set("feature_edges_missing_before", r.FeatureEdgesMissingBefore);
   out.Set("feature_edges_recovered", r.FeatureEdgesRecovered);
@@ -782,6 +787,8 @@ void Usage(std::ostream& os)
        "                    planar boundary patches)\n"
        "  --no-straight-creases  mesh: feature-line vertices of tet meshes stay (default: they\n"
        "                    slide along straight creases, the two planes kept exactly)\n"
+       "  --no-vertex-insertion  mesh: the improvement of tet meshes adds no vertices (default:\n"
+       "                    it inserts one where flips and smoothing leave a tet below 15 deg)\n"
        "  --boundary-flip-dihedral D  mesh: the improvement also removes boundary edges whose\n"
        "                    two faces are at most D degrees from coplanar (default 10; 0 =\n"
        "                    planar only), at most 0.1 % of the volume in all\n"
@@ -930,6 +937,8 @@ bool Parse(int argc, char** argv, Args& a)
       a.PlanarBoundary = false;
     else if (k == "--no-straight-creases")
       a.StraightCreases = false;
+    else if (k == "--no-vertex-insertion")
+      a.VertexInsertion = false;
     else if (k == "--boundary-flip-dihedral")
       a.BoundaryFlipDihedral = std::stod(next());
     else if (k == "--boundary-volume-budget")

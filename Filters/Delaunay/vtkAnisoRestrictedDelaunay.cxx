@@ -269,6 +269,8 @@ void AddRunFieldData(const av::MeshingPipelineResult& result, double seconds, vt
   // Triangles: a split appends a site, a collapse leaves its vertex as an unused point.
   AddFieldValue(fd, "NumImprovementSplits", static_cast<double>(im.NumSplits));
   AddFieldValue(fd, "NumImprovementCollapses", static_cast<double>(im.NumCollapses));
+  // Tets: an insertion appends a site where flips and moves leave a tet below 15 degrees.
+  AddFieldValue(fd, "NumImprovementInsertions", static_cast<double>(im.NumInsertions));
   AddFieldValue(fd, "MeshImprovementSeconds", result.MeshImprovementSeconds);
   // Surfaces: site pairs consecutive along the feature lines, and how many of their edges the
   // flips made and could not make.

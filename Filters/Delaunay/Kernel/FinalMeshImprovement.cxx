@@ -323,24 +323,37 @@ MeshImprovementResult ImproveFinalMesh(const SimplexMesh& mesh,
   }
   std::unique_ptr<FeatureLineProjector> lines; // outlive ImproveMesh: o's callbacks use them
   std::vector<std::int32_t> lineOf;
+  // Triangles: where a moved or new vertex lands and its metric; tets: an inserted vertex's.
+  o.PlacePoint = [&](std::int32_t near, const double* x, double* placed, double* normal, double* m)
+  {
+    std::int32_t cell = -1;
+    double lambda[4] = { 0, 0, 0, 0 };
+    Eigen::Vector3d p, n;
+    if (!locate(near, x, cell, lambda, p, n))
+      return false;
+    for (int d = 0; d < 3; ++d)
+    {
+      placed[d] = p[d];
+      normal[d] = n[d];
+    }
+    MetricAt(mesh, metric, cell, lambda, m);
+    return true;
+  };
+  // A split's or an insertion's vertex becomes an inserted site (after the repair's).
+  o.AddPoint = [&](std::int32_t v, std::int32_t near, const double* x)
+  {
+    std::int32_t cell = -1;
+    double lambda[4] = { 0, 0, 0, 0 };
+    Eigen::Vector3d placed, normal;
+    if (static_cast<std::size_t>(v) != sites.NumSites() ||
+      !locate(near, x, cell, lambda, placed, normal))
+      return false;
+    SetSite(mesh, embedding, cell, lambda, static_cast<std::size_t>(v), sites);
+    ++repaired.NumInserted;
+    return true;
+  };
   if (dual.SimplexDim == 2)
   {
-    o.PlacePoint = [&](
-                     std::int32_t near, const double* x, double* placed, double* normal, double* m)
-    {
-      std::int32_t cell = -1;
-      double lambda[4] = { 0, 0, 0, 0 };
-      Eigen::Vector3d p, n;
-      if (!locate(near, x, cell, lambda, p, n))
-        return false;
-      for (int d = 0; d < 3; ++d)
-      {
-        placed[d] = p[d];
-        normal[d] = n[d];
-      }
-      MetricAt(mesh, metric, cell, lambda, m);
-      return true;
-    };
     // Feature-line sites on a line of the input slide along it (between its corners).
     if (surface && features && features->NumEdges() > 0)
     {
@@ -357,19 +370,6 @@ MeshImprovementResult ImproveFinalMesh(const SimplexMesh& mesh,
         return true;
       };
     }
-    // A split's vertex becomes an inserted site (after the repair's, before nothing else).
-    o.AddPoint = [&](std::int32_t v, std::int32_t near, const double* x)
-    {
-      std::int32_t cell = -1;
-      double lambda[4] = { 0, 0, 0, 0 };
-      Eigen::Vector3d placed, normal;
-      if (static_cast<std::size_t>(v) != sites.NumSites() ||
-        !locate(near, x, cell, lambda, placed, normal))
-        return false;
-      SetSite(mesh, embedding, cell, lambda, static_cast<std::size_t>(v), sites);
-      ++repaired.NumInserted;
-      return true;
-    };
   }
   MeshImprovementResult result = ImproveMesh(dual, siteMetric, &fixed, o);
   rdt.Points = std::move(dual.Points);

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // MeshImprovement: flips and vertex smoothing that raise the worst element of a simplicial mesh,
-// measured in the metric (Klingner & Shewchuk 2007, "Aggressive tetrahedral mesh improvement",
-// tets without vertex insertion; triangles also collapse and split edges). Runs on the final
-// dual mesh of the meshing pipeline.
+// measured in the metric (Klingner & Shewchuk 2007, "Aggressive tetrahedral mesh improvement":
+// tets also get vertex insertion, triangles edge collapses and splits). Runs on the final dual
+// mesh of the meshing pipeline.
 #ifndef av_MeshImprovement_h
 #define av_MeshImprovement_h
 
@@ -79,15 +79,26 @@ struct MeshImprovementOptions
   /// vertex left and flips around it, where flips and smoothing alone fail.
   bool Splits = true;
   bool Collapses = true;
+  /// Tets: vertex insertion where flips and smoothing fail on a tet below
+  /// EdgeLengthRuleMinAngle (the tets that may add out-of-range edges; without KeepEdgeLengths
+  /// any tet below TargetAngle): a new vertex at the
+  /// tet's metric circumcenter, its centroid or an edge midpoint, the cavity of the tets whose
+  /// metric circumspheres contain it (never across the boundary) joined to it, the vertex then
+  /// smoothed; kept only if the worst tet of the cavity gets better. The new vertex's metric
+  /// comes from PlacePoint (else the mean square root of the tet's vertices) and AddPoint must
+  /// accept it.
+  bool Insertions = true;
+  int MaxInsertionCavity = 48; ///< tets: the most tets one insertion replaces
   /// Surfaces: an edge is flipped only where its two triangles meet at most at this dihedral
   /// angle (degrees), so that the flip moves the surface by a second-order amount.
   double SurfaceFlipMaxDihedral = 20.0;
   /// Surfaces: a collapse must leave the removed vertex within this fraction of the collapsed
   /// edge's length from the triangles that replace its star (flat: 0; a thin tube: large).
   double SurfaceCollapseMaxDeviation = 0.05;
-  /// Triangles: places a trial position x (3 values, z = 0 in 2D) of a vertex near vertex
-  /// `near` on the domain: writes the point (surfaces: on the input surface), the domain's unit
-  /// normal there and the metric there (6 packed values). False: x is outside the domain. Needed
+  /// Triangles and tets: places a trial position x (3 values, z = 0 in 2D) of a vertex near
+  /// vertex `near` on the domain: writes the point (surfaces: on the input surface; tets: x), the
+  /// domain's unit normal there (tets: unused) and the metric there (6 packed values). False: x
+  /// is outside the domain. Tets use it for inserted vertices only. Needed
   /// for surfaces (without it they are left unchanged, Supported false); in 2D without it,
   /// positions are taken as given and a moved vertex keeps its metric, a new one gets the mean
   /// square root of its edge's ends.
@@ -101,8 +112,9 @@ struct MeshImprovementOptions
   /// never remove an edge between two fixed vertices). Empty: they stay.
   std::function<bool(std::int32_t v, const double* x, double* placed, double* tangent)>
     ProjectToFeatureLine;
-  /// Triangles: called when a new vertex is committed (its id is the point count before it),
-  /// with a known vertex near it (as PlacePoint's) and its position; false refuses the operation.
+  /// Triangles and tets: called when a new vertex is committed (its id is the point count before
+  /// it), with a known vertex near it (as PlacePoint's) and its position; false refuses the
+  /// operation.
   std::function<bool(std::int32_t id, std::int32_t near, const double* x)> AddPoint;
 };
 
@@ -123,6 +135,7 @@ struct MeshImprovementResult
   double BoundaryVolumeChange = 0.0;
   std::size_t NumSplits = 0;       ///< triangles: edge splits (new vertices appended)
   std::size_t NumCollapses = 0;    ///< triangles: edge collapses (the removed vertex is unused)
+  std::size_t NumInsertions = 0;   ///< tets: inserted vertices (new points appended)
   int Passes = 0;
   std::vector<std::uint8_t> Moved; ///< per point (new ones included), 1 where it changed
 };
@@ -145,17 +158,18 @@ double MetricSimplexQuality(int simplexDim,
  * removal (n <= MaxEdgeRemovalRing tets around an edge, the optimal triangulation of its ring by
  * dynamic programming), 2-3 flips (tets), 2-2 flips (triangles) and moves of its interior vertices
  * (steepest ascent of the worst incident element with a line search), then for triangles edge
- * collapses and splits, is applied when it raises the worst quality among the elements it
- * touches. Nothing inverts: an element's quality must
+ * collapses and splits and for tets vertex insertion, is applied when it raises the worst
+ * quality among the elements it touches. Nothing inverts: an element's quality must
  * stay positive. The boundary and the domain are preserved exactly: boundary faces (edges) are
  * never flipped, vertices on them, vertices of faces shared by more than two elements, and those
  * flagged in `fixedPoints` (nullptr: none; see FeatureLinePoint) never move (tets: except as
  * PlanarBoundary and StraightCreases say). Vertex metrics stay those given (a move
  * is small against the metric's variation) unless PlacePoint gives them. Unreferenced points are
- * untouched. The cell count may change; the point count only grows by splits (new points are
- * appended; a collapsed vertex stays as an unreferenced point). Surface triangles need
- * PlacePoint: a triangle's orientation is that of the sum of its vertices' normals, and no
- * operation may flip one. Throws InputError on wrong sizes, bad ids or non-finite values.
+ * untouched. The cell count may change; the point count only grows by splits and insertions (new
+ * points are appended, interior and free; a collapsed vertex stays as an unreferenced point).
+ * Surface triangles need PlacePoint: a triangle's orientation is that of the sum of its vertices'
+ * normals, and no operation may flip one. Throws InputError on wrong sizes, bad ids or non-finite
+ * values.
  */
 MeshImprovementResult ImproveMesh(SimplexMesh& mesh,
   const MetricField& metric,

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <stdexcept>
 #include <utility>
 
 namespace av
@@ -112,6 +113,51 @@ void SimplexStarMesh<K>::Kill(std::int32_t id)
     s.erase(std::find(s.begin(), s.end(), id));
   }
   Simplices[id].fill(kDead);
+}
+
+template <int K>
+void SimplexStarMesh<K>::Revive(std::int32_t id, const Simplex& t)
+{
+  Simplices[id] = t;
+  for (std::int32_t v : t)
+    Stars[v].push_back(id);
+}
+
+template <int K>
+void SimplexStarMesh<K>::TruncateDead(std::size_t count)
+{
+  for (std::size_t i = count; i < Simplices.size(); ++i)
+    if (Simplices[i][0] != kDead)
+      throw std::logic_error("SimplexStarMesh::TruncateDead: an alive simplex");
+  Simplices.resize(std::min(count, Simplices.size()));
+}
+
+template <int K>
+std::int32_t SimplexStarMesh<K>::AddPoint(const Eigen::Vector3d& x, const Eigen::Matrix3d& s)
+{
+  const auto id = static_cast<std::int32_t>(Points.size());
+  Points.push_back(x);
+  SqrtMetrics.push_back(s);
+  if constexpr (K == 2)
+    Normals.push_back(Eigen::Vector3d::UnitZ());
+  Stars.emplace_back();
+  Fixed.push_back(0);
+  Moved.push_back(0);
+  return id;
+}
+
+template <int K>
+void SimplexStarMesh<K>::RemoveLastPoint()
+{
+  if (Points.empty() || !Stars.back().empty())
+    throw std::logic_error("SimplexStarMesh::RemoveLastPoint: the point is in use");
+  Points.pop_back();
+  SqrtMetrics.pop_back();
+  if constexpr (K == 2)
+    Normals.pop_back();
+  Stars.pop_back();
+  Fixed.pop_back();
+  Moved.pop_back();
 }
 
 template <int K>

@@ -66,6 +66,15 @@ public:
 
   std::int32_t Add(const Simplex& t); ///< appends an alive simplex to the stars, returns its id
   void Kill(std::int32_t id);         ///< off the stars; the id stays, dead
+  /// Undoes Kill(id): simplex t (what id held) is alive again under its old id.
+  void Revive(std::int32_t id, const Simplex& t);
+  /// Drops the simplices from id `count` on; they must all be dead (the tail of a tried
+  /// operation that was undone).
+  void TruncateDead(std::size_t count);
+  /// Appends a free point with metric square root `s` and an empty star; returns its id.
+  std::int32_t AddPoint(const Eigen::Vector3d& x, const Eigen::Matrix3d& s);
+  /// Drops the last point; its star must be empty.
+  void RemoveLastPoint();
 
   /// Up to `maxPasses` passes; each calls `improve` on the alive simplices below `target`,
   /// worst first (ties by id), and a pass in which none returns true is the last. Returns the

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "TetMeshImprover.h"
 
+#include "MetricAlgebra.h"
 #include "MetricSimplexQuality.h"
 
 #include <algorithm>
@@ -633,6 +634,244 @@ bool TetMeshImprover::TrySmooth(std::int32_t v)
   return true;
 }
 
+std::int32_t TetMeshImprover::Across(std::int32_t t, int m) const
+{
+  const Tet& q = Tets[t];
+  const std::int32_t a = q[FaceOpposite[m][0]], b = q[FaceOpposite[m][1]],
+                     c = q[FaceOpposite[m][2]];
+  std::int32_t other = -1;
+  int found = 0;
+  for (std::int32_t u : Star[a])
+    if (u != t && IndexIn(Tets[u], b) >= 0 && IndexIn(Tets[u], c) >= 0)
+    {
+      other = u;
+      ++found;
+    }
+  return found == 1 ? other : -1;
+}
+
+void TetMeshImprover::CollectCavityFaces()
+{
+  CavityFaces.clear();
+  CavityFaceOwner.clear();
+  for (std::int32_t t : Cavity)
+    for (int m = 0; m < 4; ++m)
+    {
+      const std::int32_t n = Across(t, m);
+      if (n >= 0 && std::find(Cavity.begin(), Cavity.end(), n) != Cavity.end())
+        continue;
+      const Tet& q = Tets[t];
+      CavityFaces.push_back(
+        { q[FaceOpposite[m][0]], q[FaceOpposite[m][1]], q[FaceOpposite[m][2]] });
+      CavityFaceOwner.push_back(t);
+    }
+}
+
+// Bowyer-Watson in the metric of the bad tet, then the usual correction: a face that x does
+// not see from inside takes its tet out of the cavity, until x sees them all.
+bool TetMeshImprover::BuildCavity(std::int32_t seed,
+  const Eigen::Vector3d& x,
+  const Eigen::Matrix3d& map)
+{
+  const Eigen::Vector3d mx = map * x;
+  auto inCircumsphere = [&](const Tet& t)
+  {
+    const Eigen::Vector3d q0 = map * P[t[0]];
+    Eigen::Matrix3d rows;
+    Eigen::Vector3d rhs;
+    for (int i = 1; i < 4; ++i)
+    {
+      const Eigen::Vector3d qi = map * P[t[i]];
+      rows.row(i - 1) = 2.0 * (qi - q0).transpose();
+      rhs[i - 1] = qi.squaredNorm() - q0.squaredNorm();
+    }
+    const Eigen::FullPivLU<Eigen::Matrix3d> lu(rows);
+    if (!lu.isInvertible())
+      return true; // flat: any point is as good as inside
+    const Eigen::Vector3d c = lu.solve(rhs);
+    return (mx - c).squaredNorm() < (q0 - c).squaredNorm();
+  };
+  Cavity.assign(1, seed);
+  const auto maxSize = static_cast<std::size_t>(std::max(1, Options.MaxInsertionCavity));
+  for (std::size_t i = 0; i < Cavity.size() && Cavity.size() < maxSize; ++i)
+    for (int m = 0; m < 4 && Cavity.size() < maxSize; ++m)
+    {
+      const std::int32_t n = Across(Cavity[i], m);
+      if (n >= 0 && std::find(Cavity.begin(), Cavity.end(), n) == Cavity.end() &&
+        inCircumsphere(Tets[n]))
+        Cavity.push_back(n);
+    }
+  for (;;)
+  {
+    CollectCavityFaces();
+    std::int32_t hidden = -1;
+    for (std::size_t f = 0; f < CavityFaces.size() && hidden < 0; ++f)
+    {
+      const auto& q = CavityFaces[f];
+      const double v = (P[q[1]] - P[q[0]]).cross(P[q[2]] - P[q[0]]).dot(x - P[q[0]]);
+      const double scale =
+        (P[q[1]] - P[q[0]]).norm() * (P[q[2]] - P[q[0]]).norm() * (x - P[q[0]]).norm();
+      if (!(v > 1e-9 * scale))
+        hidden = CavityFaceOwner[f];
+    }
+    if (hidden < 0)
+      break;
+    if (hidden == seed)
+      return false;
+    Cavity.erase(std::find(Cavity.begin(), Cavity.end(), hidden));
+  }
+  // Every vertex of the cavity's tets must stay on its boundary (none is removed).
+  for (std::int32_t t : Cavity)
+    for (std::int32_t v : Tets[t])
+    {
+      bool onFace = false;
+      for (const auto& q : CavityFaces)
+        onFace = onFace || q[0] == v || q[1] == v || q[2] == v;
+      if (!onFace)
+        return false;
+    }
+  // x sees every face from inside and the new tets fill the cavity exactly.
+  double oldVolume = 0.0, newVolume = 0.0;
+  for (std::int32_t t : Cavity)
+    oldVolume += Volume(Tets[t]);
+  for (const auto& q : CavityFaces)
+    newVolume += (P[q[1]] - P[q[0]]).cross(P[q[2]] - P[q[0]]).dot(x - P[q[0]]);
+  return std::abs(newVolume - oldVolume) <= 1e-9 * std::abs(oldVolume);
+}
+
+std::int32_t TetMeshImprover::ApplyInsertion(const Eigen::Vector3d& x, const Eigen::Matrix3d& s)
+{
+  const std::int32_t m = Work.AddPoint(x, s);
+  PlaneNormal.emplace_back(Eigen::Vector3d::Zero());
+  LineDirection.emplace_back(Eigen::Vector3d::Zero());
+  Curved.push_back(0);
+  CavityTets.clear();
+  for (std::int32_t t : Cavity)
+  {
+    CavityTets.push_back(Tets[t]);
+    Work.Kill(t);
+  }
+  for (const auto& q : CavityFaces)
+    Work.Add({ q[0], q[1], q[2], m });
+  return m;
+}
+
+void TetMeshImprover::UndoInsertion(std::int32_t point, std::size_t firstNewTet)
+{
+  for (std::size_t t = firstNewTet; t < Tets.size(); ++t)
+    if (Work.IsAlive(static_cast<std::int32_t>(t)))
+      Work.Kill(static_cast<std::int32_t>(t));
+  Work.TruncateDead(firstNewTet);
+  for (std::size_t i = 0; i < Cavity.size(); ++i)
+    Work.Revive(Cavity[i], CavityTets[i]);
+  (void)point;
+  Work.RemoveLastPoint();
+  PlaneNormal.pop_back();
+  LineDirection.pop_back();
+  Curved.pop_back();
+}
+
+// Klingner & Shewchuk's insertion, simplified: a few trial points inside or on the bad tet
+// (its metric circumcenter, centroid and edge midpoints), each with its metric Bowyer-Watson
+// cavity joined to it and the new vertex smoothed; the best that raises the cavity's worst tet
+// is kept.
+bool TetMeshImprover::TryInsertion(std::int32_t tet)
+{
+  const Tet t = Tets[tet];
+  const Eigen::Matrix3d map = 0.25 *
+    (Work.SqrtMetrics[t[0]] + Work.SqrtMetrics[t[1]] + Work.SqrtMetrics[t[2]] +
+      Work.SqrtMetrics[t[3]]);
+  std::array<Eigen::Vector3d, 8> trials;
+  int numTrials = 0;
+  {
+    Eigen::Matrix3d rows;
+    Eigen::Vector3d rhs;
+    const Eigen::Vector3d q0 = map * P[t[0]];
+    for (int i = 1; i < 4; ++i)
+    {
+      const Eigen::Vector3d qi = map * P[t[i]];
+      rows.row(i - 1) = 2.0 * (qi - q0).transpose();
+      rhs[i - 1] = qi.squaredNorm() - q0.squaredNorm();
+    }
+    const Eigen::FullPivLU<Eigen::Matrix3d> lu(rows);
+    const Eigen::FullPivLU<Eigen::Matrix3d> mapLu(map);
+    if (lu.isInvertible() && mapLu.isInvertible())
+      trials[numTrials++] = mapLu.solve(lu.solve(rhs));
+  }
+  trials[numTrials++] = 0.25 * (P[t[0]] + P[t[1]] + P[t[2]] + P[t[3]]);
+  // The two longest edges' midpoints (a cap or a sliver is split across its long edges).
+  std::array<std::pair<double, int>, 6> edges;
+  for (int i = 0, e = 0; i < 4; ++i)
+    for (int j = i + 1; j < 4; ++j, ++e)
+      edges[e] = { -Work.EdgeLength(t[i], t[j]), i * 4 + j };
+  std::sort(edges.begin(), edges.end());
+  for (int e = 0; e < 2; ++e)
+    trials[numTrials++] = 0.5 * (P[t[edges[e].second / 4]] + P[t[edges[e].second % 4]]);
+
+  const double badBelow = std::sin(Options.EdgeLengthRuleMinAngle * Pi / 180.0);
+  double bestAfter = -std::numeric_limits<double>::infinity();
+  Eigen::Vector3d bestPoint = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d bestRoot = Eigen::Matrix3d::Zero();
+  std::vector<std::int32_t> bestCavity;
+  for (int k = 0; k < numTrials; ++k)
+  {
+    const Eigen::Vector3d& x = trials[k];
+    if (!x.allFinite() || !BuildCavity(tet, x, map))
+      continue;
+    Eigen::Matrix3d root = map;
+    if (Options.PlacePoint)
+    {
+      double placed[3], normal[3], metric[6];
+      if (!Options.PlacePoint(t[0], x.data(), placed, normal, metric))
+        continue;
+      root = SymmetricSqrt(UnpackSymmetric(metric));
+    }
+    double before = std::numeric_limits<double>::infinity();
+    int badBefore = 0;
+    for (std::int32_t c : Cavity)
+    {
+      const double q = Quality(Tets[c]);
+      before = std::min(before, q);
+      badBefore += q < badBelow ? 1 : 0;
+    }
+    const std::size_t firstNew = Tets.size();
+    const std::int32_t m = ApplyInsertion(x, root);
+    for (int round = 0; round < 3 && Smoother.TrySmooth(m, true); ++round)
+    {
+    }
+    const double after = Work.StarWorst(m);
+    int badAfter = 0;
+    for (std::int32_t c : Star[m])
+      badAfter += Quality(Tets[c]) < badBelow ? 1 : 0;
+    // Also no more bad tets than before: a bad tet split into several less bad ones is no gain.
+    if (Accepts(after, before) && (badAfter <= badBefore || Options.AcceptWorsening) &&
+      after > bestAfter)
+    {
+      bestAfter = after;
+      bestPoint = P[m];
+      bestRoot = root;
+      bestCavity = Cavity;
+    }
+    UndoInsertion(m, firstNew);
+  }
+  if (bestCavity.empty())
+    return false;
+  // Redo the best: the same cavity, the vertex where its smoothing ended.
+  Cavity = bestCavity;
+  CollectCavityFaces();
+  const std::size_t firstNew = Tets.size();
+  const std::int32_t m = ApplyInsertion(bestPoint, bestRoot);
+  if (!(Work.StarWorst(m) > 0.0) ||
+    (Options.AddPoint && !Options.AddPoint(m, t[0], bestPoint.data())))
+  {
+    UndoInsertion(m, firstNew);
+    return false;
+  }
+  Work.Moved[m] = 1;
+  ++Insertions;
+  return true;
+}
+
 bool TetMeshImprover::Improve(std::int32_t tet)
 {
   const Tet t = Tets[tet];
@@ -648,14 +887,17 @@ bool TetMeshImprover::Improve(std::int32_t tet)
       if (TryFlip23(tet, m, worst))
         return true;
   }
+  bool any = false;
   if (Options.Smoothing)
-  {
-    bool any = false;
     for (std::int32_t v : t)
       any = TrySmooth(v) || any;
-    return any;
-  }
-  return false;
+  // Insertion adds short edges: only where the edge-length rule is waived.
+  const double insertBelow = std::sin(
+    (Options.KeepEdgeLengths ? Options.EdgeLengthRuleMinAngle : Options.TargetAngle) * Pi / 180.0);
+  if (Options.Insertions && Work.IsAlive(tet) && Quality(Tets[tet]) < insertBelow &&
+    TryInsertion(tet))
+    return true;
+  return any;
 }
 
 void TetMeshImprover::Run(MeshImprovementResult& result)
@@ -674,6 +916,7 @@ void TetMeshImprover::Run(MeshImprovementResult& result)
   result.NumBoundaryEdgeRemovals = BoundaryEdgeRemovals;
   result.NumBoundarySmoothed = BoundarySmoothed;
   result.NumCreaseSmoothed = CreaseSmoothed;
+  result.NumInsertions = Insertions;
   result.BoundaryVolumeChange = MeshVolume > 0.0 ? BoundaryVolumeChange / MeshVolume : 0.0;
   result.Moved = std::move(Work.Moved);
 }

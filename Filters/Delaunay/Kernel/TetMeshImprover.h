@@ -61,6 +61,22 @@ private:
   double Volume(const Tet& t) const; // Euclidean, times 6
   bool TryFlip23(std::int32_t tet, int apexIndex, double worst);
   bool TrySmooth(std::int32_t v);
+  /// Vertex insertion in bad tet `tet` (MeshImprovementOptions::Insertions): the best of a few
+  /// trial points, each with its cavity, joined and smoothed, then undone; the best is redone.
+  bool TryInsertion(std::int32_t tet);
+  /// The cavity of point x seeded with `seed` into Cavity and its boundary faces (outward, in
+  /// their tets' order) into CavityFaces: the tets across interior faces whose circumspheres,
+  /// mapped by `map`, contain x, then shrunk until x sees every boundary face. False if x cannot
+  /// see the seed's faces or a vertex would be left inside.
+  bool BuildCavity(std::int32_t seed, const Eigen::Vector3d& x, const Eigen::Matrix3d& map);
+  void CollectCavityFaces();
+  /// The tet sharing the face opposite vertex index m of tet t; -1 on the boundary (or where
+  /// more than one does).
+  std::int32_t Across(std::int32_t t, int m) const;
+  /// Replaces Cavity by the tets joining a new point (x, metric root s) to CavityFaces; returns
+  /// the point's id. UndoInsertion reverses it exactly.
+  std::int32_t ApplyInsertion(const Eigen::Vector3d& x, const Eigen::Matrix3d& s);
+  void UndoInsertion(std::int32_t point, std::size_t firstNewTet);
   bool Accepts(double after, double before) const;
   bool OutOfRange(std::int32_t a, std::int32_t b) const; // metric length vs the median
   int OutOfRangeAround(std::int32_t v) const;            // among v's edges (with repeats)
@@ -78,6 +94,11 @@ private:
   std::vector<std::int32_t> EdgeTets, Ring, Next;
   std::vector<double> Best;
   std::vector<int> Choice;
+  // Scratch of the insertion: the cavity's tets (and what they held, for the undo) and faces.
+  std::vector<std::int32_t> Cavity;
+  std::vector<Tet> CavityTets;
+  std::vector<std::array<std::int32_t, 3>> CavityFaces;
+  std::vector<std::int32_t> CavityFaceOwner;
   // Per point: the unit normal of its boundary plane where it may move in it, else zero;
   // Curved: the plane is a tangent plane and ProjectToBoundary puts the point on the surface.
   std::vector<Eigen::Vector3d> PlaneNormal;
@@ -87,6 +108,7 @@ private:
   bool EdgeRuleWaived = false; // the tet being improved is below EdgeLengthRuleMinAngle
   std::size_t Flips23 = 0, EdgeRemovals = 0, Smoothed = 0;
   std::size_t BoundaryEdgeRemovals = 0, BoundarySmoothed = 0, CreaseSmoothed = 0;
+  std::size_t Insertions = 0;
   double MeshVolume = 0.0, BoundaryVolumeChange = 0.0; // Euclidean, times 6
   double MedianEdge = 0.0; // median metric edge length of the input mesh
 };

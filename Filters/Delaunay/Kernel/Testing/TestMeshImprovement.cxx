@@ -2,20 +2,23 @@
 // Tests of ImproveMesh: each operation on a hand-made bad configuration raises the worst
 // quality (2-3 flip, 3-2 flip, edge removal of 4 and 5 tets, smoothing, 2-2 flip, triangle
 // smoothing, the boundary 2-2 flip and the in-plane move on a planar boundary, refused across a
-// crease, the slide along a straight crease); on perturbed grids nothing inverts, the volume and the boundary are kept exactly,
-// every interior face stays shared by two tets, fixed vertices stay, the worst quality never
-// drops; and the mutation hook that accepts worsening operations is caught by those checks.
+// crease, the slide along a straight crease, vertex insertion at a fixed sliver); on perturbed
+// grids nothing inverts, the volume and the boundary are kept exactly, every interior face stays
+// shared by two tets, fixed vertices stay, the worst quality never drops; and the mutation hook
+// that accepts worsening operations is caught by those checks.
 #include "AnisoTestChecks.h"
-#include "PropertyChecks.h"
 #include "MeshImprovement.h"
 #include "MeshTopology.h"
+#include "PropertyChecks.h"
 #include "StructuredMeshes.h"
+#include "TetMesher.h"
 
 #include <Eigen/Dense>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <iostream>
 #include <map>
 #include <random>
 #include <vector>
@@ -207,6 +210,7 @@ void TestSmoothing()
   const double volume = Volume(m);
   av::MeshImprovementOptions smoothOnly;
   smoothOnly.Flips = false;
+  smoothOnly.Insertions = false;
   smoothOnly.KeepEdgeLengths = false;
   av::SimplexMesh moved = m;
   const av::MeshImprovementResult r =
@@ -312,6 +316,7 @@ void TestPlanarBoundary()
   };
   av::MeshImprovementOptions smoothOnly;
   smoothOnly.Flips = false;
+  smoothOnly.Insertions = false;
   smoothOnly.KeepEdgeLengths = false;
   {
     av::SimplexMesh m = halfOctahedron(0.0);
@@ -555,6 +560,7 @@ void TestStraightCrease()
   const double before = WorstQuality(start);
   av::MeshImprovementOptions smoothOnly;
   smoothOnly.Flips = false;
+  smoothOnly.Insertions = false;
   smoothOnly.KeepEdgeLengths = false;
   const av::MetricField metric = IsotropicMetric(grid.NumPoints());
   for (const std::uint8_t flag : { std::uint8_t(0), av::FeatureLinePoint })
@@ -624,7 +630,7 @@ void TestGrids()
   AV_CHECK_MSG(r.NumBoundarySmoothed > 0 && r.NumBoundaryEdgeRemovals > 0,
     r.NumBoundarySmoothed << " boundary moves, " << r.NumBoundaryEdgeRemovals
                           << " boundary edge removals");
-  AV_CHECK(m.NumPoints() == start.NumPoints());
+  AV_CHECK(m.NumPoints() == start.NumPoints() + r.NumInsertions);
   { // Without PlanarBoundary the boundary stays face for face.
     av::MeshImprovementOptions interior;
     interior.PlanarBoundary = false;
@@ -683,6 +689,88 @@ void TestBadInput()
   const av::MeshImprovementResult r = av::ImproveMesh(surf, IsotropicMetric(3), nullptr);
   AV_CHECK(!r.Supported && surf.Cells.size() == 3);
 }
+
+// A sliver whose four vertices are fixed (feature vertices), inside a cube: the Delaunay
+// tetrahedralization of the cube's corners and the sliver. With flips off and every vertex
+// fixed or on the boundary, nothing but an inserted vertex can raise its worst tet. The new vertex
+// is interior, the boundary, the volume and the fixed vertices stay exactly, and refusals
+// (AddPoint, a tet above the insertion bar, Insertions off) leave the mesh as it was.
+av::SimplexMesh SliverInCube()
+{
+  const double h = 0.12;
+  std::vector<double> p = { 1, 0, 0, -1, 0, 0, 0, 1, h, 0, -1, h };
+  for (int i = 0; i < 8; ++i)
+    p.insert(p.end(), { i & 1 ? 2.0 : -2.0, i & 2 ? 2.0 : -2.0, i & 4 ? 2.0 : -2.0 });
+  av::SimplexMesh m = av::DelaunayOfPoints(p);
+  Orient(m);
+  return m;
+}
+
+void TestInsertion()
+{
+  const av::SimplexMesh start = SliverInCube();
+  AV_CHECK(start.NumPoints() == 12 && start.NumCells() > 10);
+  const double before = WorstQuality(start);
+  std::vector<std::uint8_t> fixed(12, 0);
+  std::fill(fixed.begin(), fixed.begin() + 4, 1);
+  av::MeshImprovementOptions o; // the edge-length rule waived below 15° as by default
+  o.Flips = false;
+  {
+    av::MeshImprovementOptions off = o;
+    off.Insertions = false;
+    av::SimplexMesh m = start;
+    const av::MeshImprovementResult r = av::ImproveMesh(m, IsotropicMetric(12), &fixed, off);
+    AV_CHECK_MSG(r.NumInsertions == 0 && WorstQuality(m) <= before + 1e-12,
+      "without insertion " << before << " -> " << WorstQuality(m));
+  }
+  int placed = 0, added = 0;
+  o.PlacePoint = [&](std::int32_t, const double* x, double* at, double* normal, double* metric)
+  {
+    ++placed;
+    for (int d = 0; d < 3; ++d)
+    {
+      at[d] = x[d];
+      normal[d] = 0.0;
+    }
+    const double iso[6] = { 1, 1, 1, 0, 0, 0 };
+    std::copy(iso, iso + 6, metric);
+    return true;
+  };
+  o.AddPoint = [&](std::int32_t id, std::int32_t near, const double*)
+  {
+    ++added;
+    AV_CHECK(id == 12 + added - 1 && near >= 0 && near < 12);
+    return true;
+  };
+  av::SimplexMesh m = start;
+  const av::MeshImprovementResult r = av::ImproveMesh(m, IsotropicMetric(12), &fixed, o);
+  std::cout << "sliver in a cube: worst sine " << before << " -> " << WorstQuality(m) << ", "
+            << r.NumInsertions << " insertion(s), " << r.NumFlips23 + r.NumEdgeRemovals
+            << " flips, " << m.NumCells() << " tets" << std::endl;
+  AV_CHECK(
+    r.NumInsertions >= 1 && static_cast<std::size_t>(added) == r.NumInsertions && placed >= 1);
+  AV_CHECK(m.NumPoints() == start.NumPoints() + r.NumInsertions);
+  AV_CHECK_MSG(WorstQuality(m) > before + 0.1, before << " -> " << WorstQuality(m));
+  const Checks c = CheckRun(start, m, fixed, r);
+  AV_CHECK(c.Ok);
+  for (std::size_t v = 12; v < m.NumPoints(); ++v) // new vertices lie inside the cube
+    for (int d = 0; d < 3; ++d)
+      AV_CHECK(r.Moved[v] == 1 && std::abs(m.Point(v)[d]) < 2.0);
+  { // A refusing AddPoint: no vertex, the mesh as it was.
+    av::MeshImprovementOptions refuse = o;
+    refuse.AddPoint = [](std::int32_t, std::int32_t, const double*) { return false; };
+    av::SimplexMesh k = start;
+    const av::MeshImprovementResult rk = av::ImproveMesh(k, IsotropicMetric(12), &fixed, refuse);
+    AV_CHECK(rk.NumInsertions == 0 && k.NumPoints() == start.NumPoints());
+    AV_CHECK(WorstQuality(k) <= before + 1e-12);
+  }
+  { // Above the insertion bar (the edge-length rule binds): no insertion.
+    av::MeshImprovementOptions bar = o;
+    bar.EdgeLengthRuleMinAngle = 0.5;
+    av::SimplexMesh k = start;
+    AV_CHECK(av::ImproveMesh(k, IsotropicMetric(12), &fixed, bar).NumInsertions == 0);
+  }
+}
 } // namespace
 
 int TestMeshImprovement(int, char*[])
@@ -692,6 +780,7 @@ int TestMeshImprovement(int, char*[])
   TestPlanarBoundary();
   TestStraightCrease();
   TestTriangles();
+  TestInsertion();
   TestGrids();
   TestBadInput();
   return AV_TEST_RESULT();
