@@ -2,6 +2,7 @@
 // The "mesh" stage of anisovoronoi-bench: sampling, av::RunMeshingPipeline, the dual's quality.
 #include "MeshStage.h"
 
+#include "DomainAngleBound.h"
 #include "LloydRelaxation.h"
 #include "MeshQuality.h"
 #include "MeshTopology.h"
@@ -204,6 +205,19 @@ void MeasureDualMesh(const av::SimplexMesh& mesh,
   }
   if (dual.SimplexDim == 3 && dual.AmbientDim == 3)
     r.PinchedBoundaryEdges = av::CountPinchedBoundaryEdges(dual);
+  if (mesh.SimplexDim == 3 && mesh.AmbientDim == 3)
+  {
+    const av::DomainAngleBound bound = av::ComputeDomainAngleBound(mesh, metric);
+    r.DomainAngleBound = bound.MinAngle;
+    r.DomainEdgesBelow15 = bound.NumBelow15;
+  }
+  if (dual.SimplexDim == 3 && dual.AmbientDim == 3 && dual.NumCells() > 0)
+  {
+    const av::DomainAngleBound own =
+      av::ComputeDomainAngleBound(dual, av::InterpolateMetricAtSites(mesh, metric, sites));
+    r.MeshBoundaryAngle = own.MinAngle;
+    r.MeshBoundaryEdgesBelow15 = own.NumBelow15;
+  }
   {
     // Elements whose sites lie in different bodies of the input (a contact assembly).
     std::vector<std::int32_t> body;

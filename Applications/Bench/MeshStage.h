@@ -64,6 +64,14 @@ struct MeshStageResult
   std::size_t CrossBodyElements = 0; ///< dual elements with sites in two bodies of the input
   std::size_t CrossBodyPieces = 0;   ///< Voronoi pieces in a body other than their site's
   std::size_t PinchedBoundaryEdges = 0; ///< tets: edges on more than two boundary faces
+  /// Tets: the input domain's smallest interior angle at a boundary edge in the metric
+  /// (ComputeDomainAngleBound), degrees, capped at 90; theta_min cannot beat it. -1: not a volume.
+  double DomainAngleBound = -1.0;
+  std::size_t DomainEdgesBelow15 = 0; ///< tets: input boundary edges whose angle is < 15 deg
+  /// Tets: the same for the final mesh's own boundary (sharper than the domain's where the
+  /// mesh's boundary folds or cuts corners), and its edges below 15 degrees.
+  double MeshBoundaryAngle = -1.0;
+  std::size_t MeshBoundaryEdgesBelow15 = 0;
   double SampleSeconds = 0.0, LloydSeconds = 0.0;
   double RvdSeconds = 0.0, RdtSeconds = 0.0; ///< the first RVD (with the adjacency) and RDT
   double ImproveSeconds = 0.0; ///< site improvement rounds (their RVD + RDT included)

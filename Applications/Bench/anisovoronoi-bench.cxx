@@ -631,6 +631,16 @@ void ReportMesh(const Case& c, const avbench::MeshStageOptions& o,
   out.Set("cross_body_elements", r.CrossBodyElements);
   out.Set("cross_body_pieces", r.CrossBodyPieces);
   out.Set("pinched_boundary_edges", r.PinchedBoundaryEdges);
+  if (r.DomainAngleBound >= 0.0)
+  {
+    out.Set("theta_domain_bound", r.DomainAngleBound);
+    out.Set("domain_edges_below_15", r.DomainEdgesBelow15);
+  }
+  if (r.MeshBoundaryAngle >= 0.0)
+  {
+    out.Set("theta_mesh_boundary", r.MeshBoundaryAngle);
+    out.Set("mesh_boundary_edges_below_15", r.MeshBoundaryEdgesBelow15);
+  }
   out.Set("unused_sites", r.UnusedSites);
   out.Set("paper_G_min", p.GMin);
   out.Set("paper_G_avg", p.GAvg);
