@@ -123,6 +123,7 @@ void CopyMeshingCounts(const av::MeshingPipelineResult& m, MeshStageResult& r)
   r.ImprovementVolumeChange = m.Improvement.BoundaryVolumeChange;
   r.ImprovementCreaseMoves = m.Improvement.NumCreaseSmoothed;
   r.ImprovementInsertions = m.Improvement.NumInsertions;
+  r.ImprovementPeels = m.Improvement.NumBoundaryPeels;
   r.ImprovementWorstBefore = m.Improvement.WorstBefore;
   r.ImprovementWorstAfter = m.Improvement.WorstAfter;
   r.FeatureEdgesRequired = m.FeatureEdges.Required;

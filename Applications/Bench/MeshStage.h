@@ -85,6 +85,7 @@ struct MeshStageResult
   std::size_t ImprovementBoundaryOps = 0;
   std::size_t ImprovementCreaseMoves = 0; ///< of those, moves along straight creases
   std::size_t ImprovementInsertions = 0;  ///< tets: inserted vertices
+  std::size_t ImprovementPeels = 0;       ///< tets: boundary tets removed
   /// The improvement's own worst element angle (its metric measure), degrees, before and after
   double ImprovementWorstBefore = 0.0, ImprovementWorstAfter = 0.0;
   /// Surfaces: site pairs consecutive along the feature lines, and of those the edges missing

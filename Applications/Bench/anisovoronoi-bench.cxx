@@ -596,6 +596,7 @@ void ReportMesh(const Case& c, const avbench::MeshStageOptions& o,
   out.Set("mesh_improvement_boundary_ops", r.ImprovementBoundaryOps);
   out.Set("mesh_improvement_crease_moves", r.ImprovementCreaseMoves);
   out.Set("mesh_improvement_insertions", r.ImprovementInsertions);
+  out.Set("mesh_improvement_peels", r.ImprovementPeels);
   out.Set("mesh_improvement_worst_before", r.ImprovementWorstBefore);
   out.Set("mesh_improvement_worst_after", r.ImprovementWorstAfter);
   out.Set("feature_edges_required", r.FeatureEdgesRequired);

@@ -89,6 +89,13 @@ struct MeshImprovementOptions
   /// accept it.
   bool Insertions = true;
   int MaxInsertionCavity = 48; ///< tets: the most tets one insertion replaces
+  /// Tets: a tet below EdgeLengthRuleMinAngle with two boundary faces (a fin or a flat sliver
+  /// on the boundary: the final mesh's boundary is sharper there than any smooth domain) is
+  /// removed where flips, moves and insertion fail, if its two other faces become a manifold
+  /// boundary and no vertex is left without a tet; the volume changes by the tet's.
+  bool PeelBoundaryTets = true;
+  /// Tets: the most volume those removals may take in all, as a fraction of the mesh's volume.
+  double BoundaryPeelVolumeBudget = 1e-4;
   /// Surfaces: an edge is flipped only where its two triangles meet at most at this dihedral
   /// angle (degrees), so that the flip moves the surface by a second-order amount.
   double SurfaceFlipMaxDihedral = 20.0;
@@ -131,11 +138,13 @@ struct MeshImprovementResult
   std::size_t NumBoundaryEdgeRemovals = 0; ///< tets: of those, on planar boundary patches
   std::size_t NumBoundarySmoothed = 0; ///< tets: moves of boundary vertices (planar or curved)
   std::size_t NumCreaseSmoothed = 0;   ///< tets: of those, moves along straight creases
-  /// Tets: total |volume change| of the curved-boundary operations, as a fraction of the volume
+  /// Tets: total |volume change| of the curved-boundary operations and the boundary peels, as a
+  /// fraction of the volume
   double BoundaryVolumeChange = 0.0;
   std::size_t NumSplits = 0;       ///< triangles: edge splits (new vertices appended)
   std::size_t NumCollapses = 0;    ///< triangles: edge collapses (the removed vertex is unused)
   std::size_t NumInsertions = 0;   ///< tets: inserted vertices (new points appended)
+  std::size_t NumBoundaryPeels = 0; ///< tets: boundary tets removed (PeelBoundaryTets)
   int Passes = 0;
   std::vector<std::uint8_t> Moved; ///< per point (new ones included), 1 where it changed
 };
@@ -158,9 +167,10 @@ double MetricSimplexQuality(int simplexDim,
  * removal (n <= MaxEdgeRemovalRing tets around an edge, the optimal triangulation of its ring by
  * dynamic programming), 2-3 flips (tets), 2-2 flips (triangles) and moves of its interior vertices
  * (steepest ascent of the worst incident element with a line search), then for triangles edge
- * collapses and splits and for tets vertex insertion, is applied when it raises the worst
- * quality among the elements it touches. Nothing inverts: an element's quality must
- * stay positive. The boundary and the domain are preserved exactly: boundary faces (edges) are
+ * collapses and splits and for tets vertex insertion and the boundary peel, is applied when it
+ * raises the worst quality among the elements it touches. Nothing inverts: an element's quality
+ * must stay positive. The boundary and the domain are preserved exactly, except by the tets'
+ * curved-boundary operations and peels within their volume budgets: boundary faces (edges) are
  * never flipped, vertices on them, vertices of faces shared by more than two elements, and those
  * flagged in `fixedPoints` (nullptr: none; see FeatureLinePoint) never move (tets: except as
  * PlanarBoundary and StraightCreases say). Vertex metrics stay those given (a move

@@ -872,6 +872,63 @@ bool TetMeshImprover::TryInsertion(std::int32_t tet)
   return true;
 }
 
+// The tet's two boundary faces share an edge (a, b) that no other tet has; its two other faces
+// (a, c, d) and (b, c, d) become the boundary. Refused when (c, d) is already on the boundary
+// (the boundary would pinch there) or a or b is in no other tet.
+bool TetMeshImprover::TryPeel(std::int32_t tet)
+{
+  const Tet t = Tets[tet];
+  int boundaryFaces = 0;
+  std::int32_t inner[2] = { -1, -1 };
+  int nInner = 0;
+  for (int m = 0; m < 4; ++m)
+  {
+    const std::int32_t n = Across(tet, m);
+    if (n < 0)
+      ++boundaryFaces;
+    else if (nInner < 2)
+      inner[nInner++] = n;
+  }
+  if (boundaryFaces != 2 || nInner != 2)
+    return false;
+  // The two boundary faces are opposite c and d, i.e. they share the edge (a, b).
+  std::int32_t onBoth[2], off[2];
+  int nb = 0, no = 0;
+  for (int m = 0; m < 4; ++m)
+    (Across(tet, m) < 0 ? off[no++] : onBoth[nb++]) = t[m];
+  const std::int32_t c = off[0], d = off[1], a = onBoth[0], b = onBoth[1];
+  if (Star[a].size() < 2 || Star[b].size() < 2)
+    return false;
+  // (c, d) must be an interior edge: no boundary face on it.
+  for (std::int32_t u : Star[c])
+  {
+    if (u == tet || IndexIn(Tets[u], d) < 0)
+      continue;
+    for (int m = 0; m < 4; ++m)
+      if (Tets[u][m] != c && Tets[u][m] != d && Across(u, m) < 0)
+        return false;
+  }
+  const double before = std::min({ Quality(t), Quality(Tets[inner[0]]), Quality(Tets[inner[1]]) });
+  const double after = std::min(Quality(Tets[inner[0]]), Quality(Tets[inner[1]]));
+  const double volume = std::abs(Volume(t));
+  if (!Accepts(after, before) ||
+    PeeledVolume + volume > Options.BoundaryPeelVolumeBudget * MeshVolume)
+    return false;
+  Work.Kill(tet);
+  // The new boundary faces' vertices are no longer on a planar patch or a straight crease.
+  for (std::int32_t v : t)
+  {
+    Work.Fixed[v] = 1;
+    PlaneNormal[v].setZero();
+    LineDirection[v].setZero();
+    Curved[v] = 0;
+  }
+  (void)c;
+  PeeledVolume += volume;
+  ++Peels;
+  return true;
+}
+
 bool TetMeshImprover::Improve(std::int32_t tet)
 {
   const Tet t = Tets[tet];
@@ -897,6 +954,9 @@ bool TetMeshImprover::Improve(std::int32_t tet)
   if (Options.Insertions && Work.IsAlive(tet) && Quality(Tets[tet]) < insertBelow &&
     TryInsertion(tet))
     return true;
+  if (Options.PeelBoundaryTets && Options.PlanarBoundary && Work.IsAlive(tet) &&
+    Quality(Tets[tet]) < std::sin(Options.EdgeLengthRuleMinAngle * Pi / 180.0) && TryPeel(tet))
+    return true;
   return any;
 }
 
@@ -917,7 +977,9 @@ void TetMeshImprover::Run(MeshImprovementResult& result)
   result.NumBoundarySmoothed = BoundarySmoothed;
   result.NumCreaseSmoothed = CreaseSmoothed;
   result.NumInsertions = Insertions;
-  result.BoundaryVolumeChange = MeshVolume > 0.0 ? BoundaryVolumeChange / MeshVolume : 0.0;
+  result.NumBoundaryPeels = Peels;
+  result.BoundaryVolumeChange =
+    MeshVolume > 0.0 ? (BoundaryVolumeChange + PeeledVolume) / MeshVolume : 0.0;
   result.Moved = std::move(Work.Moved);
 }
 

@@ -64,6 +64,8 @@ private:
   /// Vertex insertion in bad tet `tet` (MeshImprovementOptions::Insertions): the best of a few
   /// trial points, each with its cavity, joined and smoothed, then undone; the best is redone.
   bool TryInsertion(std::int32_t tet);
+  /// Removes bad tet `tet` if it has exactly two boundary faces (PeelBoundaryTets).
+  bool TryPeel(std::int32_t tet);
   /// The cavity of point x seeded with `seed` into Cavity and its boundary faces (outward, in
   /// their tets' order) into CavityFaces: the tets across interior faces whose circumspheres,
   /// mapped by `map`, contain x, then shrunk until x sees every boundary face. False if x cannot
@@ -108,7 +110,8 @@ private:
   bool EdgeRuleWaived = false; // the tet being improved is below EdgeLengthRuleMinAngle
   std::size_t Flips23 = 0, EdgeRemovals = 0, Smoothed = 0;
   std::size_t BoundaryEdgeRemovals = 0, BoundarySmoothed = 0, CreaseSmoothed = 0;
-  std::size_t Insertions = 0;
+  std::size_t Insertions = 0, Peels = 0;
+  double PeeledVolume = 0.0;                           // Euclidean, times 6
   double MeshVolume = 0.0, BoundaryVolumeChange = 0.0; // Euclidean, times 6
   double MedianEdge = 0.0; // median metric edge length of the input mesh
 };

@@ -2,10 +2,10 @@
 // Tests of ImproveMesh: each operation on a hand-made bad configuration raises the worst
 // quality (2-3 flip, 3-2 flip, edge removal of 4 and 5 tets, smoothing, 2-2 flip, triangle
 // smoothing, the boundary 2-2 flip and the in-plane move on a planar boundary, refused across a
-// crease, the slide along a straight crease, vertex insertion at a fixed sliver); on perturbed
-// grids nothing inverts, the volume and the boundary are kept exactly, every interior face stays
-// shared by two tets, fixed vertices stay, the worst quality never drops; and the mutation hook
-// that accepts worsening operations is caught by those checks.
+// crease, the slide along a straight crease, vertex insertion at a fixed sliver, the peel of a
+// boundary sliver); on perturbed grids nothing inverts, the volume and the boundary are kept
+// exactly, every interior face stays shared by two tets, fixed vertices stay, the worst quality
+// never drops; and the mutation hook that accepts worsening operations is caught by those checks.
 #include "AnisoTestChecks.h"
 #include "MeshImprovement.h"
 #include "MeshTopology.h"
@@ -771,6 +771,58 @@ void TestInsertion()
     AV_CHECK(av::ImproveMesh(k, IsotropicMetric(12), &fixed, bar).NumInsertions == 0);
   }
 }
+
+// A flat sliver lying in a shallow valley on top of a cube (the top's diagonal 4-7 lowered by
+// 0.02): two of its faces are boundary faces meeting along the other diagonal 5-6, no other
+// tet has that edge, and no flip or move can raise it. The peel removes it: the valley is the
+// boundary again, the volume changes by the sliver's exactly, and without the option or with a
+// budget below the sliver's volume it stays.
+void TestBoundaryPeel()
+{
+  av::SimplexMesh start;
+  for (int i = 0; i < 8; ++i)
+    start.Points.insert(start.Points.end(),
+      { double(i & 1), double((i >> 1) & 1), (i & 4) ? ((i == 4 || i == 7) ? 0.98 : 1.0) : 0.0 });
+  start.Cells = {
+    0, 1, 3, 7, 0, 3, 2, 7, 0, 2, 6, 7, 0, 6, 4, 7, 0, 4, 5, 7, 0, 5, 1, 7, 4, 5, 6, 7
+  };
+  Orient(start);
+  const double sliver = [&]
+  {
+    av::SimplexMesh one = start;
+    one.Cells.assign(start.Cells.end() - 4, start.Cells.end());
+    return Volume(one);
+  }();
+  const double before = WorstQuality(start);
+  av::MeshImprovementOptions o;
+  o.Flips = false;
+  o.Insertions = false;              // a vertex inside would split it as well
+  o.BoundaryPeelVolumeBudget = 0.01; // the sliver is 0.7 % of this small mesh
+  {
+    av::MeshImprovementOptions off = o;
+    off.PeelBoundaryTets = false;
+    av::SimplexMesh m = start;
+    const av::MeshImprovementResult r = av::ImproveMesh(m, IsotropicMetric(8), nullptr, off);
+    AV_CHECK(r.NumBoundaryPeels == 0 && m.NumCells() == 7 && WorstQuality(m) <= before + 1e-12);
+  }
+  av::SimplexMesh m = start;
+  const av::MeshImprovementResult r = av::ImproveMesh(m, IsotropicMetric(8), nullptr, o);
+  std::cout << "valley sliver: worst sine " << before << " -> " << WorstQuality(m) << ", "
+            << r.NumBoundaryPeels << " peel(s), volume change " << r.BoundaryVolumeChange
+            << std::endl;
+  AV_CHECK(r.NumBoundaryPeels == 1 && m.NumCells() == 6);
+  AV_CHECK_MSG(WorstQuality(m) > before + 0.3, before << " -> " << WorstQuality(m));
+  AV_CHECK_NEAR(Volume(start) - Volume(m), sliver, 1e-14);
+  AV_CHECK_NEAR(r.BoundaryVolumeChange, sliver / Volume(start), 1e-12);
+  AV_CHECK(NumInverted(m) == 0 && m.NumPoints() == 8);
+  {
+    av::MeshImprovementOptions small = o;
+    small.BoundaryPeelVolumeBudget = 0.5 * sliver / Volume(start);
+    av::SimplexMesh k = start;
+    AV_CHECK(av::ImproveMesh(k, IsotropicMetric(8), nullptr, small).NumBoundaryPeels == 0);
+    AV_CHECK(k.NumCells() == 7);
+  }
+}
 } // namespace
 
 int TestMeshImprovement(int, char*[])
@@ -781,6 +833,7 @@ int TestMeshImprovement(int, char*[])
   TestStraightCrease();
   TestTriangles();
   TestInsertion();
+  TestBoundaryPeel();
   TestGrids();
   TestBadInput();
   return AV_TEST_RESULT();
