@@ -20,6 +20,8 @@ constexpr int KwVertices = 4;
 constexpr int KwEdges = 5;
 constexpr int KwTriangles = 6;
 constexpr int KwTetrahedra = 8;
+constexpr int KwCorners = 13; // libMeshb's GmfCorners: one vertex index per line
+constexpr int KwRidges = 14;  // GmfRidges: one edge index per line
 constexpr int KwEnd = 54;
 constexpr int KwSolAtVertices = 62;
 
@@ -210,6 +212,34 @@ void ReadSimplices(Cursor& in,
   }
 }
 
+/// Reads a list of `count` 1-based indices into 0-based ones; their range is checked once the
+/// whole file is read (Ridges may come before Edges).
+void ReadIndexList(Cursor& in, const char* what, std::vector<std::int32_t>& ids)
+{
+  const std::size_t n = in.Count(in.IntBytes(), what);
+  ids.resize(n);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const std::int64_t id = in.Int();
+    if (id < 1 || id > std::numeric_limits<std::int32_t>::max())
+      in.Fail(std::string(what) + " entry " + std::to_string(i + 1) + " is " + std::to_string(id) +
+        ", not a 1-based index");
+    ids[i] = static_cast<std::int32_t>(id - 1);
+  }
+}
+
+/// Fails unless every id is below `limit`.
+void CheckIndexRange(const std::vector<std::int32_t>& ids,
+  std::size_t limit,
+  const char* what,
+  const std::string& sourceName)
+{
+  for (std::size_t i = 0; i < ids.size(); ++i)
+    if (static_cast<std::size_t>(ids[i]) >= limit)
+      throw InputError(sourceName + ": " + what + " entry " + std::to_string(i + 1) + " is " +
+        std::to_string(ids[i] + 1) + ", outside [1, " + std::to_string(limit) + "]");
+}
+
 int SymmetricSize(int dim)
 {
   return dim * (dim + 1) / 2;
@@ -288,6 +318,10 @@ MeditMesh ParseMeditMeshBinary(const std::string& bytes, const std::string& sour
       else
         ReadSimplices(in, 4, np, "Tetrahedra", tets, tetRefs), haveTets = true;
     }
+    else if (code == KwCorners)
+      ReadIndexList(in, "Corners", out.Corners);
+    else if (code == KwRidges)
+      ReadIndexList(in, "Ridges", out.Ridges);
     else
     {
       out.IgnoredKeywords.push_back("keyword " + std::to_string(code));
@@ -296,6 +330,9 @@ MeditMesh ParseMeditMeshBinary(const std::string& bytes, const std::string& sour
   }
   if (dim == 0)
     throw InputError(sourceName + ": no Dimension keyword");
+  CheckIndexRange(
+    out.Corners, points.size() / static_cast<std::size_t>(dim), "Corners", sourceName);
+  CheckIndexRange(out.Ridges, out.Edges.size() / 2, "Ridges (edge indices)", sourceName);
   out.Mesh.AmbientDim = dim;
   out.Mesh.Points = std::move(points);
   if (haveTets && !tetRefs.empty())
@@ -363,6 +400,17 @@ std::string FormatMeditMeshBinary(const MeditMesh& m)
   else
     simplices(KwTriangles, mesh.Cells, m.CellRefs, 3);
   simplices(KwEdges, m.Edges, m.EdgeRefs, 2);
+  auto indices = [&w](int code, const std::vector<std::int32_t>& ids)
+  {
+    if (ids.empty())
+      return;
+    w.Keyword(code);
+    w.Int(static_cast<std::int64_t>(ids.size()));
+    for (std::int32_t id : ids)
+      w.Int(static_cast<std::int64_t>(id) + 1);
+  };
+  indices(KwCorners, m.Corners);
+  indices(KwRidges, m.Ridges);
   return w.Finish();
 }
 

@@ -20,10 +20,9 @@ namespace av
  * otherwise the triangles (a 2D domain for `Dimension 2`, a surface for `Dimension 3`).
  * When tetrahedra are present the triangles are kept separately as (boundary) faces, and
  * edges are always kept separately, so a read + write round trip loses no simplex.
- * Corners (vertex ids) and Ridges (indices into Edges) are kept (ASCII files; the binary
- * reader skips them). Quadrilaterals, Hexahedra, Prisms, Required*, Normals, Tangents and any
- * other keyword are skipped; their names are listed in IgnoredKeywords.
- * All ids are 0-based (the file is 1-based).
+ * Corners (vertex ids) and Ridges (indices into Edges) are kept (ASCII and binary files).
+ * Quadrilaterals, Hexahedra, Prisms, Required*, Normals, Tangents and any other keyword are
+ * skipped; their names are listed in IgnoredKeywords. All ids are 0-based (the file is 1-based).
  */
 struct MeditMesh
 {
