@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "FeatureEdgeRecovery.h"
 
+#include "FeatureSiteLookup.h"
 #include "TriangleBvh.h"
 
 #include <Eigen/Dense>
@@ -35,11 +36,7 @@ SitesOnFeatures LocateFeatureSites(
 {
   SitesOnFeatures on;
   on.OnEdge.resize(features.NumEdges());
-  std::unordered_map<std::uint64_t, std::int32_t> edgeIndex;
-  edgeIndex.reserve(features.NumEdges() * 2);
-  for (std::size_t e = 0; e < features.NumEdges(); ++e)
-    edgeIndex.emplace(EdgeKey(features.Edges[2 * e], features.Edges[2 * e + 1]),
-      static_cast<std::int32_t>(e));
+  const FeatureSiteLookup lookup(features);
   const bool hasVertexEdges = features.PointEdgeOffsets.size() == mesh.NumPoints() + 1;
   for (std::size_t s = 0; s < sites.NumSites(); ++s)
   {
@@ -48,26 +45,20 @@ SitesOnFeatures LocateFeatureSites(
       continue;
     const std::int32_t* tri = mesh.Cell(static_cast<std::size_t>(cell));
     const double* b = sites.Bary.data() + 4 * s;
-    int zeros = 0, zero = -1, one = -1;
+    int zeros = 0, one = -1;
     for (int i = 0; i < 3; ++i)
     {
       if (b[i] == 0.0)
-      {
         ++zeros;
-        zero = i;
-      }
       else
         one = i;
     }
     if (zeros == 1)
     {
-      const std::int32_t u = tri[(zero + 1) % 3], v = tri[(zero + 2) % 3];
-      const auto it = edgeIndex.find(EdgeKey(u, v));
-      if (it == edgeIndex.end())
-        continue;
-      const std::int32_t first = features.Edges[2 * static_cast<std::size_t>(it->second)];
-      const double t = first == u ? b[(zero + 2) % 3] : b[(zero + 1) % 3];
-      on.OnEdge[static_cast<std::size_t>(it->second)].emplace_back(t, static_cast<std::int32_t>(s));
+      double t = 0.0;
+      const std::int32_t e = lookup.EdgeOfSite(mesh, sites, s, &t);
+      if (e >= 0)
+        on.OnEdge[static_cast<std::size_t>(e)].emplace_back(t, static_cast<std::int32_t>(s));
     }
     else if (zeros == 2 && hasVertexEdges)
     {

@@ -2,6 +2,7 @@
 #include "FinalMeshImprovement.h"
 
 #include "ElementLocator.h"
+#include "FeatureSiteLookup.h"
 #include "ValidDualMesh.h"
 
 #include "MeshQuality.h"
@@ -14,7 +15,6 @@
 #include <cmath>
 #include <limits>
 #include <memory>
-#include <unordered_map>
 
 namespace av
 {
@@ -134,6 +134,7 @@ class FeatureLineProjector
 {
 public:
   FeatureLineProjector(const SimplexMesh& mesh, const SharpFeatures& f)
+    : Lookup(f)
   {
     const std::size_t ne = f.NumEdges();
     std::vector<std::int32_t> parent(ne);
@@ -161,33 +162,14 @@ public:
       A.emplace_back(mesh.Point(f.Edges[2 * e]));
       B.emplace_back(mesh.Point(f.Edges[2 * e + 1]));
       LineOf.push_back(find(static_cast<std::int32_t>(e)));
-      EdgeIndex.emplace((static_cast<std::uint64_t>(f.Edges[2 * e]) << 32) |
-          static_cast<std::uint32_t>(f.Edges[2 * e + 1]),
-        static_cast<std::int32_t>(e)); // Edges: smaller id first
     }
   }
 
-  /// The line holding site s: the feature edge of its triangle whose barycentric coordinate
-  /// opposite is exactly 0 (where the sampler puts its feature-line sites), or -1.
+  /// The line holding site s (FeatureSiteLookup::EdgeOfSite), or -1.
   std::int32_t LineOfSite(const SimplexMesh& mesh, const SiteSet& sites, std::size_t s) const
   {
-    const std::int32_t cell = sites.CellIds[s];
-    if (cell < 0 || static_cast<std::size_t>(cell) >= mesh.NumCells())
-      return -1;
-    const std::int32_t* t = mesh.Cell(static_cast<std::size_t>(cell));
-    for (int i = 0; i < 3; ++i)
-    {
-      if (sites.Bary[4 * s + static_cast<std::size_t>(i)] != 0.0)
-        continue;
-      std::int32_t u = t[(i + 1) % 3], v = t[(i + 2) % 3];
-      if (u > v)
-        std::swap(u, v);
-      const auto it =
-        EdgeIndex.find((static_cast<std::uint64_t>(u) << 32) | static_cast<std::uint32_t>(v));
-      if (it != EdgeIndex.end())
-        return LineOf[static_cast<std::size_t>(it->second)];
-    }
-    return -1;
+    const std::int32_t e = Lookup.EdgeOfSite(mesh, sites, s);
+    return e < 0 ? -1 : LineOf[static_cast<std::size_t>(e)];
   }
 
   /// The closest point of line `line` to x and the unit tangent there.
@@ -221,7 +203,7 @@ private:
 
   std::vector<Eigen::Vector3d> A, B;
   std::vector<std::int32_t> LineOf;              // per segment
-  std::unordered_map<std::uint64_t, std::int32_t> EdgeIndex; // (u, v), u < v -> segment
+  FeatureSiteLookup Lookup;
   std::vector<std::vector<std::int32_t>> Lines;  // per line id (a root segment): its segments
 };
 } // namespace
