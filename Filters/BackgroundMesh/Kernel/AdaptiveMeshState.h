@@ -5,6 +5,7 @@
 #ifndef av_AdaptiveMeshState_h
 #define av_AdaptiveMeshState_h
 
+#include "MeshTopology.h"
 #include "MetricAdaptedMesh.h"
 
 #include <Eigen/Dense>
@@ -45,14 +46,6 @@ struct AdaptiveMeshState
   /// Fills SqrtMetric for the points [first, NumPoints()) in parallel.
   void UpdateSqrtMetric(std::size_t first);
 };
-
-/// Key of the undirected edge a-b (smaller id in the high half).
-inline std::uint64_t EdgeKey(std::int32_t a, std::int32_t b)
-{
-  const std::uint32_t lo = static_cast<std::uint32_t>(a < b ? a : b);
-  const std::uint32_t hi = static_cast<std::uint32_t>(a < b ? b : a);
-  return (static_cast<std::uint64_t>(lo) << 32) | hi;
-}
 
 /// Local vertex pairs of the edges of a triangle (first 3) or a tetrahedron (6).
 extern const int kSimplexEdges[6][2];

@@ -15,6 +15,14 @@
 namespace av
 {
 
+/// Key of the undirected edge a-b (smaller id in the high half), for hashing and sorting edges.
+inline std::uint64_t EdgeKey(std::int32_t a, std::int32_t b)
+{
+  const std::uint32_t lo = static_cast<std::uint32_t>(a < b ? a : b);
+  const std::uint32_t hi = static_cast<std::uint32_t>(a < b ? b : a);
+  return (static_cast<std::uint64_t>(lo) << 32) | hi;
+}
+
 /// Neighbor element across each facet: NumCells x (SimplexDim+1), -1 on the domain boundary.
 /// Facet a of a cell is the one opposite its local vertex a. Throws InputError when a facet is
 /// shared by more than two cells (non-manifold mesh).

@@ -2,6 +2,7 @@
 #include "FeatureEdgeRecovery.h"
 
 #include "FeatureSiteLookup.h"
+#include "MeshTopology.h"
 #include "TriangleBvh.h"
 
 #include <Eigen/Dense>
@@ -16,14 +17,6 @@ namespace av
 {
 namespace
 {
-std::uint64_t EdgeKey(std::int32_t a, std::int32_t b)
-{
-  if (a > b)
-    std::swap(a, b);
-  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) |
-    static_cast<std::uint32_t>(b);
-}
-
 /// The sites on each feature edge (parameter from its first point) and at feature vertices.
 struct SitesOnFeatures
 {

@@ -1,21 +1,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "FeatureSiteLookup.h"
 
+#include "MeshTopology.h"
+
 #include <utility>
 
 namespace av
 {
-namespace
-{
-std::uint64_t EdgeKey(std::int32_t a, std::int32_t b)
-{
-  if (a > b)
-    std::swap(a, b);
-  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) |
-    static_cast<std::uint32_t>(b);
-}
-} // namespace
-
 FeatureSiteLookup::FeatureSiteLookup(const SharpFeatures& features)
   : Features(features)
 {

@@ -2,6 +2,7 @@
 #include "DomainAngleBound.h"
 
 #include "InputError.h"
+#include "MeshTopology.h"
 #include "MetricAlgebra.h"
 
 #include <Eigen/Dense>
@@ -18,15 +19,6 @@ namespace av
 namespace
 {
 constexpr double Pi = 3.14159265358979323846;
-
-using EdgeKey = std::uint64_t;
-EdgeKey Key(std::int32_t a, std::int32_t b)
-{
-  if (a > b)
-    std::swap(a, b);
-  return (static_cast<EdgeKey>(static_cast<std::uint32_t>(a)) << 32) |
-    static_cast<std::uint32_t>(b);
-}
 
 void Validate(const SimplexMesh& tets, const MetricField& metric)
 {
@@ -69,7 +61,7 @@ DomainAngleBound ComputeDomainAngleBound(const SimplexMesh& tets, const MetricFi
     }
   }
   std::sort(faces.begin(), faces.end());
-  std::vector<EdgeKey> boundaryEdges;
+  std::vector<std::uint64_t> boundaryEdges;
   for (std::size_t i = 0; i < faces.size();)
   {
     std::size_t j = i + 1;
@@ -77,21 +69,21 @@ DomainAngleBound ComputeDomainAngleBound(const SimplexMesh& tets, const MetricFi
       ++j;
     if (j - i == 1)
       for (int e = 0; e < 3; ++e)
-        boundaryEdges.push_back(Key(faces[i][e], faces[i][(e + 1) % 3]));
+        boundaryEdges.push_back(EdgeKey(faces[i][e], faces[i][(e + 1) % 3]));
     i = j;
   }
   std::sort(boundaryEdges.begin(), boundaryEdges.end());
   boundaryEdges.erase(std::unique(boundaryEdges.begin(), boundaryEdges.end()), boundaryEdges.end());
 
   // The tets on each boundary edge.
-  std::vector<std::pair<EdgeKey, std::int32_t>> onEdge;
+  std::vector<std::pair<std::uint64_t, std::int32_t>> onEdge;
   for (std::size_t c = 0; c < nc; ++c)
   {
     const std::int32_t* t = tets.Cell(c);
     for (int i = 0; i < 4; ++i)
       for (int j = i + 1; j < 4; ++j)
       {
-        const EdgeKey k = Key(t[i], t[j]);
+        const std::uint64_t k = EdgeKey(t[i], t[j]);
         if (std::binary_search(boundaryEdges.begin(), boundaryEdges.end(), k))
           onEdge.emplace_back(k, static_cast<std::int32_t>(c));
       }
@@ -108,7 +100,7 @@ DomainAngleBound ComputeDomainAngleBound(const SimplexMesh& tets, const MetricFi
   for (std::size_t i = 0; i < onEdge.size();)
   {
     std::size_t j = i;
-    const EdgeKey k = onEdge[i].first;
+    const std::uint64_t k = onEdge[i].first;
     const auto a = static_cast<std::int32_t>(k >> 32);
     const auto b = static_cast<std::int32_t>(k & 0xffffffffu);
     const Eigen::Matrix3d map = 0.5 * (roots[a] + roots[b]);
