@@ -101,6 +101,7 @@ av::MeshingPipelineOptions PipelineOptions(const MeshStageOptions& options,
   po.Improvement.PlanarBoundary = options.PlanarBoundary;
   po.Improvement.StraightCreases = options.StraightCreases;
   po.Improvement.Insertions = options.VertexInsertion;
+  po.Improvement.SnapToBoundary = options.BoundarySnap;
   po.Improvement.BoundaryFlipMaxDihedral = options.BoundaryFlipMaxDihedral;
   po.Improvement.BoundaryFlipVolumeBudget = options.BoundaryFlipVolumeBudget;
   po.Metric = metric;
@@ -124,6 +125,7 @@ void CopyMeshingCounts(const av::MeshingPipelineResult& m, MeshStageResult& r)
   r.ImprovementCreaseMoves = m.Improvement.NumCreaseSmoothed;
   r.ImprovementInsertions = m.Improvement.NumInsertions;
   r.ImprovementPeels = m.Improvement.NumBoundaryPeels;
+  r.ImprovementSnaps = m.Improvement.NumBoundarySnaps;
   r.ImprovementWorstBefore = m.Improvement.WorstBefore;
   r.ImprovementWorstAfter = m.Improvement.WorstAfter;
   r.FeatureEdgesRequired = m.FeatureEdges.Required;

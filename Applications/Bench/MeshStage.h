@@ -47,6 +47,7 @@ struct MeshStageOptions
   bool PlanarBoundary = true; ///< ...also on planar boundary patches (MeshImprovementOptions)
   bool StraightCreases = true; ///< ...and along straight creases (MeshImprovementOptions)
   bool VertexInsertion = true; ///< tets: vertex insertion (MeshImprovementOptions::Insertions)
+  bool BoundarySnap = true;    ///< tets: MeshImprovementOptions::SnapToBoundary
   double BoundaryFlipMaxDihedral = 10.0; ///< ...and edges of nearly coplanar boundary faces
   double BoundaryFlipVolumeBudget = 1e-3; ///< ...changing at most this share of the volume
   bool PreserveSharpFeatures = true; ///< corner / feature-line particles (ParticleSamplerOptions)
@@ -86,6 +87,7 @@ struct MeshStageResult
   std::size_t ImprovementCreaseMoves = 0; ///< of those, moves along straight creases
   std::size_t ImprovementInsertions = 0;  ///< tets: inserted vertices
   std::size_t ImprovementPeels = 0;       ///< tets: boundary tets removed
+  std::size_t ImprovementSnaps = 0;       ///< tets: boundary vertices moved onto the boundary
   /// The improvement's own worst element angle (its metric measure), degrees, before and after
   double ImprovementWorstBefore = 0.0, ImprovementWorstAfter = 0.0;
   /// Surfaces: site pairs consecutive along the feature lines, and of those the edges missing

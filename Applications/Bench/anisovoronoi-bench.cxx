@@ -94,6 +94,7 @@ struct Args
   bool PlanarBoundary = true; // ...and on planar boundary patches
   bool StraightCreases = true; // ...and along straight creases
   bool VertexInsertion = true; // tets: vertex insertion in the mesh improvement
+  bool BoundarySnap = true;    // tets: off-boundary vertices moved onto the boundary
   double BoundaryFlipDihedral = 10.0; // ...and nearly planar ones (degrees)
   double BoundaryVolumeBudget = 1e-3; // ...changing at most this fraction of the volume
   bool Features = true;      // corner / feature-line particles
@@ -550,6 +551,7 @@ avbench::MeshStageOptions MeshStageOptionsFor(const Args& a, const Case& c)
   o.PlanarBoundary = a.PlanarBoundary;
   o.StraightCreases = a.StraightCreases;
   o.VertexInsertion = a.VertexInsertion;
+  o.BoundarySnap = a.BoundarySnap;
   o.BoundaryFlipMaxDihedral = a.BoundaryFlipDihedral;
   o.BoundaryFlipVolumeBudget = a.BoundaryVolumeBudget;
   o.PreserveSharpFeatures = a.Features;
@@ -597,6 +599,7 @@ void ReportMesh(const Case& c, const avbench::MeshStageOptions& o,
   out.Set("mesh_improvement_crease_moves", r.ImprovementCreaseMoves);
   out.Set("mesh_improvement_insertions", r.ImprovementInsertions);
   out.Set("mesh_improvement_peels", r.ImprovementPeels);
+  out.Set("mesh_improvement_snaps", r.ImprovementSnaps);
   out.Set("mesh_improvement_worst_before", r.ImprovementWorstBefore);
   out.Set("mesh_improvement_worst_after", r.ImprovementWorstAfter);
   out.Set("feature_edges_required", r.FeatureEdgesRequired);
@@ -800,6 +803,9 @@ void Usage(std::ostream& os)
        "                    slide along straight creases, the two planes kept exactly)\n"
        "  --no-vertex-insertion  mesh: the improvement of tet meshes adds no vertices (default:\n"
        "                    it inserts one where flips and smoothing leave a tet below 15 deg)\n"
+       "  --no-boundary-snap  mesh: boundary vertices of tet meshes that lie inside the domain\n"
+       "                    stay there (default: moved onto the domain's boundary where that\n"
+       "                    raises their worst tet)\n"
        "  --boundary-flip-dihedral D  mesh: the improvement also removes boundary edges whose\n"
        "                    two faces are at most D degrees from coplanar (default 10; 0 =\n"
        "                    planar only), at most 0.1 % of the volume in all\n"
@@ -950,6 +956,8 @@ bool Parse(int argc, char** argv, Args& a)
       a.StraightCreases = false;
     else if (k == "--no-vertex-insertion")
       a.VertexInsertion = false;
+    else if (k == "--no-boundary-snap")
+      a.BoundarySnap = false;
     else if (k == "--boundary-flip-dihedral")
       a.BoundaryFlipDihedral = std::stod(next());
     else if (k == "--boundary-volume-budget")

@@ -271,6 +271,7 @@ void AddRunFieldData(const av::MeshingPipelineResult& result, double seconds, vt
   AddFieldValue(fd, "NumImprovementCollapses", static_cast<double>(im.NumCollapses));
   // Tets: an insertion appends a site where flips and moves leave a tet below 15 degrees.
   AddFieldValue(fd, "NumImprovementInsertions", static_cast<double>(im.NumInsertions));
+  AddFieldValue(fd, "NumImprovementBoundarySnaps", static_cast<double>(im.NumBoundarySnaps));
   AddFieldValue(fd, "MeshImprovementSeconds", result.MeshImprovementSeconds);
   // Surfaces: site pairs consecutive along the feature lines, and how many of their edges the
   // flips made and could not make.

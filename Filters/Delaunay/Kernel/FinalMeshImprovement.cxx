@@ -281,7 +281,7 @@ MeshImprovementResult ImproveFinalMesh(const SimplexMesh& mesh,
     {
       boundaryBvh = std::make_unique<TriangleBvh>(inputBoundary);
       o.ProjectToBoundary =
-        [&](std::int32_t, const double* x, const double* inward, double* placed)
+        [&](std::int32_t, const double* x, const double* inward, double* placed, double* normal)
       {
         std::int32_t tri = -1;
         const Eigen::Vector3d p(x[0], x[1], x[2]);
@@ -295,10 +295,13 @@ MeshImprovementResult ImproveFinalMesh(const SimplexMesh& mesh,
         };
         const Eigen::Vector3d a = corner(0), b = corner(1), c = corner(2);
         // The same side of the surface (not the other sheet of a thin part).
-        if ((b - a).cross(c - a).normalized().dot(Eigen::Map<const Eigen::Vector3d>(inward)) < 0.5)
+        const Eigen::Vector3d n = (b - a).cross(c - a).normalized();
+        if (n.dot(Eigen::Map<const Eigen::Vector3d>(inward)) < 0.5)
           return false;
         Eigen::Map<Eigen::Vector3d> out(placed);
         out = ClosestPointOnTriangle(p, a, b, c);
+        if (normal)
+          Eigen::Map<Eigen::Vector3d>{ normal } = n;
         return true;
       };
     }

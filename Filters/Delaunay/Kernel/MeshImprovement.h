@@ -46,12 +46,21 @@ struct MeshImprovementOptions
   double BoundaryFlipVolumeBudget = 1e-3;
   /// Tets, with PlanarBoundary: puts a trial position x (3 values) of boundary vertex v on the
   /// domain's boundary surface, near the tangent plane with unit inward normal `normal`: writes
-  /// `placed`; false when there is no such point (another sheet of a thin part). With it, a
+  /// `placed` and, if `surfaceNormal` is not null, the surface's unit normal there (oriented as
+  /// `normal`); false when there is no such point (another sheet of a thin part). With it, a
   /// vertex of a smooth curved patch (one disc of boundary faces, all within
   /// BoundaryFlipMaxDihedral of their mean plane) moves too: in that plane, then onto the
   /// surface. Empty: those vertices stay.
-  std::function<bool(std::int32_t v, const double* x, const double* normal, double* placed)>
+  std::function<bool(
+    std::int32_t v, const double* x, const double* normal, double* placed, double* surfaceNormal)>
     ProjectToBoundary;
+  /// Tets, with ProjectToBoundary: a boundary vertex of the mesh that is not on the domain's
+  /// boundary (a site just inside the domain whose cell meets the boundary: the mesh's boundary
+  /// folds in through it) moves onto its closest point of the domain's boundary, its free
+  /// interior neighbours smoothed after it, when that raises the worst tet of their stars and
+  /// leaves no more of them below EdgeLengthRuleMinAngle; it then stays there. The change of
+  /// volume brings the mesh closer to the domain and is not charged to BoundaryFlipVolumeBudget.
+  bool SnapToBoundary = true;
   /// Tets, with PlanarBoundary: a boundary vertex (free or FeatureLinePoint) whose boundary
   /// faces form one disc made of two planar fans that meet along a straight line through it,
   /// its two crease edges on that line, moves along the line. Both planes and the crease stay
@@ -145,6 +154,7 @@ struct MeshImprovementResult
   std::size_t NumCollapses = 0;    ///< triangles: edge collapses (the removed vertex is unused)
   std::size_t NumInsertions = 0;   ///< tets: inserted vertices (new points appended)
   std::size_t NumBoundaryPeels = 0; ///< tets: boundary tets removed (PeelBoundaryTets)
+  std::size_t NumBoundarySnaps = 0; ///< tets: vertices moved onto the boundary (SnapToBoundary)
   int Passes = 0;
   std::vector<std::uint8_t> Moved; ///< per point (new ones included), 1 where it changed
 };

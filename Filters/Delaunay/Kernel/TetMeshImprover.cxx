@@ -14,6 +14,7 @@ namespace av
 namespace
 {
 constexpr double Pi = 3.14159265358979323846;
+constexpr char kMaxSnapTrials = 8;
 
 // Index orders that put vertex m last by an even permutation: the face opposite m, in this
 // order, is counterclockwise seen from m in a positive tet.
@@ -62,7 +63,7 @@ TetMeshImprover::TetMeshImprover(SimplexMesh& mesh,
           return true;
         }
         Eigen::Vector3d placed;
-        if (!Options.ProjectToBoundary(v, inPlane.data(), n.data(), placed.data()))
+        if (!Options.ProjectToBoundary(v, inPlane.data(), n.data(), placed.data(), nullptr))
           return false;
         Work.Points[v] = placed;
         return true;
@@ -74,6 +75,7 @@ TetMeshImprover::TetMeshImprover(SimplexMesh& mesh,
   PlaneNormal.assign(P.size(), Eigen::Vector3d::Zero());
   LineDirection.assign(P.size(), Eigen::Vector3d::Zero());
   Curved.assign(P.size(), 0);
+  OffBoundary.assign(P.size(), 0);
   for (const Tet& t : Tets)
     MeshVolume += std::abs(Volume(t));
   MarkBoundaryAndNonManifold(fixed);
@@ -227,7 +229,12 @@ void TetMeshImprover::FindMovableBoundaryVertices(
       at = edges[next].second;
     }
     if (order.size() != edges.size() || at != edges[0].first)
+    {
+      // Not one disc: it may still be snapped onto the boundary.
+      if (!flags[v] && areaSum[v].norm() > 0.0)
+        MarkOffBoundary(static_cast<std::int32_t>(v), areaSum[v].normalized(), edges);
       continue;
+    }
     if (Options.StraightCreases)
     {
       const Eigen::Vector3d t = CreaseDirection(static_cast<std::int32_t>(v), edges, order);
@@ -254,11 +261,34 @@ void TetMeshImprover::FindMovableBoundaryVertices(
     }
     const bool curved = !planar && smooth && static_cast<bool>(Options.ProjectToBoundary);
     if (!planar && !curved)
+    {
+      MarkOffBoundary(static_cast<std::int32_t>(v), n, edges);
       continue;
+    }
     PlaneNormal[v] = n;
     Curved[v] = curved ? 1 : 0;
     Work.Fixed[v] = 0;
   }
+}
+
+void TetMeshImprover::MarkOffBoundary(std::int32_t v, const Eigen::Vector3d& meanNormal,
+  const std::vector<std::pair<std::int32_t, std::int32_t>>& link)
+{
+  if (!Options.SnapToBoundary || !Options.ProjectToBoundary)
+    return;
+  Eigen::Vector3d placed, normal = meanNormal;
+  if (!Options.ProjectToBoundary(v, P[v].data(), meanNormal.data(), placed.data(), normal.data()))
+    return;
+  double shortest = std::numeric_limits<double>::infinity();
+  for (const auto& [b, c] : link)
+    shortest = std::min(shortest, (P[b] - P[v]).norm());
+  // On the boundary to rounding (a sampled boundary site): nothing to snap.
+  if (!((placed - P[v]).norm() > 1e-9 * shortest) || !(normal.norm() > 0.0))
+    return;
+  // The surface's normal: the side of the boundary the snap's projection must find again.
+  PlaneNormal[v] = normal.normalized();
+  OffBoundary[v] = 1;
+  Work.Fixed[v] = 0;
 }
 
 Eigen::Vector3d TetMeshImprover::CreaseDirection(std::int32_t v,
@@ -608,6 +638,14 @@ bool TetMeshImprover::TrySmooth(std::int32_t v)
     ++Smoothed;
     return true;
   }
+  if (OffBoundary[v])
+  {
+    // Its only move; tried a few times (its neighbours change), not for every bad tet.
+    if (OffBoundary[v] > kMaxSnapTrials)
+      return false;
+    ++OffBoundary[v];
+    return TrySnap(v);
+  }
   const Eigen::Vector3d start = P[v];
   auto starVolume = [&]
   {
@@ -631,6 +669,102 @@ bool TetMeshImprover::TrySmooth(std::int32_t v)
   ++Smoothed;
   ++BoundarySmoothed;
   CreaseSmoothed += crease ? 1 : 0;
+  return true;
+}
+
+// The move of an off-boundary vertex onto its closest boundary point, with its free interior
+// neighbours smoothed after it (a site just inside the boundary often has one between it and
+// the boundary, which the snap alone would invert): kept if the worst tet of the stars rises
+// (and, above the edge-length bar, no more of v's edges leave the range).
+bool TetMeshImprover::TrySnap(std::int32_t v)
+{
+  const Eigen::Vector3d start = P[v];
+  Eigen::Vector3d placed, normal = PlaneNormal[v];
+  if (!Options.ProjectToBoundary(v, start.data(), PlaneNormal[v].data(), placed.data(), normal.data()))
+    return false;
+  SnapNeighbours.clear();
+  for (std::int32_t t : Star[v])
+    for (std::int32_t w : Tets[t])
+      if (w != v && Work.CanMove(w) && PlaneNormal[w].squaredNorm() == 0.0 &&
+        LineDirection[w].squaredNorm() == 0.0 && !OffBoundary[w] &&
+        std::find(SnapNeighbours.begin(), SnapNeighbours.end(), w) == SnapNeighbours.end())
+        SnapNeighbours.push_back(w);
+  auto worstOf = [&](std::int32_t u)
+  {
+    double q = std::numeric_limits<double>::infinity();
+    for (std::int32_t t : Star[u])
+      q = std::min(q, Quality(Tets[t]));
+    return q;
+  };
+  auto worst = [&]
+  {
+    double q = worstOf(v);
+    for (std::int32_t w : SnapNeighbours)
+      q = std::min(q, worstOf(w));
+    return q;
+  };
+  // Tets below the §5.2 bar among the stars (shared ones counted once per star: the same
+  // count before and after).
+  const double bad = std::sin(Options.EdgeLengthRuleMinAngle * Pi / 180.0);
+  auto numBad = [&]
+  {
+    int n = 0;
+    for (std::int32_t t : Star[v])
+      n += Quality(Tets[t]) < bad ? 1 : 0;
+    for (std::int32_t w : SnapNeighbours)
+      for (std::int32_t t : Star[w])
+        n += Quality(Tets[t]) < bad ? 1 : 0;
+    return n;
+  };
+  const double before = worst();
+  const int badBefore = numBad();
+  const int outBefore = Options.KeepEdgeLengths ? OutOfRangeAround(v) : 0;
+  Work.Points[v] = placed;
+  SnapMoved.clear();
+  if (!Accepts(worstOf(v), before))
+    for (std::int32_t w : SnapNeighbours)
+    {
+      const Eigen::Vector3d old = P[w];
+      if (!(worstOf(w) > before) && Smoother.TrySmooth(w, true))
+        SnapMoved.emplace_back(w, old);
+    }
+  bool better = Accepts(worst(), before) && (Options.AcceptWorsening || numBad() <= badBefore) &&
+    (!Options.KeepEdgeLengths || Options.AcceptWorsening || OutOfRangeAround(v) <= outBefore);
+  // Commit: the caller's AcceptMove for every moved vertex; one refusal undoes all.
+  std::size_t accepted = 0;
+  if (better && Options.AcceptMove)
+  {
+    better = Options.AcceptMove(v, placed.data());
+    for (; better && accepted < SnapMoved.size(); ++accepted)
+      better = Options.AcceptMove(SnapMoved[accepted].first, P[SnapMoved[accepted].first].data());
+  }
+  if (!better)
+  {
+    Work.Points[v] = start;
+    for (const auto& [w, old] : SnapMoved)
+      Work.Points[w] = old;
+    if (Options.AcceptMove && accepted > 0)
+    {
+      // Put back the sites already relocated (their old positions were accepted before).
+      Options.AcceptMove(v, start.data());
+      for (std::size_t i = 0; i + 1 < accepted; ++i)
+        Options.AcceptMove(SnapMoved[i].first, SnapMoved[i].second.data());
+    }
+    return false;
+  }
+  // Where it lands its boundary faces are no smooth patch yet: it stays there.
+  PlaneNormal[v].setZero();
+  Curved[v] = 0;
+  Work.Fixed[v] = 1;
+  OffBoundary[v] = 0;
+  Work.Moved[v] = 1;
+  for (const auto& [w, old] : SnapMoved)
+  {
+    (void)old;
+    Work.Moved[w] = 1;
+    ++Smoothed;
+  }
+  ++Snaps;
   return true;
 }
 
@@ -745,6 +879,7 @@ std::int32_t TetMeshImprover::ApplyInsertion(const Eigen::Vector3d& x, const Eig
   PlaneNormal.emplace_back(Eigen::Vector3d::Zero());
   LineDirection.emplace_back(Eigen::Vector3d::Zero());
   Curved.push_back(0);
+  OffBoundary.push_back(0);
   CavityTets.clear();
   for (std::int32_t t : Cavity)
   {
@@ -769,6 +904,7 @@ void TetMeshImprover::UndoInsertion(std::int32_t point, std::size_t firstNewTet)
   PlaneNormal.pop_back();
   LineDirection.pop_back();
   Curved.pop_back();
+  OffBoundary.pop_back();
 }
 
 // Klingner & Shewchuk's insertion, simplified: a few trial points inside or on the bad tet
@@ -922,6 +1058,7 @@ bool TetMeshImprover::TryPeel(std::int32_t tet)
     PlaneNormal[v].setZero();
     LineDirection[v].setZero();
     Curved[v] = 0;
+    OffBoundary[v] = 0;
   }
   (void)c;
   PeeledVolume += volume;
@@ -969,6 +1106,7 @@ void TetMeshImprover::Run(MeshImprovementResult& result)
   result.Passes += Work.ImproveWorstFirst(
     target, Options.MaxPasses, [this](std::int32_t t) { return Work.IsAlive(t) && Improve(t); });
   result.WorstAfter = Tets.empty() ? 0.0 : angle(Work.WorstQuality());
+
   Work.WriteBack(Mesh);
   result.NumFlips23 = Flips23;
   result.NumEdgeRemovals = EdgeRemovals;
@@ -978,6 +1116,7 @@ void TetMeshImprover::Run(MeshImprovementResult& result)
   result.NumCreaseSmoothed = CreaseSmoothed;
   result.NumInsertions = Insertions;
   result.NumBoundaryPeels = Peels;
+  result.NumBoundarySnaps = Snaps;
   result.BoundaryVolumeChange =
     MeshVolume > 0.0 ? (BoundaryVolumeChange + PeeledVolume) / MeshVolume : 0.0;
   result.Moved = std::move(Work.Moved);

@@ -40,6 +40,12 @@ private:
   /// vertex 0 free, FeatureLinePoint (may only slide on a crease), other values stay.
   void FindMovableBoundaryVertices(const std::vector<std::array<std::int32_t, 3>>& boundary,
     const std::vector<std::uint8_t>& flags);
+  /// SnapToBoundary: marks boundary vertex v (link faces `link`, mean normal `meanNormal`) as
+  /// off the domain's boundary if ProjectToBoundary puts it elsewhere. Its one move is then
+  /// TrySnap; it stays fixed once snapped.
+  void MarkOffBoundary(std::int32_t v, const Eigen::Vector3d& meanNormal,
+    const std::vector<std::pair<std::int32_t, std::int32_t>>& link);
+  bool TrySnap(std::int32_t v);
   /// The unit direction of the straight crease through v whose link faces, in disc order, are
   /// `order` (indices into `link`); zero if the disc is not two planar fans meeting on a line
   /// through v with v's two crease neighbours on it, one on each side.
@@ -101,16 +107,22 @@ private:
   std::vector<Tet> CavityTets;
   std::vector<std::array<std::int32_t, 3>> CavityFaces;
   std::vector<std::int32_t> CavityFaceOwner;
+  // Scratch of the snap: the free interior neighbours, and those moved with their old position.
+  std::vector<std::int32_t> SnapNeighbours;
+  std::vector<std::pair<std::int32_t, Eigen::Vector3d>> SnapMoved;
   // Per point: the unit normal of its boundary plane where it may move in it, else zero;
   // Curved: the plane is a tangent plane and ProjectToBoundary puts the point on the surface.
   std::vector<Eigen::Vector3d> PlaneNormal;
   std::vector<char> Curved;
+  // SnapToBoundary: a boundary vertex not on the domain's boundary, not snapped yet (1 + the
+  // snaps tried); 0 otherwise.
+  std::vector<char> OffBoundary;
   // Per point: the unit direction of its straight crease where it may slide along it, else zero.
   std::vector<Eigen::Vector3d> LineDirection;
   bool EdgeRuleWaived = false; // the tet being improved is below EdgeLengthRuleMinAngle
   std::size_t Flips23 = 0, EdgeRemovals = 0, Smoothed = 0;
   std::size_t BoundaryEdgeRemovals = 0, BoundarySmoothed = 0, CreaseSmoothed = 0;
-  std::size_t Insertions = 0, Peels = 0;
+  std::size_t Insertions = 0, Peels = 0, Snaps = 0;
   double PeeledVolume = 0.0;                           // Euclidean, times 6
   double MeshVolume = 0.0, BoundaryVolumeChange = 0.0; // Euclidean, times 6
   double MedianEdge = 0.0; // median metric edge length of the input mesh

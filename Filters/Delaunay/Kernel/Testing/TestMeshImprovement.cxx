@@ -352,10 +352,12 @@ void TestPlanarBoundary()
     const av::SimplexMesh start = m;
     av::MeshImprovementOptions curved = smoothOnly;
     curved.BoundaryFlipVolumeBudget = 1.0;
+    curved.SnapToBoundary = false; // the projection below knows the cap only, not the sides
     av::SimplexMesh fixedCap = start;
     AV_CHECK(av::ImproveMesh(fixedCap, IsotropicMetric(6), nullptr, curved).NumSmoothed == 0);
     int calls = 0;
-    curved.ProjectToBoundary = [&](std::int32_t v, const double* x, const double*, double* placed)
+    curved.ProjectToBoundary =
+      [&](std::int32_t v, const double* x, const double*, double* placed, double*)
     {
       ++calls;
       AV_CHECK(v == 5);
@@ -384,6 +386,52 @@ void TestPlanarBoundary()
     av::SimplexMesh m = halfOctahedron(0.05);
     AV_CHECK(av::ImproveMesh(m, IsotropicMetric(6), nullptr, smoothOnly).NumSmoothed == 0);
     AV_CHECK(m.Points == halfOctahedron(0.05).Points);
+  }
+  { // The same center, 0.05 inside a domain whose boundary is the plane z = 0 (a site just
+    // inside the boundary, its faces folded in): with SnapToBoundary it goes onto the plane,
+    // which raises the worst tet, and the mesh then covers the domain's volume exactly.
+    av::MeshImprovementOptions snap = smoothOnly;
+    snap.BoundaryFlipVolumeBudget = 0.0; // the snap is not charged to the budget
+    int calls = 0;
+    Eigen::Vector3d target(0.0, 0.0, 0.0);
+    bool toTarget = false;
+    snap.ProjectToBoundary =
+      [&](std::int32_t v, const double* x, const double*, double* placed, double* normal)
+    {
+      // The other vertices are corners of the domain: already on its boundary.
+      const Eigen::Map<const Eigen::Vector3d> at(x);
+      calls += v == 5 ? 1 : 0;
+      const Eigen::Vector3d p = v != 5 ? Eigen::Vector3d(at)
+        : toTarget                     ? target
+                                       : Eigen::Vector3d(x[0], x[1], 0.0);
+      Eigen::Map<Eigen::Vector3d>{ placed } = p;
+      if (normal)
+        Eigen::Map<Eigen::Vector3d>{ normal } = Eigen::Vector3d::UnitZ();
+      return true;
+    };
+    const av::SimplexMesh start = halfOctahedron(0.05);
+    av::SimplexMesh m = start;
+    const double before = WorstQuality(m);
+    const av::MeshImprovementResult r = av::ImproveMesh(m, IsotropicMetric(6), nullptr, snap);
+    AV_CHECK(calls > 0 && r.NumBoundarySnaps == 1 && r.Moved[5]);
+    AV_CHECK(m.Points[17] == 0.0);
+    AV_CHECK_MSG(WorstQuality(m) > before, before << " -> " << WorstQuality(m));
+    AV_CHECK_NEAR(Volume(m), 2.0 / 3.0, 1e-15); // the pyramid, base on the plane
+    AV_CHECK(NumInverted(m) == 0);
+    for (int i = 0; i < 15; ++i)
+      AV_CHECK(m.Points[i] == start.Points[i]);
+    // Off: the vertex stays.
+    av::MeshImprovementOptions off = snap;
+    off.SnapToBoundary = false;
+    av::SimplexMesh k = start;
+    AV_CHECK(av::ImproveMesh(k, IsotropicMetric(6), nullptr, off).NumBoundarySnaps == 0);
+    AV_CHECK(k.Points == start.Points);
+    // A boundary point that makes the star worse (next to a corner): refused.
+    toTarget = true;
+    target = Eigen::Vector3d(0.97, 0.0, 0.0);
+    av::SimplexMesh w = start;
+    AV_CHECK(av::ImproveMesh(w, IsotropicMetric(6), nullptr, snap).NumBoundarySnaps == 0);
+    AV_CHECK(w.Points == start.Points);
   }
 }
 
