@@ -674,8 +674,9 @@ bool TetMeshImprover::TrySmooth(std::int32_t v)
 
 // The move of an off-boundary vertex onto its closest boundary point, with its free interior
 // neighbours smoothed after it (a site just inside the boundary often has one between it and
-// the boundary, which the snap alone would invert): kept if the worst tet of the stars rises
-// (and, above the edge-length bar, no more of v's edges leave the range).
+// the boundary, which the snap alone would invert): kept if the worst tet of the stars rises,
+// no more of their tets are below EdgeLengthRuleMinAngle and, above that bar, no more of v's
+// edges leave the range.
 bool TetMeshImprover::TrySnap(std::int32_t v)
 {
   const Eigen::Vector3d start = P[v];
@@ -758,10 +759,9 @@ bool TetMeshImprover::TrySnap(std::int32_t v)
   Work.Fixed[v] = 1;
   OffBoundary[v] = 0;
   Work.Moved[v] = 1;
-  for (const auto& [w, old] : SnapMoved)
+  for (const auto& moved : SnapMoved)
   {
-    (void)old;
-    Work.Moved[w] = 1;
+    Work.Moved[moved.first] = 1;
     ++Smoothed;
   }
   ++Snaps;
@@ -1106,7 +1106,6 @@ void TetMeshImprover::Run(MeshImprovementResult& result)
   result.Passes += Work.ImproveWorstFirst(
     target, Options.MaxPasses, [this](std::int32_t t) { return Work.IsAlive(t) && Improve(t); });
   result.WorstAfter = Tets.empty() ? 0.0 : angle(Work.WorstQuality());
-
   Work.WriteBack(Mesh);
   result.NumFlips23 = Flips23;
   result.NumEdgeRemovals = EdgeRemovals;
