@@ -102,6 +102,7 @@ av::MeshingPipelineOptions PipelineOptions(const MeshStageOptions& options,
   po.Improvement.StraightCreases = options.StraightCreases;
   po.Improvement.Insertions = options.VertexInsertion;
   po.Improvement.SnapToBoundary = options.BoundarySnap;
+  po.Improvement.InputBoundaryMoves = options.InputBoundaryMoves;
   po.Improvement.BoundaryFlipMaxDihedral = options.BoundaryFlipMaxDihedral;
   po.Improvement.BoundaryFlipVolumeBudget = options.BoundaryFlipVolumeBudget;
   po.Metric = metric;

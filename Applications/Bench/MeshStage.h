@@ -48,8 +48,9 @@ struct MeshStageOptions
   bool StraightCreases = true; ///< ...and along straight creases (MeshImprovementOptions)
   bool VertexInsertion = true; ///< tets: vertex insertion (MeshImprovementOptions::Insertions)
   bool BoundarySnap = true;    ///< tets: MeshImprovementOptions::SnapToBoundary
+  bool InputBoundaryMoves = true; ///< tets: MeshImprovementOptions::InputBoundaryMoves
   double BoundaryFlipMaxDihedral = 10.0; ///< ...and edges of nearly coplanar boundary faces
-  double BoundaryFlipVolumeBudget = 1e-3; ///< ...changing at most this share of the volume
+  double BoundaryFlipVolumeBudget = 5e-3; ///< ...changing at most this share of the volume
   bool PreserveSharpFeatures = true; ///< corner / feature-line particles (ParticleSamplerOptions)
   bool OdtKeepsFeatureSites = false; ///< MeshingPipelineOptions::OdtKeepsFixedSites
   bool RecoverFeatureEdges = true;   ///< surfaces: MeshingPipelineOptions::FeatureAngle < 180

@@ -95,8 +95,9 @@ struct Args
   bool StraightCreases = true; // ...and along straight creases
   bool VertexInsertion = true; // tets: vertex insertion in the mesh improvement
   bool BoundarySnap = true;    // tets: off-boundary vertices moved onto the boundary
+  bool InputBoundaryMoves = true; // tets: folded-boundary vertices move on the input's boundary
   double BoundaryFlipDihedral = 10.0; // ...and nearly planar ones (degrees)
-  double BoundaryVolumeBudget = 1e-3; // ...changing at most this fraction of the volume
+  double BoundaryVolumeBudget = 5e-3; // ...changing at most this fraction of the volume
   bool Features = true;      // corner / feature-line particles
   bool OdtKeepsFeatures = false; // the ODT steps keep the feature sites (surfaces)
   bool FeatureEdges = true;      // surfaces: feature-line edges put back by flips
@@ -552,6 +553,7 @@ avbench::MeshStageOptions MeshStageOptionsFor(const Args& a, const Case& c)
   o.StraightCreases = a.StraightCreases;
   o.VertexInsertion = a.VertexInsertion;
   o.BoundarySnap = a.BoundarySnap;
+  o.InputBoundaryMoves = a.InputBoundaryMoves;
   o.BoundaryFlipMaxDihedral = a.BoundaryFlipDihedral;
   o.BoundaryFlipVolumeBudget = a.BoundaryVolumeBudget;
   o.PreserveSharpFeatures = a.Features;
@@ -806,10 +808,12 @@ void Usage(std::ostream& os)
        "  --no-boundary-snap  mesh: boundary vertices of tet meshes that lie inside the domain\n"
        "                    stay there (default: moved onto the domain's boundary where that\n"
        "                    raises their worst tet)\n"
+       "  --no-input-boundary-moves  mesh: boundary vertices of tet meshes whose faces are\n"
+       "                    folded stay (default: they move on the input's boundary)\n"
        "  --boundary-flip-dihedral D  mesh: the improvement also removes boundary edges whose\n"
        "                    two faces are at most D degrees from coplanar (default 10; 0 =\n"
-       "                    planar only), at most 0.1 % of the volume in all\n"
-       "  --boundary-volume-budget F  mesh: that share of the volume (default 1e-3)\n"
+       "                    planar only), at most 0.5 % of the volume in all\n"
+       "  --boundary-volume-budget F  mesh: that share of the volume (default 5e-3)\n"
        "  --no-features     mesh: no corner / feature-line particles (paper §4.1 sharp features)\n"
        "  --keep-feature-sites  mesh: the ODT steps keep the corner and feature-line sites on\n"
        "                    surfaces too (default: only the sliver push does)\n"
@@ -958,6 +962,8 @@ bool Parse(int argc, char** argv, Args& a)
       a.VertexInsertion = false;
     else if (k == "--no-boundary-snap")
       a.BoundarySnap = false;
+    else if (k == "--no-input-boundary-moves")
+      a.InputBoundaryMoves = false;
     else if (k == "--boundary-flip-dihedral")
       a.BoundaryFlipDihedral = std::stod(next());
     else if (k == "--boundary-volume-budget")

@@ -96,7 +96,7 @@ meshing:
                            raise its worst element, measured in the metric)
   --no-boundary-improvement  the mesh improvement leaves every boundary vertex and face of a
                            tet mesh as it is (default: planar patches exactly, smooth curved
-                           ones within 0.1 % of the volume)
+                           ones within 0.5 % of the volume)
   --keep-feature-sites     surfaces: the ODT steps keep the corner and feature-line sites on
                            the creases, and the edges along the creases are flipped into the
                            mesh (default: those sites move like the others)

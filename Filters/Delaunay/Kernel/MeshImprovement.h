@@ -43,7 +43,7 @@ struct MeshImprovementOptions
   double BoundaryFlipMaxDihedral = 10.0;
   /// Tets: the most volume those curved-boundary operations (removals and the moves below) may
   /// change in all, as a fraction of the mesh's volume.
-  double BoundaryFlipVolumeBudget = 1e-3;
+  double BoundaryFlipVolumeBudget = 5e-3;
   /// Tets, with PlanarBoundary: puts a trial position x (3 values) of boundary vertex v on the
   /// domain's boundary surface, near the tangent plane with unit inward normal `normal`: writes
   /// `placed` and, if `surfaceNormal` is not null, the surface's unit normal there (oriented as
@@ -61,6 +61,12 @@ struct MeshImprovementOptions
   /// leaves no more of them below EdgeLengthRuleMinAngle; it then stays there. The change of
   /// volume brings the mesh closer to the domain and is not charged to BoundaryFlipVolumeBudget.
   bool SnapToBoundary = true;
+  /// Tets, with ProjectToBoundary: a boundary vertex that lies on the domain's boundary, its
+  /// boundary faces one disc but folded or chamfered (neither planar nor within
+  /// BoundaryFlipMaxDihedral of their mean plane: the dual's boundary there is not the
+  /// domain's), moves as a vertex of a smooth curved patch, in the domain's tangent plane at it
+  /// and then onto the domain's boundary, within BoundaryFlipVolumeBudget. Feature sites stay.
+  bool InputBoundaryMoves = true;
   /// Tets, with PlanarBoundary: a boundary vertex (free or FeatureLinePoint) whose boundary
   /// faces form one disc made of two planar fans that meet along a straight line through it,
   /// its two crease edges on that line, moves along the line. Both planes and the crease stay

@@ -232,7 +232,7 @@ void TetMeshImprover::FindMovableBoundaryVertices(
     {
       // Not one disc: it may still be snapped onto the boundary.
       if (!flags[v] && areaSum[v].norm() > 0.0)
-        MarkOffBoundary(static_cast<std::int32_t>(v), areaSum[v].normalized(), edges);
+        MarkOffBoundary(static_cast<std::int32_t>(v), areaSum[v].normalized(), edges, false);
       continue;
     }
     if (Options.StraightCreases)
@@ -262,7 +262,7 @@ void TetMeshImprover::FindMovableBoundaryVertices(
     const bool curved = !planar && smooth && static_cast<bool>(Options.ProjectToBoundary);
     if (!planar && !curved)
     {
-      MarkOffBoundary(static_cast<std::int32_t>(v), n, edges);
+      MarkOffBoundary(static_cast<std::int32_t>(v), n, edges, true);
       continue;
     }
     PlaneNormal[v] = n;
@@ -272,7 +272,7 @@ void TetMeshImprover::FindMovableBoundaryVertices(
 }
 
 void TetMeshImprover::MarkOffBoundary(std::int32_t v, const Eigen::Vector3d& meanNormal,
-  const std::vector<std::pair<std::int32_t, std::int32_t>>& link)
+  const std::vector<std::pair<std::int32_t, std::int32_t>>& link, bool disc)
 {
   if (!Options.SnapToBoundary || !Options.ProjectToBoundary)
     return;
@@ -282,9 +282,21 @@ void TetMeshImprover::MarkOffBoundary(std::int32_t v, const Eigen::Vector3d& mea
   double shortest = std::numeric_limits<double>::infinity();
   for (const auto& [b, c] : link)
     shortest = std::min(shortest, (P[b] - P[v]).norm());
-  // On the boundary to rounding (a sampled boundary site): nothing to snap.
-  if (!((placed - P[v]).norm() > 1e-9 * shortest) || !(normal.norm() > 0.0))
+  if (!(normal.norm() > 0.0))
     return;
+  // On the boundary to rounding (a sampled boundary site): nothing to snap.
+  if (!((placed - P[v]).norm() > 1e-9 * shortest))
+  {
+    if (Options.InputBoundaryMoves && disc)
+    {
+      // On the domain's boundary, its faces folded or chamfered: it moves on the domain's
+      // boundary as a vertex of a curved patch, in the domain's tangent plane there.
+      PlaneNormal[v] = normal.normalized();
+      Curved[v] = 1;
+      Work.Fixed[v] = 0;
+    }
+    return;
+  }
   // The surface's normal: the side of the boundary the snap's projection must find again.
   PlaneNormal[v] = normal.normalized();
   OffBoundary[v] = 1;

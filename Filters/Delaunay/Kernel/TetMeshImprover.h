@@ -42,9 +42,10 @@ private:
     const std::vector<std::uint8_t>& flags);
   /// SnapToBoundary: marks boundary vertex v (link faces `link`, mean normal `meanNormal`) as
   /// off the domain's boundary if ProjectToBoundary puts it elsewhere. Its one move is then
-  /// TrySnap; it stays fixed once snapped.
+  /// TrySnap; it stays fixed once snapped. InputBoundaryMoves: if v is on the domain's boundary
+  /// and its faces form one disc (`disc`), it moves as a curved-patch vertex instead.
   void MarkOffBoundary(std::int32_t v, const Eigen::Vector3d& meanNormal,
-    const std::vector<std::pair<std::int32_t, std::int32_t>>& link);
+    const std::vector<std::pair<std::int32_t, std::int32_t>>& link, bool disc);
   bool TrySnap(std::int32_t v);
   /// The unit direction of the straight crease through v whose link faces, in disc order, are
   /// `order` (indices into `link`); zero if the disc is not two planar fans meeting on a line

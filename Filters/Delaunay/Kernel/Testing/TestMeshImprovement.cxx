@@ -392,6 +392,7 @@ void TestPlanarBoundary()
     // which raises the worst tet, and the mesh then covers the domain's volume exactly.
     av::MeshImprovementOptions snap = smoothOnly;
     snap.BoundaryFlipVolumeBudget = 0.0; // the snap is not charged to the budget
+    snap.InputBoundaryMoves = false;     // the corners are on the boundary (tested below)
     int calls = 0;
     Eigen::Vector3d target(0.0, 0.0, 0.0);
     bool toTarget = false;
@@ -432,6 +433,41 @@ void TestPlanarBoundary()
     av::SimplexMesh w = start;
     AV_CHECK(av::ImproveMesh(w, IsotropicMetric(6), nullptr, snap).NumBoundarySnaps == 0);
     AV_CHECK(w.Points == start.Points);
+  }
+  { // InputBoundaryMoves: the center on the domain's boundary plane z = 0, one corner of the
+    // square 0.3 inside the domain, so that the center's faces are folded (17 deg from their
+    // mean plane: neither planar nor smooth). It moves only with the option, and then in the
+    // domain's plane; the corners (feature sites) stay.
+    av::SimplexMesh start = halfOctahedron(0.0);
+    start.Points[2] = 0.3;
+    Orient(start);
+    std::vector<std::uint8_t> corners(6, 1);
+    corners[5] = 0;
+    av::MeshImprovementOptions onPlane = smoothOnly;
+    onPlane.BoundaryFlipVolumeBudget = 1.0;
+    onPlane.ProjectToBoundary =
+      [&](std::int32_t v, const double* x, const double*, double* placed, double* normal)
+    {
+      const Eigen::Map<const Eigen::Vector3d> at(x);
+      Eigen::Map<Eigen::Vector3d>{ placed } = v == 5 ? Eigen::Vector3d(x[0], x[1], 0.0) : Eigen::Vector3d(at);
+      if (normal)
+        Eigen::Map<Eigen::Vector3d>{ normal } = Eigen::Vector3d::UnitZ();
+      return true;
+    };
+    av::MeshImprovementOptions off = onPlane;
+    off.InputBoundaryMoves = false;
+    av::SimplexMesh k = start;
+    AV_CHECK(av::ImproveMesh(k, IsotropicMetric(6), &corners, off).NumSmoothed == 0);
+    AV_CHECK(k.Points == start.Points);
+    av::SimplexMesh m = start;
+    const double before = WorstQuality(m);
+    const av::MeshImprovementResult r = av::ImproveMesh(m, IsotropicMetric(6), &corners, onPlane);
+    AV_CHECK(r.NumBoundarySmoothed >= 1 && r.Moved[5] && r.NumBoundarySnaps == 0);
+    AV_CHECK(m.Points[17] == 0.0);
+    AV_CHECK_MSG(WorstQuality(m) > before, before << " -> " << WorstQuality(m));
+    AV_CHECK(NumInverted(m) == 0);
+    for (int i = 0; i < 15; ++i)
+      AV_CHECK(m.Points[i] == start.Points[i]);
   }
 }
 
