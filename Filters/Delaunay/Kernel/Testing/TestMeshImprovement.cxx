@@ -374,7 +374,7 @@ void TestPlanarBoundary()
     AV_CHECK_NEAR((c - center).norm(), radius, 1e-12);
     AV_CHECK(NumInverted(m) == 0);
     AV_CHECK_NEAR(r.BoundaryVolumeChange, std::abs(Volume(m) - Volume(start)) / Volume(start), 1e-12);
-    // The default budget (0.1 % of the volume) is far below this move's change: refused.
+    // A budget of 0.1 % of the volume is far below this move's change: refused.
     av::MeshImprovementOptions small = curved;
     small.BoundaryFlipVolumeBudget = 1e-3;
     AV_CHECK(r.BoundaryVolumeChange > 1e-3);
