@@ -232,7 +232,7 @@ void TetMeshImprover::FindMovableBoundaryVertices(
     {
       // Not one disc: it may still be snapped onto the boundary.
       if (!flags[v] && areaSum[v].norm() > 0.0)
-        MarkOffBoundary(static_cast<std::int32_t>(v), areaSum[v].normalized(), edges, false);
+        ClassifyByDomainBoundary(static_cast<std::int32_t>(v), areaSum[v].normalized(), edges, false);
       continue;
     }
     if (Options.StraightCreases)
@@ -262,7 +262,7 @@ void TetMeshImprover::FindMovableBoundaryVertices(
     const bool curved = !planar && smooth && static_cast<bool>(Options.ProjectToBoundary);
     if (!planar && !curved)
     {
-      MarkOffBoundary(static_cast<std::int32_t>(v), n, edges, true);
+      ClassifyByDomainBoundary(static_cast<std::int32_t>(v), n, edges, true);
       continue;
     }
     PlaneNormal[v] = n;
@@ -271,10 +271,11 @@ void TetMeshImprover::FindMovableBoundaryVertices(
   }
 }
 
-void TetMeshImprover::MarkOffBoundary(std::int32_t v, const Eigen::Vector3d& meanNormal,
+void TetMeshImprover::ClassifyByDomainBoundary(std::int32_t v, const Eigen::Vector3d& meanNormal,
   const std::vector<std::pair<std::int32_t, std::int32_t>>& link, bool disc)
 {
-  if (!Options.SnapToBoundary || !Options.ProjectToBoundary)
+  if ((!Options.SnapToBoundary && !(Options.InputBoundaryMoves && disc)) ||
+    !Options.ProjectToBoundary)
     return;
   Eigen::Vector3d placed, normal = meanNormal;
   if (!Options.ProjectToBoundary(v, P[v].data(), meanNormal.data(), placed.data(), normal.data()))
@@ -297,6 +298,8 @@ void TetMeshImprover::MarkOffBoundary(std::int32_t v, const Eigen::Vector3d& mea
     }
     return;
   }
+  if (!Options.SnapToBoundary)
+    return;
   // The surface's normal: the side of the boundary the snap's projection must find again.
   PlaneNormal[v] = normal.normalized();
   OffBoundary[v] = 1;

@@ -40,11 +40,12 @@ private:
   /// vertex 0 free, FeatureLinePoint (may only slide on a crease), other values stay.
   void FindMovableBoundaryVertices(const std::vector<std::array<std::int32_t, 3>>& boundary,
     const std::vector<std::uint8_t>& flags);
-  /// SnapToBoundary: marks boundary vertex v (link faces `link`, mean normal `meanNormal`) as
-  /// off the domain's boundary if ProjectToBoundary puts it elsewhere. Its one move is then
+  /// Boundary vertex v (link faces `link`, mean normal `meanNormal`) that neither is planar nor
+  /// smooth, by the domain's boundary: SnapToBoundary marks it off the domain's boundary if
+  /// ProjectToBoundary puts it elsewhere. Its one move is then
   /// TrySnap; it stays fixed once snapped. InputBoundaryMoves: if v is on the domain's boundary
   /// and its faces form one disc (`disc`), it moves as a curved-patch vertex instead.
-  void MarkOffBoundary(std::int32_t v, const Eigen::Vector3d& meanNormal,
+  void ClassifyByDomainBoundary(std::int32_t v, const Eigen::Vector3d& meanNormal,
     const std::vector<std::pair<std::int32_t, std::int32_t>>& link, bool disc);
   bool TrySnap(std::int32_t v);
   /// The unit direction of the straight crease through v whose link faces, in disc order, are
