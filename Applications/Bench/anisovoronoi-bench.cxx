@@ -77,6 +77,7 @@ struct Args
   double ErrorTarget = 2.0;        // run past --iterations while L_avg (%) is above this
   std::string Init = "smooth";
   bool Weighted = false;
+  int ElementMetric = -1; // -1: the solver's default; 0 vertex mean, 1 edge lengths
   bool TrackError = true;
   std::size_t Sites = 0;     // 0: case default (paper Tab. 5 / Tab. 3)
   int SampleIterations = 150; // sampler L-BFGS iterations
@@ -379,6 +380,11 @@ av::EmbeddingOptions EmbeddingOptionsFor(const Args& a, const Case& c, int dim)
   o.ConvergenceTolerance = a.ConvergenceTolerance;
   o.TargetAverageErrorPercent = a.ErrorTarget;
   o.ElementMeasureWeighting = a.Weighted;
+  if (a.ElementMetric >= 0)
+  {
+    o.ElementMetric =
+      a.ElementMetric == 1 ? av::EmbeddingElementMetric::EdgeLengths : av::EmbeddingElementMetric::VertexMean;
+  }
   o.Initialization = a.Init == "random" ? av::EmbeddingInitialization::Random : av::EmbeddingInitialization::Smooth;
   return o;
 }
@@ -416,6 +422,7 @@ void ReportEmbedding(const Args& a, const Case& c, const av::EmbeddingOptions& o
   out.Set("local_step_seconds", r.LocalStepSeconds);
   out.Set("solve_seconds", r.SolveSeconds);
   out.Set("factor_entries", r.FactorNonZeros);
+  out.Set("element_metric_fallbacks", r.ElementMetricFallbacks);
   out.Set("energy_initial", r.EnergyHistory.front().Total);
   out.Set("energy_final", r.EnergyHistory.back().Total);
   out.Set("anderson_accepted", r.AndersonAccepted);
@@ -777,6 +784,8 @@ void Usage(std::ostream& os)
        "  --error-target P  past --iterations, stop once L_avg <= P % (default 2; 0 = none)\n"
        "  --init smooth|random  initial free coordinates (default smooth)\n"
        "  --weighted        element-measure weighted energy (default: paper's unweighted)\n"
+       "  --element-metric mean|edges  each element's metric: its vertex mean, or the one of its\n"
+       "                    edges' 5.1 lengths (consistent between neighbours)\n"
        "  --no-track        do not evaluate L_avg per iteration (iterations_to_paper_error)\n"
        "  --sites N         sites for mesh (default: cube1 2000, cube2 5000, cube3 5600,\n"
        "                    sphere-cyl 5000, sphere-cos 1000, gaussian2d 4000)\n"
@@ -932,6 +941,15 @@ bool Parse(int argc, char** argv, Args& a)
       a.Init = next();
     else if (k == "--weighted")
       a.Weighted = true;
+    else if (k == "--element-metric")
+    {
+      const std::string v = next();
+      if (v != "mean" && v != "edges")
+      {
+        throw std::runtime_error("--element-metric: expected mean or edges, got " + v);
+      }
+      a.ElementMetric = v == "edges" ? 1 : 0;
+    }
     else if (k == "--no-track")
       a.TrackError = false;
     else if (k == "--sites")

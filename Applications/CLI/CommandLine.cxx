@@ -39,6 +39,9 @@ options:
   --solver S               embedding global step: auto (direct below 150,000 vertices),
                            direct or iterative (CG + algebraic multigrid, linear memory)
   --double-solve           embedding: CHOLMOD's double-precision solves (default: float copy)
+  --element-metric M       embedding: each element's constant metric, edges (default: fits
+                           the paper's edge lengths, neighbours agree on shared edges) or mean
+                           (the average of its vertex metrics)
   --no-separate-bodies     embedding: bodies of the input with no shared point (a contact
                            assembly) stay touching (default: embedded apart, meshed apart)
   --sample-iterations N    particle L-BFGS iterations at the paper's kernel (default 150;
@@ -184,6 +187,8 @@ void CheckOptions(const Options& o)
   if (o.Iterations < 0 || o.SampleIterations < 0 || o.WarmupIterations < 0 ||
     o.MaxIterations < 0)
     Fail("iteration counts must be >= 0", 2);
+  if (o.ElementMetric != "edges" && o.ElementMetric != "mean")
+    Fail("--element-metric must be edges or mean", 2);
   if (o.Solver != "auto" && o.Solver != "direct" && o.Solver != "iterative")
     Fail("--solver must be auto, direct or iterative", 2);
   if (!(o.FeatureAngle > 0 && o.FeatureAngle <= 180))
@@ -288,6 +293,8 @@ Options ParseCommandLine(int argc, char* argv[])
       o.FeaturePatches = next();
     else if (a == "--feature-corners")
       o.FeatureCorners = next();
+    else if (a == "--element-metric")
+      o.ElementMetric = next();
     else if (a == "--double-solve")
       o.DoubleSolve = true;
     else if (a == "--no-separate-bodies")

@@ -49,6 +49,9 @@ av::EmbeddingOptions MakeOptions(vtkAnisoEmbedding* self)
   options.Seed = static_cast<std::uint64_t>(self->GetSeed());
   options.RelativeEnergyTolerance = self->GetRelativeEnergyTolerance();
   options.ElementMeasureWeighting = self->GetElementMeasureWeighting();
+  options.ElementMetric = self->GetElementMetric() == vtkAnisoEmbedding::VERTEX_MEAN
+    ? av::EmbeddingElementMetric::VertexMean
+    : av::EmbeddingElementMetric::EdgeLengths;
   options.Initialization = self->GetInitialization() == vtkAnisoEmbedding::RANDOM
     ? av::EmbeddingInitialization::Random
     : av::EmbeddingInitialization::Smooth;
@@ -121,6 +124,7 @@ void AddFigures(vtkFieldData* fd, const av::EdgeLengthErrorResult& errors, doubl
   AddFieldValue(fd, "FactorSeconds", result.FactorSeconds);
   AddFieldValue(fd, "SolveSeconds", result.SolveSeconds);
   AddFieldValue(fd, "DoublePrecisionRetries", result.DoublePrecisionRetries);
+  AddFieldValue(fd, "ElementMetricFallbacks", static_cast<double>(result.ElementMetricFallbacks));
   AddFieldValue(fd, "EmbeddingSeconds", seconds);
 }
 
@@ -307,6 +311,8 @@ void vtkAnisoEmbedding::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Seed: " << this->Seed << "\n";
   os << indent << "RelativeEnergyTolerance: " << this->RelativeEnergyTolerance << "\n";
   os << indent << "ElementMeasureWeighting: " << this->ElementMeasureWeighting << "\n";
+  os << indent << "ElementMetric: "
+     << (this->ElementMetric == VERTEX_MEAN ? "VertexMean" : "EdgeLengths") << "\n";
   os << indent << "Initialization: " << (this->Initialization == RANDOM ? "Random" : "Smooth")
      << "\n";
   os << indent << "AndersonWindow: " << this->AndersonWindow << "\n";

@@ -55,6 +55,12 @@ public:
     RANDOM = 1
   };
 
+  enum ElementMetrics
+  {
+    VERTEX_MEAN = 0,
+    EDGE_LENGTHS = 1
+  };
+
   enum GlobalSolvers
   {
     AUTOMATIC_SOLVER = 0,
@@ -136,6 +142,16 @@ public:
   ///@}
 
   ///@{
+  /// The constant metric each element is fitted to: EDGE_LENGTHS (default), the metric whose
+  /// lengths of the element's edges are the paper's §5.1 edge lengths, so that neighbours agree
+  /// on every shared edge (elements far from any such metric blend towards the mean); or
+  /// VERTEX_MEAN, the average of the element's vertex metrics (paper-notes.md). EDGE_LENGTHS
+  /// gives a lower L_avg on every preset and real volume measured (Filters/Embedding/README.md).
+  vtkSetClampMacro(ElementMetric, int, VERTEX_MEAN, EDGE_LENGTHS);
+  vtkGetMacro(ElementMetric, int);
+  ///@}
+
+  ///@{
   /// Initial extra coordinates: SMOOTH low-frequency random field (default) or the paper's
   /// i.i.d. small RANDOM perturbation.
   vtkSetClampMacro(Initialization, int, SMOOTH, RANDOM);
@@ -208,6 +224,7 @@ protected:
   int Seed = 1;
   double RelativeEnergyTolerance = 0.0;
   bool ElementMeasureWeighting = false;
+  int ElementMetric = EDGE_LENGTHS;
   int Initialization = SMOOTH;
   int AndersonWindow = 5;
   bool SinglePrecisionSolve = true;

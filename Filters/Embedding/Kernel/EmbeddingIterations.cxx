@@ -263,6 +263,7 @@ EmbeddingResult EmbeddingSolver::Run()
   }
   res.Embedded = this->CurrentEmbedding();
   res.NumBodies = p.NumBodies;
+  res.ElementMetricFallbacks = p.ElementMetricFallbacks;
   if (p.Options.SeparateBodies)
     SeparateBodies(p.PointBody, p.NumBodies, p.M, res.Embedded);
   return res;

@@ -5,10 +5,12 @@
 #include "MeshTopology.h"
 #include "MetricAlgebra.h"
 
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <numeric>
 #include <random>
 #include <string>
@@ -18,6 +20,99 @@ namespace av
 
 namespace
 {
+/// Symmetric square root of every vertex metric, zero-padded to 3 x 3 in 2D (the §5.1 A).
+std::vector<Eigen::Matrix3d> VertexMetricSqrts(const MetricField& metric, int m, std::size_t np)
+{
+  std::vector<Eigen::Matrix3d> a(np);
+  tbb::parallel_for(std::size_t(0), np, [&](std::size_t i) {
+    a[i].setZero();
+    if (m == 2)
+    {
+      a[i].topLeftCorner<2, 2>() = SymmetricSqrt(UnpackSymmetric2(metric.At(i)));
+    }
+    else
+    {
+      a[i] = SymmetricSqrt(UnpackSymmetric(metric.At(i)));
+    }
+  });
+  return a;
+}
+
+/// Largest factor by which an edge-length metric may scale a squared length against the vertex
+/// mean. Beyond it the edge lengths hardly describe one simplex (a folded metric simplex, near a
+/// Cayley-Menger zero, or a metric that turns within the element), and the element blends back
+/// towards the mean. 4 measured best of {2, 4, 16} with clamping or a hard fall-back to the mean
+/// (Filters/Embedding/README.md).
+constexpr double kEdgeMetricMaxRatio = 4.0;
+
+/// EmbeddingElementMetric::EdgeLengths: the metric g (m x m; rank k on surfaces, zero along the
+/// normal) with w^T g w = ℓ(a, b)^2 for every edge w = b - a of the element, from the Gram
+/// matrix H of the edges at vertex 0 in the §5.1 lengths (polarization). wm: the edge vectors at
+/// vertex 0 (m x k), wp its pseudo-inverse (k x m). When the generalized eigenvalues of H against
+/// the vertex mean's Gram matrix Hm leave [1/r, r] (r = kEdgeMetricMaxRatio), H is replaced by
+/// the blend (1 - t) Hm + t H with the largest t that brings them back into range, and the result
+/// is false (counted). A blend, not a clamp per eigenvalue: it keeps the element's shape changing
+/// continuously with its edge lengths. False with g unchanged when the mean is singular.
+template <typename WP>
+bool EdgeLengthMetric(const SimplexMesh& mesh, const std::int32_t* cell, int k,
+  const Eigen::Matrix3d& wm, const WP& wp, const std::vector<Eigen::Matrix3d>& sq,
+  const Eigen::Matrix3d& mean, Eigen::Matrix3d& g)
+{
+  const int m = mesh.AmbientDim;
+  auto length2 = [&](int la, int lb) {
+    Eigen::Vector3d d = Eigen::Vector3d::Zero();
+    for (int c = 0; c < m; ++c)
+    {
+      d(c) = mesh.Point(cell[lb])[c] - mesh.Point(cell[la])[c];
+    }
+    return (0.5 * (sq[cell[la]] + sq[cell[lb]]) * d).squaredNorm();
+  };
+  Eigen::Matrix3d h = Eigen::Matrix3d::Identity(); // k x k used; identity pads k = 2
+  for (int l = 0; l < k; ++l)
+  {
+    h(l, l) = length2(0, l + 1);
+  }
+  for (int l = 0; l < k; ++l)
+  {
+    for (int q = l + 1; q < k; ++q)
+    {
+      h(l, q) = h(q, l) = 0.5 * (h(l, l) + h(q, q) - length2(l + 1, q + 1));
+    }
+  }
+  // The same Gram matrix in the vertex mean, and the generalized eigenvalues of the pair.
+  Eigen::Matrix3d hm = Eigen::Matrix3d::Identity();
+  hm.topLeftCorner(k, k) = wm.topLeftCorner(m, k).transpose() * mean.topLeftCorner(m, m) *
+    wm.topLeftCorner(m, k);
+  const Eigen::LLT<Eigen::Matrix3d> llt(hm);
+  if (llt.info() != Eigen::Success)
+  {
+    return false;
+  }
+  const Eigen::Matrix3d linv = llt.matrixL().solve(Eigen::Matrix3d::Identity());
+  const SymmetricEigen3 ratio = EigenDecompose(Eigen::Matrix3d(linv * h * linv.transpose()));
+  const double lo = ratio.Values.minCoeff(), hi = ratio.Values.maxCoeff();
+  const double r = kEdgeMetricMaxRatio;
+  double t = 1.0;
+  if (lo < 1.0 / r)
+  {
+    t = std::min(t, (1.0 - 1.0 / r) / (1.0 - lo));
+  }
+  if (hi > r)
+  {
+    t = std::min(t, (r - 1.0) / (hi - 1.0));
+  }
+  if (!(t >= 0.0)) // NaN lengths: keep the mean
+  {
+    return false;
+  }
+  // Generalized eigenvalues of the blend are (1 - t) + t * lambda: inside [1/r, r] by the t above.
+  h = (1.0 - t) * hm + t * h;
+  g.setZero();
+  g.topLeftCorner(m, m) = wp.transpose() * h.topLeftCorner(k, k) * wp;
+  g = 0.5 * (g + g.transpose()).eval();
+  return t == 1.0;
+}
+
 /// Dimensions, sizes, options, finite points and point ids in range.
 void ValidateSizesAndOptions(
   const SimplexMesh& mesh, const MetricField& metric, const EmbeddingOptions& o)
@@ -281,6 +376,13 @@ void EmbeddingSolver::Internals::BuildElements(const SimplexMesh& mesh, const Me
   this->A.assign(this->NE * m * m, 0.0);
   this->W.assign(this->NE, 1.0);
   std::vector<double> measure(this->NE);
+  const bool edgeLengths = this->Options.ElementMetric == EmbeddingElementMetric::EdgeLengths;
+  std::vector<Eigen::Matrix3d> vertexSqrt;
+  if (edgeLengths)
+  {
+    vertexSqrt = VertexMetricSqrts(metric, m, this->NP);
+  }
+  tbb::enumerable_thread_specific<std::size_t> fallbacks(0);
   tbb::parallel_for(std::size_t(0), this->NE, [&](std::size_t j) {
     const std::int32_t* cell = mesh.Cell(j);
     // W = edge vectors (m x k); W+ = pseudo-inverse (k x m); Gt = D W+ with D the (k+1) x k
@@ -316,30 +418,48 @@ void EmbeddingSolver::Internals::BuildElements(const SimplexMesh& mesh, const Me
       }
       g[d] = -s;
     }
-    // Element metric: average of the vertex metrics; A = its symmetric square root.
-    double* a = this->A.data() + j * m * m;
-    if (m == 2)
+    // Element metric: average of the vertex metrics (or, EdgeLengths, the metric of the edges'
+    // §5.1 lengths); A = its symmetric square root.
+    Eigen::Matrix3d mm = Eigen::Matrix3d::Zero();
+    for (int l = 0; l < nv; ++l)
     {
-      Eigen::Matrix2d mm = Eigen::Matrix2d::Zero();
-      for (int l = 0; l < nv; ++l)
+      if (m == 2)
       {
-        mm += UnpackSymmetric2(metric.At(cell[l]));
+        mm.topLeftCorner<2, 2>() += UnpackSymmetric2(metric.At(cell[l]));
       }
-      Eigen::Map<Eigen::Matrix2d> am(a);
-      am = SymmetricSqrt(Eigen::Matrix2d(mm / nv));
-    }
-    else
-    {
-      Eigen::Matrix3d mm = Eigen::Matrix3d::Zero();
-      for (int l = 0; l < nv; ++l)
+      else
       {
         mm += UnpackSymmetric(metric.At(cell[l]));
       }
+    }
+    mm /= nv;
+    if (edgeLengths)
+    {
+      Eigen::Matrix3d g;
+      g.setZero();
+      if (!EdgeLengthMetric(mesh, cell, k, wm, wp, vertexSqrt, mm, g))
+      {
+        fallbacks.local() += 1;
+      }
+      if (!g.isZero(0.0))
+      {
+        mm = g;
+      }
+    }
+    double* a = this->A.data() + j * m * m;
+    if (m == 2)
+    {
+      Eigen::Map<Eigen::Matrix2d> am(a);
+      am = SymmetricSqrt(Eigen::Matrix2d(mm.topLeftCorner<2, 2>()));
+    }
+    else
+    {
       Eigen::Map<Eigen::Matrix3d> am(a);
-      am = SymmetricSqrt(Eigen::Matrix3d(mm / nv));
+      am = SymmetricSqrt(mm);
     }
     measure[j] = std::abs(CellMeasure(mesh, j));
   });
+  this->ElementMetricFallbacks = fallbacks.combine(std::plus<std::size_t>());
   if (this->Options.ElementMeasureWeighting)
   {
     const double mean = std::accumulate(measure.begin(), measure.end(), 0.0) / this->NE;

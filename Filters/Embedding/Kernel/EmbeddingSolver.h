@@ -24,6 +24,20 @@ enum class EmbeddingInitialization
   Random
 };
 
+/// The constant metric M_j each element is fitted to (the paper: "constant per element").
+enum class EmbeddingElementMetric
+{
+  /// The average of the element's vertex metrics (paper-notes.md).
+  VertexMean,
+  /// The metric whose lengths of the element's edges are the §5.1 lengths
+  /// ℓ(a, b) = |(A_a + A_b) / 2 (b − a)| (their Gram matrix, by polarization). Neighbours then
+  /// agree on the length of every shared edge, where vertex means of different vertex sets
+  /// disagree by the metric's variation across an element. Elements whose edge lengths are far
+  /// from any such metric (not a Euclidean simplex, or 4x from the mean) blend towards the mean.
+  /// The default: lower L_avg on every preset and real volume measured (Filters/Embedding/README.md).
+  EdgeLengths
+};
+
 /// The three energies of Eq. 15 at one iterate (E_em with the optimal rotations for that iterate).
 struct EmbeddingEnergy
 {
@@ -84,6 +98,7 @@ struct EmbeddingOptions
   /// false: the paper's unweighted sum over elements (Eq. 11); true: weight each element by its
   /// measure relative to the mean element measure (better posed on graded meshes).
   bool ElementMeasureWeighting = false;
+  EmbeddingElementMetric ElementMetric = EmbeddingElementMetric::EdgeLengths;
   EmbeddingInitialization Initialization = EmbeddingInitialization::Smooth;
   /// Amplitude of the initial field relative to the largest bounding-box extent (<= 0: default,
   /// 0.2 for Smooth and 1e-3 for Random).
@@ -125,6 +140,9 @@ struct EmbeddingResult
   long long SolverIterations = 0; ///< iterative: CG iterations summed over all solves
   int SolverMaxIterations = 0;    ///< iterative: most CG iterations of one solve
   std::size_t NumBodies = 1;      ///< bodies of the mesh (moved apart with SeparateBodies)
+  /// ElementMetric EdgeLengths: elements blended towards the vertex mean (edge lengths far from
+  /// any metric).
+  std::size_t ElementMetricFallbacks = 0;
   /// Average relative energy decrease per iteration over the last kConvergenceWindow iterations
   /// at exit (fewer when fewer were run): the convergence measure.
   double FinalRelativeDecrease = 0.0;

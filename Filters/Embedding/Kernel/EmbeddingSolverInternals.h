@@ -64,6 +64,7 @@ struct EmbeddingSolver::Internals
   SimplexMesh ErrorMesh; // a copy for ErrorTarget (the caller's mesh may not outlive us)
   std::vector<std::int32_t> PointBody; // LabelBodies, for SeparateBodies
   std::size_t NumBodies = 1;
+  std::size_t ElementMetricFallbacks = 0; // EmbeddingElementMetric::EdgeLengths
   std::unique_ptr<EdgeLengthErrorEvaluator> ErrorTarget; // TargetAverageErrorPercent > 0
   Eigen::MatrixXd LastRhs;                            // right-hand sides of the last global step
   EmbeddingEnergy Energy;
