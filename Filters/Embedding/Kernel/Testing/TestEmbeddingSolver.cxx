@@ -17,9 +17,11 @@ using namespace av;
 
 bool Monotone(const EmbeddingResult& r)
 {
+  // Round-off floor relative to the start: an exact fit ends at ~1e-29, where sums jitter.
+  const double floor = r.EnergyHistory.empty() ? 0.0 : 1e-20 * r.EnergyHistory[0].Total;
   for (std::size_t i = 1; i < r.EnergyHistory.size(); ++i)
   {
-    if (r.EnergyHistory[i].Total > r.EnergyHistory[i - 1].Total * (1.0 + 1e-12))
+    if (r.EnergyHistory[i].Total > r.EnergyHistory[i - 1].Total * (1.0 + 1e-12) + floor)
     {
       std::cerr << "energy rose at iteration " << i << ": " << r.EnergyHistory[i - 1].Total
                 << " -> " << r.EnergyHistory[i].Total << "\n";
@@ -103,8 +105,9 @@ void CheckCube1(const SimplexMesh& cube, const MetricField& cubeMetric,
   const EdgeLengthErrorResult e = cubeError.Evaluate(r.Embedded);
   std::cout << "cube1 13x7x7 smooth+Anderson: L_avg " << e.AveragePercent << " %, L_max "
             << e.MaxPercent << " %\n";
-  AV_CHECK(e.AveragePercent < 2.5); // measured 1.74 (coarse grid: 13 vertices along the stretch)
-  AV_CHECK(e.MaxPercent < 30.0);    // measured 21.2
+  // Measured 1.11 / 17.5 (edge-length element metric; 1.74 / 21.2 with the vertex mean).
+  AV_CHECK(e.AveragePercent < 1.6); // coarse grid: 13 vertices along the stretch
+  AV_CHECK(e.MaxPercent < 25.0);
   AV_CHECK(r.AndersonAccepted > 0);
   // Same seed, same result (deterministic sums).
   const EmbeddingResult again = ComputeEmbedding(cube, cubeMetric, o);
@@ -293,7 +296,8 @@ void CheckElementMetric(const SimplexMesh& cube, const MetricField& cubeMetric,
   AV_CHECK(eEdges < 0.1);
   AV_CHECK(eMean > 5.0); // edge 0-1: sqrt 6 against (2 + sqrt 12) / 2, 10 % short
 
-  const double jump[4][3] = { { 4, 4, 4 }, { 400, 4, 4 }, { 4, 400, 4 }, { 4, 4, 4 } };
+  // 100x at one vertex: the mean (103 I) makes the opposite face's edges 5x longer than ℓ.
+  const double jump[4][3] = { { 4, 4, 4 }, { 4, 4, 4 }, { 4, 4, 4 }, { 400, 400, 400 } };
   const SingleTet bad = MakeSingleTet(jump);
   o.ElementMetric = EmbeddingElementMetric::EdgeLengths;
   o.Iterations = 20;
