@@ -77,7 +77,7 @@ struct Args
   double ErrorTarget = 2.0;        // run past --iterations while L_avg (%) is above this
   std::string Init = "smooth";
   bool Weighted = false;
-  int ElementMetric = -1; // -1: the solver's default; 0 vertex mean, 1 edge lengths
+  av::EmbeddingElementMetric ElementMetric = av::EmbeddingOptions{}.ElementMetric;
   bool TrackError = true;
   std::size_t Sites = 0;     // 0: case default (paper Tab. 5 / Tab. 3)
   int SampleIterations = 150; // sampler L-BFGS iterations
@@ -380,11 +380,7 @@ av::EmbeddingOptions EmbeddingOptionsFor(const Args& a, const Case& c, int dim)
   o.ConvergenceTolerance = a.ConvergenceTolerance;
   o.TargetAverageErrorPercent = a.ErrorTarget;
   o.ElementMeasureWeighting = a.Weighted;
-  if (a.ElementMetric >= 0)
-  {
-    o.ElementMetric =
-      a.ElementMetric == 1 ? av::EmbeddingElementMetric::EdgeLengths : av::EmbeddingElementMetric::VertexMean;
-  }
+  o.ElementMetric = a.ElementMetric;
   o.Initialization = a.Init == "random" ? av::EmbeddingInitialization::Random : av::EmbeddingInitialization::Smooth;
   return o;
 }
@@ -948,7 +944,8 @@ bool Parse(int argc, char** argv, Args& a)
       {
         throw std::runtime_error("--element-metric: expected mean or edges, got " + v);
       }
-      a.ElementMetric = v == "edges" ? 1 : 0;
+      a.ElementMetric =
+        v == "edges" ? av::EmbeddingElementMetric::EdgeLengths : av::EmbeddingElementMetric::VertexMean;
     }
     else if (k == "--no-track")
       a.TrackError = false;

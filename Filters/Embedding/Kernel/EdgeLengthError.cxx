@@ -16,20 +16,11 @@
 namespace av
 {
 
-EdgeLengthErrorEvaluator::EdgeLengthErrorEvaluator(const SimplexMesh& mesh, const MetricField& metric)
-  : Mesh(&mesh)
+std::vector<Eigen::Matrix3d> VertexMetricRoots(const MetricField& metric, int ambientDim)
 {
-  const std::size_t np = mesh.NumPoints();
-  if (metric.Values.size() != 6 * np)
-  {
-    throw InputError("edge length error: metric has " + std::to_string(metric.Values.size()) +
-      " values, expected 6 per point (" + std::to_string(6 * np) + ")");
-  }
-  const int m = mesh.AmbientDim;
-  // Symmetric square root of every vertex metric.
-  std::vector<Eigen::Matrix3d> a(np);
-  tbb::parallel_for(std::size_t(0), np, [&](std::size_t i) {
-    if (m == 2)
+  std::vector<Eigen::Matrix3d> a(metric.NumPoints());
+  tbb::parallel_for(std::size_t(0), a.size(), [&](std::size_t i) {
+    if (ambientDim == 2)
     {
       a[i].setZero();
       a[i].topLeftCorner<2, 2>() = SymmetricSqrt(UnpackSymmetric2(metric.At(i)));
@@ -39,17 +30,25 @@ EdgeLengthErrorEvaluator::EdgeLengthErrorEvaluator(const SimplexMesh& mesh, cons
       a[i] = SymmetricSqrt(UnpackSymmetric(metric.At(i)));
     }
   });
+  return a;
+}
+
+EdgeLengthErrorEvaluator::EdgeLengthErrorEvaluator(const SimplexMesh& mesh, const MetricField& metric)
+  : Mesh(&mesh)
+{
+  const std::size_t np = mesh.NumPoints();
+  if (metric.Values.size() != 6 * np)
+  {
+    throw InputError("edge length error: metric has " + std::to_string(metric.Values.size()) +
+      " values, expected 6 per point (" + std::to_string(6 * np) + ")");
+  }
+  const std::vector<Eigen::Matrix3d> a = VertexMetricRoots(metric, mesh.AmbientDim);
   this->Edges = UniqueEdges(mesh);
   const std::size_t ne = this->Edges.size() / 2;
   this->MetricLength.resize(ne);
   tbb::parallel_for(std::size_t(0), ne, [&](std::size_t e) {
-    const std::int32_t ia = this->Edges[2 * e], ib = this->Edges[2 * e + 1];
-    Eigen::Vector3d d = Eigen::Vector3d::Zero();
-    for (int k = 0; k < m; ++k)
-    {
-      d(k) = mesh.Point(ib)[k] - mesh.Point(ia)[k];
-    }
-    this->MetricLength[e] = (0.5 * (a[ia] + a[ib]) * d).norm();
+    this->MetricLength[e] =
+      std::sqrt(MetricEdgeLength2(mesh, a, this->Edges[2 * e], this->Edges[2 * e + 1]));
   });
   for (std::size_t e = 0; e < ne; ++e)
   {

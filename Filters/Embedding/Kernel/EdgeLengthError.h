@@ -5,6 +5,8 @@
 
 #include "SimplexMesh.h"
 
+#include <Eigen/Core>
+
 #include <cstdint>
 #include <vector>
 
@@ -21,6 +23,22 @@ struct EdgeLengthErrorResult
   std::vector<double> EdgePercent;   ///< error of each edge in %, same order as Edges
   std::vector<double> CellMaxPercent; ///< largest error over the edges of each cell, in %
 };
+
+/// The §5.1 A of every vertex: the symmetric square root of its metric (zero-padded to 3 x 3
+/// for 2D domains, ambientDim 2). Parallel.
+std::vector<Eigen::Matrix3d> VertexMetricRoots(const MetricField& metric, int ambientDim);
+
+/// The squared §5.1 metric length |(A_a + A_b) / 2 (b − a)|² of the edge (a, b).
+inline double MetricEdgeLength2(
+  const SimplexMesh& mesh, const std::vector<Eigen::Matrix3d>& roots, std::int32_t a, std::int32_t b)
+{
+  Eigen::Vector3d d = Eigen::Vector3d::Zero();
+  for (int k = 0; k < mesh.AmbientDim; ++k)
+  {
+    d(k) = mesh.Point(b)[k] - mesh.Point(a)[k];
+  }
+  return (0.5 * (roots[a] + roots[b]) * d).squaredNorm();
+}
 
 /**
  * Precomputes the unique edges of a mesh and their metric lengths l_ab = |Q_ab (v_b - v_a)|,

@@ -2,6 +2,7 @@
 // EmbeddingSolver setup: input validation, element operators, mesh topology, initial state.
 #include "EmbeddingSolverInternals.h"
 
+#include "EdgeLengthError.h"
 #include "MeshTopology.h"
 #include "MetricAlgebra.h"
 
@@ -20,24 +21,6 @@ namespace av
 
 namespace
 {
-/// Symmetric square root of every vertex metric, zero-padded to 3 x 3 in 2D (the §5.1 A).
-std::vector<Eigen::Matrix3d> VertexMetricSqrts(const MetricField& metric, int m, std::size_t np)
-{
-  std::vector<Eigen::Matrix3d> a(np);
-  tbb::parallel_for(std::size_t(0), np, [&](std::size_t i) {
-    a[i].setZero();
-    if (m == 2)
-    {
-      a[i].topLeftCorner<2, 2>() = SymmetricSqrt(UnpackSymmetric2(metric.At(i)));
-    }
-    else
-    {
-      a[i] = SymmetricSqrt(UnpackSymmetric(metric.At(i)));
-    }
-  });
-  return a;
-}
-
 /// Largest factor by which an edge-length metric may scale a squared length against the vertex
 /// mean. Beyond it the edge lengths hardly describe one simplex (a folded metric simplex, near a
 /// Cayley-Menger zero, or a metric that turns within the element), and the element blends back
@@ -52,21 +35,15 @@ constexpr double kEdgeMetricMaxRatio = 4.0;
 /// the vertex mean's Gram matrix Hm leave [1/r, r] (r = kEdgeMetricMaxRatio), H is replaced by
 /// the blend (1 - t) Hm + t H with the largest t that brings them back into range, and the result
 /// is false (counted). A blend, not a clamp per eigenvalue: it keeps the element's shape changing
-/// continuously with its edge lengths. False with g unchanged when the mean is singular.
+/// continuously with its edge lengths. metric: in, the vertex mean; out, g. Kept (and false)
+/// when the mean is singular or a length is NaN.
 template <typename WP>
 bool EdgeLengthMetric(const SimplexMesh& mesh, const std::int32_t* cell, int k,
-  const Eigen::Matrix3d& wm, const WP& wp, const std::vector<Eigen::Matrix3d>& sq,
-  const Eigen::Matrix3d& mean, Eigen::Matrix3d& g)
+  const Eigen::Matrix3d& wm, const WP& wp, const std::vector<Eigen::Matrix3d>& roots,
+  Eigen::Matrix3d& metric)
 {
   const int m = mesh.AmbientDim;
-  auto length2 = [&](int la, int lb) {
-    Eigen::Vector3d d = Eigen::Vector3d::Zero();
-    for (int c = 0; c < m; ++c)
-    {
-      d(c) = mesh.Point(cell[lb])[c] - mesh.Point(cell[la])[c];
-    }
-    return (0.5 * (sq[cell[la]] + sq[cell[lb]]) * d).squaredNorm();
-  };
+  auto length2 = [&](int la, int lb) { return MetricEdgeLength2(mesh, roots, cell[la], cell[lb]); };
   Eigen::Matrix3d h = Eigen::Matrix3d::Identity(); // k x k used; identity pads k = 2
   for (int l = 0; l < k; ++l)
   {
@@ -81,7 +58,7 @@ bool EdgeLengthMetric(const SimplexMesh& mesh, const std::int32_t* cell, int k,
   }
   // The same Gram matrix in the vertex mean, and the generalized eigenvalues of the pair.
   Eigen::Matrix3d hm = Eigen::Matrix3d::Identity();
-  hm.topLeftCorner(k, k) = wm.topLeftCorner(m, k).transpose() * mean.topLeftCorner(m, m) *
+  hm.topLeftCorner(k, k) = wm.topLeftCorner(m, k).transpose() * metric.topLeftCorner(m, m) *
     wm.topLeftCorner(m, k);
   const Eigen::LLT<Eigen::Matrix3d> llt(hm);
   if (llt.info() != Eigen::Success)
@@ -107,9 +84,9 @@ bool EdgeLengthMetric(const SimplexMesh& mesh, const std::int32_t* cell, int k,
   }
   // Generalized eigenvalues of the blend are (1 - t) + t * lambda: inside [1/r, r] by the t above.
   h = (1.0 - t) * hm + t * h;
-  g.setZero();
-  g.topLeftCorner(m, m) = wp.transpose() * h.topLeftCorner(k, k) * wp;
-  g = 0.5 * (g + g.transpose()).eval();
+  metric.setZero();
+  metric.topLeftCorner(m, m) = wp.transpose() * h.topLeftCorner(k, k) * wp;
+  metric = 0.5 * (metric + metric.transpose()).eval();
   return t == 1.0;
 }
 
@@ -377,10 +354,10 @@ void EmbeddingSolver::Internals::BuildElements(const SimplexMesh& mesh, const Me
   this->W.assign(this->NE, 1.0);
   std::vector<double> measure(this->NE);
   const bool edgeLengths = this->Options.ElementMetric == EmbeddingElementMetric::EdgeLengths;
-  std::vector<Eigen::Matrix3d> vertexSqrt;
+  std::vector<Eigen::Matrix3d> vertexRoots;
   if (edgeLengths)
   {
-    vertexSqrt = VertexMetricSqrts(metric, m, this->NP);
+    vertexRoots = VertexMetricRoots(metric, m);
   }
   tbb::enumerable_thread_specific<std::size_t> fallbacks(0);
   tbb::parallel_for(std::size_t(0), this->NE, [&](std::size_t j) {
@@ -433,18 +410,9 @@ void EmbeddingSolver::Internals::BuildElements(const SimplexMesh& mesh, const Me
       }
     }
     mm /= nv;
-    if (edgeLengths)
+    if (edgeLengths && !EdgeLengthMetric(mesh, cell, k, wm, wp, vertexRoots, mm))
     {
-      Eigen::Matrix3d g;
-      g.setZero();
-      if (!EdgeLengthMetric(mesh, cell, k, wm, wp, vertexSqrt, mm, g))
-      {
-        fallbacks.local() += 1;
-      }
-      if (!g.isZero(0.0))
-      {
-        mm = g;
-      }
+      fallbacks.local() += 1;
     }
     double* a = this->A.data() + j * m * m;
     if (m == 2)
