@@ -39,9 +39,9 @@ options:
   --solver S               embedding global step: auto (direct below 150,000 vertices),
                            direct or iterative (CG + algebraic multigrid, linear memory)
   --double-solve           embedding: CHOLMOD's double-precision solves (default: float copy)
-  --element-metric M       embedding: each element's constant metric, edges (default: fits
-                           the paper's edge lengths, neighbours agree on shared edges) or mean
-                           (the average of its vertex metrics)
+  --element-metric M       embedding: each element's constant metric, mean (default: the
+                           average of its vertex metrics) or edges (fits the paper's edge
+                           lengths: lower embedding error, worse final meshes)
   --no-separate-bodies     embedding: bodies of the input with no shared point (a contact
                            assembly) stay touching (default: embedded apart, meshed apart)
   --sample-iterations N    particle L-BFGS iterations at the paper's kernel (default 150;

@@ -19,7 +19,7 @@ struct Options
       ImproveRounds = 1, OdtIterations = 3;
   int MaxIterations = 500;          // embedding: run to convergence up to this many
   std::string Solver = "auto";      // embedding global step: auto | direct | iterative
-  std::string ElementMetric = "edges"; // embedding: edges | mean
+  std::string ElementMetric = "mean"; // embedding: mean | edges
   double FeatureAngle = 30.0;
   std::string
     FeaturePatches; // surfaces: cell array of patch ids whose borders are the feature lines

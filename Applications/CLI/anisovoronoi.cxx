@@ -384,8 +384,8 @@ void RunMeshingStages(const Options& o,
       : o.Solver == "iterative"                    ? vtkAnisoEmbedding::ITERATIVE_SOLVER
                                                    : vtkAnisoEmbedding::AUTOMATIC_SOLVER);
   s.Embedding->SetSinglePrecisionSolve(!o.DoubleSolve);
-  s.Embedding->SetElementMetric(o.ElementMetric == "mean" ? vtkAnisoEmbedding::VERTEX_MEAN
-                                                          : vtkAnisoEmbedding::EDGE_LENGTHS);
+  s.Embedding->SetElementMetric(o.ElementMetric == "edges" ? vtkAnisoEmbedding::EDGE_LENGTHS
+                                                           : vtkAnisoEmbedding::VERTEX_MEAN);
   s.Embedding->SetSeparateBodies(o.SeparateBodies);
   s.Embedding->SetMu(o.Mu);
   s.Embedding->SetSeed(o.Seed);

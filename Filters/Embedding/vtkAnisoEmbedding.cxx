@@ -49,9 +49,9 @@ av::EmbeddingOptions MakeOptions(vtkAnisoEmbedding* self)
   options.Seed = static_cast<std::uint64_t>(self->GetSeed());
   options.RelativeEnergyTolerance = self->GetRelativeEnergyTolerance();
   options.ElementMeasureWeighting = self->GetElementMeasureWeighting();
-  options.ElementMetric = self->GetElementMetric() == vtkAnisoEmbedding::VERTEX_MEAN
-    ? av::EmbeddingElementMetric::VertexMean
-    : av::EmbeddingElementMetric::EdgeLengths;
+  options.ElementMetric = self->GetElementMetric() == vtkAnisoEmbedding::EDGE_LENGTHS
+    ? av::EmbeddingElementMetric::EdgeLengths
+    : av::EmbeddingElementMetric::VertexMean;
   options.Initialization = self->GetInitialization() == vtkAnisoEmbedding::RANDOM
     ? av::EmbeddingInitialization::Random
     : av::EmbeddingInitialization::Smooth;

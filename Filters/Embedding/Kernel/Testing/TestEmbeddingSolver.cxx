@@ -105,9 +105,9 @@ void CheckCube1(const SimplexMesh& cube, const MetricField& cubeMetric,
   const EdgeLengthErrorResult e = cubeError.Evaluate(r.Embedded);
   std::cout << "cube1 13x7x7 smooth+Anderson: L_avg " << e.AveragePercent << " %, L_max "
             << e.MaxPercent << " %\n";
-  // Measured 1.11 / 17.5 (edge-length element metric; 1.74 / 21.2 with the vertex mean).
-  AV_CHECK(e.AveragePercent < 1.6); // coarse grid: 13 vertices along the stretch
-  AV_CHECK(e.MaxPercent < 25.0);
+  // Measured 1.74 / 21.2 with the vertex mean (default); CheckElementMetric: 1.11 with edges.
+  AV_CHECK(e.AveragePercent < 2.5); // coarse grid: 13 vertices along the stretch
+  AV_CHECK(e.MaxPercent < 30.0);
   AV_CHECK(r.AndersonAccepted > 0);
   // Same seed, same result (deterministic sums).
   const EmbeddingResult again = ComputeEmbedding(cube, cubeMetric, o);
