@@ -7,9 +7,11 @@
 #include "Stopwatch.h"
 
 #include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 namespace av
@@ -277,6 +279,87 @@ void EmbeddingSolver::Internals::Factor(
   this->FactorSeconds = analyseSeconds + clock.Seconds();
 }
 
+Eigen::SparseMatrix<double> EmbeddingSolver::Internals::ElementAdjacentPart(
+  const Eigen::SparseMatrix<double>& kmat) const
+{
+  // Entries of K between vertices that share no element come from the regularizer's L^T L only
+  // (positive (1/n_j)^2 products through a common neighbour j). Dropping the pair a at (i, k),
+  // (k, i) and adding |a| to both diagonals adds |a| (e_i -+ e_k)(e_i -+ e_k)^T >= 0: P >= K stays
+  // SPD, and for a > 0 the row sums (the constants AMG must keep) are unchanged.
+  const int nv = this->K + 1;
+  std::vector<std::int32_t> full(this->NR);
+  for (std::size_t v = 0; v < this->NP; ++v)
+  {
+    if (this->Reduced[v] >= 0)
+    {
+      full[static_cast<std::size_t>(this->Reduced[v])] = static_cast<std::int32_t>(v);
+    }
+  }
+  const Eigen::Index nnz = kmat.nonZeros();
+  std::vector<char> keep(static_cast<std::size_t>(nnz), 0);
+  const std::size_t blockSize = 4096;
+  const std::size_t nblocks = (this->NR + blockSize - 1) / blockSize;
+  // One stamp array per thread: column rc marks its element neighbours with rc.
+  tbb::enumerable_thread_specific<std::vector<std::int32_t>> stamps(
+    [&] { return std::vector<std::int32_t>(this->NR, -1); });
+  tbb::parallel_for(std::size_t(0), nblocks, [&](std::size_t blk) {
+    std::vector<std::int32_t>& stamp = stamps.local();
+    const std::size_t c0 = blk * blockSize, c1 = std::min(this->NR, c0 + blockSize);
+    for (std::size_t rc = c0; rc < c1; ++rc)
+    {
+      const std::int32_t fc = full[rc];
+      for (std::int32_t q = this->VOff[fc]; q < this->VOff[fc + 1]; ++q)
+      {
+        const std::size_t j = this->VInc[q] / nv;
+        for (int l = 0; l < nv; ++l)
+        {
+          const std::int32_t r = this->Reduced[this->Cells[j * nv + l]];
+          if (r >= 0)
+          {
+            stamp[static_cast<std::size_t>(r)] = static_cast<std::int32_t>(rc);
+          }
+        }
+      }
+      for (Eigen::Index e = kmat.outerIndexPtr()[rc]; e < kmat.outerIndexPtr()[rc + 1]; ++e)
+      {
+        const std::int32_t r = kmat.innerIndexPtr()[e];
+        keep[static_cast<std::size_t>(e)] = stamp[static_cast<std::size_t>(r)] ==
+          static_cast<std::int32_t>(rc);
+      }
+    }
+  });
+  std::vector<double> compensation(this->NR, 0.0);
+  std::vector<Eigen::Triplet<double>> entries;
+  entries.reserve(static_cast<std::size_t>(nnz) / 2);
+  for (Eigen::Index c = 0; c < kmat.outerSize(); ++c)
+  {
+    for (Eigen::Index e = kmat.outerIndexPtr()[c]; e < kmat.outerIndexPtr()[c + 1]; ++e)
+    {
+      const Eigen::Index r = kmat.innerIndexPtr()[e];
+      const double v = kmat.valuePtr()[e];
+      if (keep[static_cast<std::size_t>(e)])
+      {
+        entries.emplace_back(static_cast<int>(r), static_cast<int>(c), v);
+      }
+      else
+      {
+        compensation[static_cast<std::size_t>(r)] += std::abs(v);
+        compensation[static_cast<std::size_t>(c)] += std::abs(v);
+      }
+    }
+  }
+  for (std::size_t i = 0; i < this->NR; ++i)
+  {
+    if (compensation[i] != 0.0)
+    {
+      entries.emplace_back(static_cast<int>(i), static_cast<int>(i), compensation[i]);
+    }
+  }
+  Eigen::SparseMatrix<double> p(kmat.rows(), kmat.cols());
+  p.setFromTriplets(entries.begin(), entries.end()); // sums the compensation into the diagonal
+  return p;
+}
+
 void EmbeddingSolver::Internals::SetupIterative(
   Eigen::SparseMatrix<double>& kmat, const std::vector<double>& vals)
 {
@@ -285,7 +368,15 @@ void EmbeddingSolver::Internals::SetupIterative(
   if (this->F > 0 && this->NR > 0)
   {
     // A few hundred CG iterations at most: AMG-preconditioned CG on these systems takes tens.
-    this->Iterative.reset(new IterativeGlobalSolver(kmat, 500));
+    if (this->Options.SparsePreconditioner && this->Options.Mu > 0.0)
+    {
+      const Eigen::SparseMatrix<double> p = this->ElementAdjacentPart(kmat);
+      this->Iterative.reset(new IterativeGlobalSolver(kmat, 500, &p));
+    }
+    else
+    {
+      this->Iterative.reset(new IterativeGlobalSolver(kmat, 500));
+    }
   }
   this->FactorSeconds = clock.Seconds();
 }

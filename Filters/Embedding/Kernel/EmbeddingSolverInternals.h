@@ -95,6 +95,9 @@ struct EmbeddingSolver::Internals
     Eigen::SparseMatrix<double>& kmat, const std::vector<double>& vals, double analyseSeconds);
   /// Throws when the last double-precision CHOLMOD solve failed.
   void RequireSolved();
+  /// K without its entries between vertices that share no element, their magnitudes added to
+  /// the diagonal: the SPD matrix the iterative solver's AMG hierarchy is built on.
+  Eigen::SparseMatrix<double> ElementAdjacentPart(const Eigen::SparseMatrix<double>& kmat) const;
   /// Builds the iterative solver instead of the factorization (kmat: the pattern, vals: values).
   void SetupIterative(Eigen::SparseMatrix<double>& kmat, const std::vector<double>& vals);
   /// LastRhs = the per-vertex sums of the element contributions C of the last local step.

@@ -81,15 +81,25 @@ void Check(HYPRE_Int code, const char* what)
   HYPRE_ClearAllErrors();
 }
 
+/// The V-cycle of a hierarchy built on P, fine level included (BoomerAMGSolve smooths the fine
+/// level with the matrix it is given: PCG would give it K). PCG passes this through as its
+/// opaque preconditioner data.
+struct SeparatePreconditioner
+{
+  HYPRE_Solver Amg = nullptr;
+  HYPRE_ParCSRMatrix P = nullptr;
+};
+
 } // namespace
 
 struct IterativeGlobalSolver::Hypre
 {
-  HYPRE_IJMatrix Matrix = nullptr;
+  HYPRE_IJMatrix Matrix = nullptr, Preconditioner = nullptr;
   HYPRE_IJVector B = nullptr, X = nullptr;
-  HYPRE_ParCSRMatrix ParMatrix = nullptr;
+  HYPRE_ParCSRMatrix ParMatrix = nullptr, ParPreconditioner = nullptr;
   HYPRE_ParVector ParB = nullptr, ParX = nullptr;
   HYPRE_Solver Pcg = nullptr, Amg = nullptr;
+  SeparatePreconditioner Separate;   // PCG's preconditioner data when P is given
   std::vector<HYPRE_BigInt> Indices; // 0..n-1, for the vector transfers
   bool SetUp = false;
 
@@ -105,17 +115,26 @@ struct IterativeGlobalSolver::Hypre
       HYPRE_IJVectorDestroy(this->X);
     if (this->Matrix)
       HYPRE_IJMatrixDestroy(this->Matrix);
+    if (this->Preconditioner)
+      HYPRE_IJMatrixDestroy(this->Preconditioner);
   }
 
   void BuildMatrix(const Eigen::SparseMatrix<double>& lower);
+  void BuildVectors(HYPRE_Int n);
   void BuildSolver(int maxIterations);
 };
 
-void IterativeGlobalSolver::Hypre::BuildMatrix(const Eigen::SparseMatrix<double>& lower)
+namespace
 {
-  // The full symmetric matrix row by row (hypre wants CSR rows; we hold the lower triangle by
-  // columns): column c of the lower triangle is the upper part of row c, and each of its
-  // off-diagonal entries (r, c) is also entry (c) of row r.
+/// The full symmetric matrix of a lower triangle as a hypre IJ/ParCSR matrix on MPI_COMM_SELF.
+void BuildIJMatrix(const Eigen::SparseMatrix<double>& lower,
+  const std::vector<HYPRE_BigInt>& indices,
+  HYPRE_IJMatrix& matrix,
+  HYPRE_ParCSRMatrix& par)
+{
+  // hypre wants CSR rows; we hold the lower triangle by columns: column c of the lower triangle
+  // is the upper part of row c, and each of its off-diagonal entries (r, c) is also entry (c) of
+  // row r.
   const HYPRE_Int n = static_cast<HYPRE_Int>(lower.rows());
   std::vector<HYPRE_Int> count(static_cast<std::size_t>(n), 0);
   for (Eigen::Index c = 0; c < lower.outerSize(); ++c)
@@ -148,20 +167,45 @@ void IterativeGlobalSolver::Hypre::BuildMatrix(const Eigen::SparseMatrix<double>
       }
     }
   }
+  Check(HYPRE_IJMatrixCreate(MPI_COMM_SELF, 0, n - 1, 0, n - 1, &matrix), "IJMatrixCreate");
+  Check(HYPRE_IJMatrixSetObjectType(matrix, HYPRE_PARCSR), "IJMatrixSetObjectType");
+  std::vector<HYPRE_Int> offd(static_cast<std::size_t>(n), 0);
+  Check(HYPRE_IJMatrixSetDiagOffdSizes(matrix, count.data(), offd.data()), "SetDiagOffdSizes");
+  Check(HYPRE_IJMatrixInitialize(matrix), "IJMatrixInitialize");
+  Check(HYPRE_IJMatrixSetValues(matrix, n, count.data(), indices.data(), cols.data(), vals.data()),
+    "IJMatrixSetValues");
+  Check(HYPRE_IJMatrixAssemble(matrix), "IJMatrixAssemble");
+  Check(HYPRE_IJMatrixGetObject(matrix, reinterpret_cast<void**>(&par)), "IJMatrixGetObject");
+}
+
+HYPRE_Int SeparatePreconditionerSolve(HYPRE_Solver data,
+  HYPRE_Matrix,
+  HYPRE_Vector b,
+  HYPRE_Vector x)
+{
+  const SeparatePreconditioner* pc = reinterpret_cast<const SeparatePreconditioner*>(data);
+  return HYPRE_BoomerAMGSolve(
+    pc->Amg, pc->P, reinterpret_cast<HYPRE_ParVector>(b), reinterpret_cast<HYPRE_ParVector>(x));
+}
+
+/// PCG's preconditioner-setup hook when the hierarchy was built beforehand on P.
+HYPRE_Int HierarchyAlreadyBuilt(HYPRE_Solver, HYPRE_Matrix, HYPRE_Vector, HYPRE_Vector)
+{
+  return 0;
+}
+} // namespace
+
+void IterativeGlobalSolver::Hypre::BuildMatrix(const Eigen::SparseMatrix<double>& lower)
+{
+  const HYPRE_Int n = static_cast<HYPRE_Int>(lower.rows());
   this->Indices.resize(static_cast<std::size_t>(n));
   std::iota(this->Indices.begin(), this->Indices.end(), HYPRE_BigInt(0));
-  Check(HYPRE_IJMatrixCreate(MPI_COMM_SELF, 0, n - 1, 0, n - 1, &this->Matrix), "IJMatrixCreate");
-  Check(HYPRE_IJMatrixSetObjectType(this->Matrix, HYPRE_PARCSR), "IJMatrixSetObjectType");
-  std::vector<HYPRE_Int> offd(static_cast<std::size_t>(n), 0);
-  Check(
-    HYPRE_IJMatrixSetDiagOffdSizes(this->Matrix, count.data(), offd.data()), "SetDiagOffdSizes");
-  Check(HYPRE_IJMatrixInitialize(this->Matrix), "IJMatrixInitialize");
-  Check(HYPRE_IJMatrixSetValues(
-          this->Matrix, n, count.data(), this->Indices.data(), cols.data(), vals.data()),
-    "IJMatrixSetValues");
-  Check(HYPRE_IJMatrixAssemble(this->Matrix), "IJMatrixAssemble");
-  Check(HYPRE_IJMatrixGetObject(this->Matrix, reinterpret_cast<void**>(&this->ParMatrix)),
-    "IJMatrixGetObject");
+  BuildIJMatrix(lower, this->Indices, this->Matrix, this->ParMatrix);
+  this->BuildVectors(n);
+}
+
+void IterativeGlobalSolver::Hypre::BuildVectors(HYPRE_Int n)
+{
   for (HYPRE_IJVector* v : { &this->B, &this->X })
   {
     Check(HYPRE_IJVectorCreate(MPI_COMM_SELF, 0, n - 1, v), "IJVectorCreate");
@@ -195,17 +239,33 @@ void IterativeGlobalSolver::Hypre::BuildSolver(int maxIterations)
   HYPRE_PCGSetMaxIter(this->Pcg, maxIterations);
   HYPRE_PCGSetTwoNorm(this->Pcg, 1);
   HYPRE_PCGSetPrintLevel(this->Pcg, 0);
-  HYPRE_PCGSetPrecond(this->Pcg,
-    reinterpret_cast<HYPRE_PtrToSolverFcn>(HYPRE_BoomerAMGSolve),
-    reinterpret_cast<HYPRE_PtrToSolverFcn>(HYPRE_BoomerAMGSetup),
-    this->Amg);
+  if (this->ParPreconditioner)
+  {
+    // The hierarchy of the sparser matrix P, built here; CG itself multiplies by K.
+    Check(HYPRE_BoomerAMGSetup(this->Amg, this->ParPreconditioner, this->ParB, this->ParX),
+      "BoomerAMGSetup");
+    this->Separate.Amg = this->Amg;
+    this->Separate.P = this->ParPreconditioner;
+    HYPRE_PCGSetPrecond(this->Pcg,
+      reinterpret_cast<HYPRE_PtrToSolverFcn>(SeparatePreconditionerSolve),
+      reinterpret_cast<HYPRE_PtrToSolverFcn>(HierarchyAlreadyBuilt),
+      reinterpret_cast<HYPRE_Solver>(&this->Separate));
+  }
+  else
+  {
+    HYPRE_PCGSetPrecond(this->Pcg,
+      reinterpret_cast<HYPRE_PtrToSolverFcn>(HYPRE_BoomerAMGSolve),
+      reinterpret_cast<HYPRE_PtrToSolverFcn>(HYPRE_BoomerAMGSetup),
+      this->Amg);
+  }
   // The hierarchy depends on the matrix only: build it now (PCG setup calls AMG setup).
   Check(HYPRE_ParCSRPCGSetup(this->Pcg, this->ParMatrix, this->ParB, this->ParX), "PCGSetup");
   this->SetUp = true;
 }
 
 IterativeGlobalSolver::IterativeGlobalSolver(const Eigen::SparseMatrix<double>& lower,
-  int maxIterations)
+  int maxIterations,
+  const Eigen::SparseMatrix<double>* preconditionerLower)
   : H(new Hypre)
 {
   const Stopwatch clock;
@@ -213,9 +273,19 @@ IterativeGlobalSolver::IterativeGlobalSolver(const Eigen::SparseMatrix<double>& 
   {
     throw InputError("embedding: the iterative solver needs a non-empty square matrix");
   }
+  if (preconditionerLower &&
+    (preconditionerLower->rows() != lower.rows() || preconditionerLower->cols() != lower.cols()))
+  {
+    throw InputError("embedding: the preconditioner's matrix does not match the system's size");
+  }
   MpiForHypre::Ensure();
   const std::lock_guard<std::mutex> lock(HypreMutex());
   this->H->BuildMatrix(lower);
+  if (preconditionerLower)
+  {
+    BuildIJMatrix(
+      *preconditionerLower, this->H->Indices, this->H->Preconditioner, this->H->ParPreconditioner);
+  }
   this->H->BuildSolver(std::max(1, maxIterations));
   this->Stats.SetupSeconds = clock.Seconds();
 }

@@ -38,9 +38,13 @@ struct IterativeSolveStatistics
 class IterativeGlobalSolver
 {
 public:
-  /// lower: the lower triangle (column major, rows >= column) of K. Throws InputError when
-  /// hypre fails to build the hierarchy.
-  IterativeGlobalSolver(const Eigen::SparseMatrix<double>& lower, int maxIterations);
+  /// lower: the lower triangle (column major, rows >= column) of K. preconditionerLower, when
+  /// given: the lower triangle of an SPD matrix P of the same size, sparser than K and spectrally
+  /// close to it; the AMG hierarchy is built on P (cheaper V-cycles), CG still solves K x = b.
+  /// Throws InputError when hypre fails to build the hierarchy.
+  IterativeGlobalSolver(const Eigen::SparseMatrix<double>& lower,
+    int maxIterations,
+    const Eigen::SparseMatrix<double>* preconditionerLower = nullptr);
   ~IterativeGlobalSolver();
   IterativeGlobalSolver(const IterativeGlobalSolver&) = delete;
   IterativeGlobalSolver& operator=(const IterativeGlobalSolver&) = delete;
