@@ -71,7 +71,7 @@ struct Args
   bool DoubleSolve = false;
   bool SeparateBodies = true; // bodies apart in the embedding (EmbeddingOptions)
   std::string Solver = "auto";     // global step: auto | direct | iterative
-  double CgTolerance = 1e-6;       // iterative: relative residual of each CG solve
+  double CgTolerance = 1e-4;       // iterative: relative residual of each CG solve
   bool SparsePreconditioner = true; // iterative: AMG on K's element-adjacent part
   int MaxIterations = 500;         // run to convergence up to this many iterations
   double ConvergenceTolerance = 1e-4; // mean relative energy decrease per iteration to stop
@@ -811,9 +811,10 @@ void Usage(std::ostream& os)
        "  --double-solve    global steps with CHOLMOD's double solve (default: float factor copy)\n"
        "  --no-separate-bodies  parts of the input with no shared point stay where the solve\n"
        "                    leaves them in R^m (default: moved apart, meshed as separate domains)\n"
-       "  --solver S        global step: auto (direct below 150,000 vertices) | direct | "
+       "  --solver S        global step: auto (direct below 20,000 tet /\n"
+       "                    150,000 triangle mesh vertices) | direct | "
        "iterative\n"
-       "  --cg-tolerance T  iterative: relative residual of each CG solve (default 1e-6)\n"
+       "  --cg-tolerance T  iterative: relative residual of each CG solve (default 1e-4)\n"
        "  --full-preconditioner  iterative: AMG hierarchy on the whole K (default: on its\n"
        "                    element-adjacent part, the regularizer's two-ring on the diagonal)\n"
        "  --max-iterations N  run to convergence up to N iterations (default 500; <= "

@@ -36,7 +36,8 @@ options:
   --iterations N           embedding iterations always run (default 50)
   --max-iterations N       then on to convergence, up to N in all (default 500; <= the above:
                            exactly --iterations)
-  --solver S               embedding global step: auto (direct below 150,000 vertices),
+  --solver S               embedding global step: auto (direct below 20,000 tet /
+                           150,000 triangle mesh vertices),
                            direct or iterative (CG + algebraic multigrid, linear memory)
   --double-solve           embedding: CHOLMOD's double-precision solves (default: float copy)
   --element-metric M       embedding: each element's constant metric, mean (default: the

@@ -102,9 +102,10 @@ public:
   ///@}
 
   ///@{
-  /// Global-step solver: AUTOMATIC_SOLVER (default: direct below 150,000 vertices, iterative
-  /// from there), DIRECT_SOLVER (sparse Cholesky, memory ~n^1.3) or ITERATIVE_SOLVER
-  /// (conjugate gradients with hypre BoomerAMG, warm-started, memory linear in n).
+  /// Global-step solver: AUTOMATIC_SOLVER (default: direct below 20,000 vertices for tet meshes
+  /// and 150,000 for triangle meshes, iterative from there), DIRECT_SOLVER (sparse Cholesky,
+  /// memory ~n^1.3) or ITERATIVE_SOLVER (conjugate gradients with an algebraic-multigrid V-cycle
+  /// on a hypre BoomerAMG hierarchy, warm-started, memory linear in n).
   vtkSetClampMacro(GlobalSolver, int, AUTOMATIC_SOLVER, ITERATIVE_SOLVER);
   vtkGetMacro(GlobalSolver, int);
   ///@}

@@ -38,7 +38,7 @@ EmbeddingSolver::EmbeddingSolver(
   }
   const bool iterative = options.GlobalSolver == EmbeddingGlobalSolver::Iterative ||
     (options.GlobalSolver == EmbeddingGlobalSolver::Automatic &&
-      p.NP >= kIterativeSolverMinVertices);
+      p.NP >= IterativeSolverMinVertices(mesh.SimplexDim));
   if (iterative)
   {
     Eigen::SparseMatrix<double> kmat;
