@@ -4,6 +4,7 @@
 #include <Eigen/Dense>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
 
 #include <algorithm>
 #include <array>
@@ -92,7 +93,7 @@ std::vector<std::int32_t> UniqueEdges(const SimplexMesh& mesh)
       }
     }
   }
-  std::sort(keys.begin(), keys.end());
+  tbb::parallel_sort(keys.begin(), keys.end()); // plain keys: any order of equals is the same
   keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
   std::vector<std::int32_t> edges(2 * keys.size());
   for (std::size_t e = 0; e < keys.size(); ++e)
@@ -129,7 +130,7 @@ std::vector<char> BoundaryVertexMask(const SimplexMesh& mesh)
         faces.push_back(f);
       }
     }
-    std::sort(faces.begin(), faces.end());
+    tbb::parallel_sort(faces.begin(), faces.end());
     for (std::size_t i = 0; i < faces.size();)
     {
       std::size_t j = i + 1;
@@ -165,7 +166,7 @@ std::vector<char> BoundaryVertexMask(const SimplexMesh& mesh)
         keys.push_back((static_cast<std::uint64_t>(u) << 32) | w);
       }
     }
-    std::sort(keys.begin(), keys.end());
+    tbb::parallel_sort(keys.begin(), keys.end());
     for (std::size_t i = 0; i < keys.size();)
     {
       std::size_t j = i + 1;

@@ -135,8 +135,12 @@ void EmbeddingSolver::Internals::AssembleLower(
   std::vector<std::vector<std::int32_t>> bRows(nblocks);
   std::vector<std::vector<double>> bVals(nblocks);
   std::vector<std::int32_t> colCount(np, 0);
+  // One scatter array per thread, not per block: a block's array is np long, so one per block
+  // would allocate and zero np^2 / blockSize entries (2.2 GB per pass at 1M vertices). Flush()
+  // leaves it clean for the next column.
+  tbb::enumerable_thread_specific<ColumnScatter> scatters([np] { return ColumnScatter(np); });
   tbb::parallel_for(std::size_t(0), nblocks, [&](std::size_t blk) {
-    ColumnScatter scatter(np);
+    ColumnScatter& scatter = scatters.local();
     const std::size_t c0 = blk * blockSize, c1 = std::min(np, c0 + blockSize);
     for (std::size_t c = c0; c < c1; ++c)
     {
