@@ -20,7 +20,9 @@ constexpr std::size_t kDotChunk = 4096;
 constexpr std::size_t kParallelWork = 1 << 15;
 }
 
-void ForRows(std::size_t rows, std::size_t work, const std::function<void(std::size_t, std::size_t)>& fn)
+void ForRows(std::size_t rows,
+  std::size_t work,
+  const std::function<void(std::size_t, std::size_t)>& fn)
 {
   if (rows * work < kParallelWork)
   {
@@ -30,7 +32,8 @@ void ForRows(std::size_t rows, std::size_t work, const std::function<void(std::s
     }
     return;
   }
-  const std::size_t grain = std::max<std::size_t>(256, kParallelWork / std::max<std::size_t>(work, 1));
+  const std::size_t grain =
+    std::max<std::size_t>(256, kParallelWork / std::max<std::size_t>(work, 1));
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rows, grain),
     [&](const tbb::blocked_range<std::size_t>& r) { fn(r.begin(), r.end()); });
 }
@@ -39,7 +42,8 @@ void ColumnDots(const double* a, const double* b, std::size_t rows, int k, doubl
 {
   const std::size_t chunks = (rows + kDotChunk - 1) / kDotChunk;
   std::vector<double> partial(chunks * kMaxColumns, 0.0);
-  const auto chunkSums = [&](std::size_t c0, std::size_t c1) {
+  const auto chunkSums = [&](std::size_t c0, std::size_t c1)
+  {
     for (std::size_t c = c0; c < c1; ++c)
     {
       double s[kMaxColumns] = { 0 };

@@ -17,7 +17,9 @@ constexpr int kMaxColumns = 8;
 
 /// Calls fn(begin, end) over [0, rows) in chunks, on all threads of the caller's TBB arena when
 /// rows * work (about the flops of one row) is large enough to pay for the tasks.
-void ForRows(std::size_t rows, std::size_t work, const std::function<void(std::size_t, std::size_t)>& fn);
+void ForRows(std::size_t rows,
+  std::size_t work,
+  const std::function<void(std::size_t, std::size_t)>& fn);
 
 /// out[c] = sum over rows of a[i*k+c] * b[i*k+c], c < k <= kMaxColumns. Deterministic: fixed
 /// chunks, whatever the thread count, summed in order.

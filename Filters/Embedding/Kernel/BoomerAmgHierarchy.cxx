@@ -119,8 +119,8 @@ CsrMatrix CopyLocal(hypre_ParCSRMatrix* m, const char* what)
     start[r] = i[r];
   }
   const std::size_t nnz = static_cast<std::size_t>(start.back());
-  return CsrMatrix(rows, cols, std::move(start), std::vector<int>(j, j + nnz),
-    std::vector<double>(v, v + nnz));
+  return CsrMatrix(
+    rows, cols, std::move(start), std::vector<int>(j, j + nnz), std::vector<double>(v, v + nnz));
 }
 
 } // namespace

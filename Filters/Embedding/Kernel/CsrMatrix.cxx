@@ -14,8 +14,13 @@ namespace
 {
 /// Rows [r0, r1) of y = A x with the block width K known at compile time (kept in registers).
 template <int K>
-void MultiplyRows(const std::int64_t* start, const int* col, const double* val, const double* x,
-  double* y, std::size_t r0, std::size_t r1)
+void MultiplyRows(const std::int64_t* start,
+  const int* col,
+  const double* val,
+  const double* x,
+  double* y,
+  std::size_t r0,
+  std::size_t r1)
 {
   for (std::size_t i = r0; i < r1; ++i)
   {
@@ -38,7 +43,10 @@ void MultiplyRows(const std::int64_t* start, const int* col, const double* val, 
 }
 } // namespace
 
-CsrMatrix::CsrMatrix(int rows, int cols, std::vector<std::int64_t> start, std::vector<int> column,
+CsrMatrix::CsrMatrix(int rows,
+  int cols,
+  std::vector<std::int64_t> start,
+  std::vector<int> column,
   std::vector<double> value)
   : NumRows(rows)
   , NumCols(cols)
@@ -100,18 +108,36 @@ void CsrMatrix::Multiply(const double* x, double* y, int k) const
   const double* v = this->Val.data();
   const std::size_t work =
     this->NumRows > 0 ? static_cast<std::size_t>(this->NonZeros() / this->NumRows + 1) * k : 0;
-  const auto rows = [&](std::size_t r0, std::size_t r1) {
+  const auto rows = [&](std::size_t r0, std::size_t r1)
+  {
     switch (k)
     {
-      case 1: MultiplyRows<1>(s, c, v, x, y, r0, r1); break;
-      case 2: MultiplyRows<2>(s, c, v, x, y, r0, r1); break;
-      case 3: MultiplyRows<3>(s, c, v, x, y, r0, r1); break;
-      case 4: MultiplyRows<4>(s, c, v, x, y, r0, r1); break;
-      case 5: MultiplyRows<5>(s, c, v, x, y, r0, r1); break;
-      case 6: MultiplyRows<6>(s, c, v, x, y, r0, r1); break;
-      case 7: MultiplyRows<7>(s, c, v, x, y, r0, r1); break;
-      case 8: MultiplyRows<8>(s, c, v, x, y, r0, r1); break;
-      default: throw std::invalid_argument("CsrMatrix::Multiply: block width must be 1..8");
+      case 1:
+        MultiplyRows<1>(s, c, v, x, y, r0, r1);
+        break;
+      case 2:
+        MultiplyRows<2>(s, c, v, x, y, r0, r1);
+        break;
+      case 3:
+        MultiplyRows<3>(s, c, v, x, y, r0, r1);
+        break;
+      case 4:
+        MultiplyRows<4>(s, c, v, x, y, r0, r1);
+        break;
+      case 5:
+        MultiplyRows<5>(s, c, v, x, y, r0, r1);
+        break;
+      case 6:
+        MultiplyRows<6>(s, c, v, x, y, r0, r1);
+        break;
+      case 7:
+        MultiplyRows<7>(s, c, v, x, y, r0, r1);
+        break;
+      case 8:
+        MultiplyRows<8>(s, c, v, x, y, r0, r1);
+        break;
+      default:
+        throw std::invalid_argument("CsrMatrix::Multiply: block width must be 1..8");
     }
   };
   if (k < 1 || k > blockrows::kMaxColumns)

@@ -24,7 +24,10 @@ class CsrMatrix
 public:
   CsrMatrix() = default;
   /// rows x cols from CSR arrays (start: rows + 1 offsets).
-  CsrMatrix(int rows, int cols, std::vector<std::int64_t> start, std::vector<int> column,
+  CsrMatrix(int rows,
+    int cols,
+    std::vector<std::int64_t> start,
+    std::vector<int> column,
     std::vector<double> value);
 
   /// The full symmetric matrix whose lower triangle (column major, rows >= column) is given.

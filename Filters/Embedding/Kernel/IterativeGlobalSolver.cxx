@@ -56,8 +56,8 @@ IterativeGlobalSolver::IterativeGlobalSolver(const Eigen::SparseMatrix<double>& 
     throw InputError(std::string("embedding: the AMG hierarchy is not usable: ") + e.what());
   }
   const std::size_t size = static_cast<std::size_t>(lower.rows()) * blockrows::kMaxColumns;
-  for (std::vector<double>* v : { &this->W->X, &this->W->B, &this->W->R, &this->W->Z,
-         &this->W->P, &this->W->Q })
+  for (std::vector<double>* v :
+    { &this->W->X, &this->W->B, &this->W->R, &this->W->Z, &this->W->P, &this->W->Q })
   {
     v->resize(size);
   }
@@ -79,15 +79,20 @@ long long IterativeGlobalSolver::Solve(const Eigen::MatrixXd& rhs,
   long long total = 0;
   for (Eigen::Index first = 0; first < rhs.cols(); first += blockrows::kMaxColumns)
   {
-    const int k = static_cast<int>(std::min<Eigen::Index>(blockrows::kMaxColumns, rhs.cols() - first));
+    const int k =
+      static_cast<int>(std::min<Eigen::Index>(blockrows::kMaxColumns, rhs.cols() - first));
     this->SolveBlock(rhs, x, first, k, tolerance, total);
   }
   this->Stats.Iterations += total;
   return total;
 }
 
-void IterativeGlobalSolver::SolveBlock(const Eigen::MatrixXd& rhs, Eigen::MatrixXd& xOut,
-  Eigen::Index first, int k, double tolerance, long long& iterations)
+void IterativeGlobalSolver::SolveBlock(const Eigen::MatrixXd& rhs,
+  Eigen::MatrixXd& xOut,
+  Eigen::Index first,
+  int k,
+  double tolerance,
+  long long& iterations)
 {
   Workspace& w = *this->W;
   const std::size_t n = static_cast<std::size_t>(w.K.Rows());
@@ -108,8 +113,7 @@ void IterativeGlobalSolver::SolveBlock(const Eigen::MatrixXd& rhs, Eigen::Matrix
   }
   double bb[blockrows::kMaxColumns], rr[blockrows::kMaxColumns], rz[blockrows::kMaxColumns],
     rzOld[blockrows::kMaxColumns], pq[blockrows::kMaxColumns], rp[blockrows::kMaxColumns];
-  double beta[blockrows::kMaxColumns], alpha[blockrows::kMaxColumns],
-    mask[blockrows::kMaxColumns];
+  double beta[blockrows::kMaxColumns], alpha[blockrows::kMaxColumns], mask[blockrows::kMaxColumns];
   int done[blockrows::kMaxColumns];
   blockrows::ColumnDots(b, b, n, k, bb);
   // A zero right-hand side has the exact solution 0 (a relative test needs |b| > 0).
@@ -124,13 +128,16 @@ void IterativeGlobalSolver::SolveBlock(const Eigen::MatrixXd& rhs, Eigen::Matrix
     }
   }
   w.K.Multiply(x, q, k);
-  blockrows::ForRows(n, kk, [&](std::size_t r0, std::size_t r1) {
-    for (std::size_t e = r0 * kk; e < r1 * kk; ++e)
+  blockrows::ForRows(n,
+    kk,
+    [&](std::size_t r0, std::size_t r1)
     {
-      r[e] = b[e] - q[e];
-      p[e] = 0.0;
-    }
-  });
+      for (std::size_t e = r0 * kk; e < r1 * kk; ++e)
+      {
+        r[e] = b[e] - q[e];
+        p[e] = 0.0;
+      }
+    });
   blockrows::ColumnDots(r, r, n, k, rr);
   int active = 0;
   int columnIterations[blockrows::kMaxColumns] = { 0 };
@@ -154,16 +161,19 @@ void IterativeGlobalSolver::SolveBlock(const Eigen::MatrixXd& rhs, Eigen::Matrix
     }
     firstStep = false;
     // Finished columns get p = 0: their step is 0 and they stay where they are.
-    blockrows::ForRows(n, 2 * kk, [&](std::size_t r0, std::size_t r1) {
-      for (std::size_t i = r0; i < r1; ++i)
+    blockrows::ForRows(n,
+      2 * kk,
+      [&](std::size_t r0, std::size_t r1)
       {
-        for (std::size_t c = 0; c < kk; ++c)
+        for (std::size_t i = r0; i < r1; ++i)
         {
-          const std::size_t e = i * kk + c;
-          p[e] = mask[c] * (z[e] + beta[c] * p[e]);
+          for (std::size_t c = 0; c < kk; ++c)
+          {
+            const std::size_t e = i * kk + c;
+            p[e] = mask[c] * (z[e] + beta[c] * p[e]);
+          }
         }
-      }
-    });
+      });
     w.K.Multiply(p, q, k);
     blockrows::ColumnDots(p, q, n, k, pq);
     blockrows::ColumnDots(r, p, n, k, rp);
@@ -173,17 +183,20 @@ void IterativeGlobalSolver::SolveBlock(const Eigen::MatrixXd& rhs, Eigen::Matrix
       // arithmetic), so the energy cannot rise even if the preconditioner is slightly off.
       alpha[c] = !done[c] && pq[c] > 0.0 ? rp[c] / pq[c] : 0.0;
     }
-    blockrows::ForRows(n, 2 * kk, [&](std::size_t r0, std::size_t r1) {
-      for (std::size_t i = r0; i < r1; ++i)
+    blockrows::ForRows(n,
+      2 * kk,
+      [&](std::size_t r0, std::size_t r1)
       {
-        for (std::size_t c = 0; c < kk; ++c)
+        for (std::size_t i = r0; i < r1; ++i)
         {
-          const std::size_t e = i * kk + c;
-          x[e] += alpha[c] * p[e];
-          r[e] -= alpha[c] * q[e];
+          for (std::size_t c = 0; c < kk; ++c)
+          {
+            const std::size_t e = i * kk + c;
+            x[e] += alpha[c] * p[e];
+            r[e] -= alpha[c] * q[e];
+          }
         }
-      }
-    });
+      });
     blockrows::ColumnDots(r, r, n, k, rr);
     for (int c = 0; c < k; ++c)
     {

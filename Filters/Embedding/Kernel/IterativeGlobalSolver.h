@@ -61,8 +61,12 @@ public:
   const IterativeSolveStatistics& Statistics() const { return this->Stats; }
 
 private:
-  void SolveBlock(const Eigen::MatrixXd& rhs, Eigen::MatrixXd& x, Eigen::Index first, int k,
-    double tolerance, long long& iterations);
+  void SolveBlock(const Eigen::MatrixXd& rhs,
+    Eigen::MatrixXd& x,
+    Eigen::Index first,
+    int k,
+    double tolerance,
+    long long& iterations);
 
   struct Workspace;
   std::unique_ptr<Workspace> W;

@@ -106,7 +106,9 @@ double UpperSpectralBound(const CsrMatrix& a, const std::vector<double>& invDiag
     }
   }
   const double estimate =
-    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(tri, Eigen::EigenvaluesOnly).eigenvalues().maxCoeff();
+    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(tri, Eigen::EigenvaluesOnly)
+      .eigenvalues()
+      .maxCoeff();
   return std::min(kUpperMargin * estimate, gershgorin);
 }
 } // namespace
@@ -144,8 +146,8 @@ MultigridVCycle::MultigridVCycle(std::vector<CsrMatrix> operators,
     {
       if (!(diag[i] > 0.0))
       {
-        throw std::invalid_argument("MultigridVCycle: a diagonal entry of level " +
-          std::to_string(l) + " is not positive");
+        throw std::invalid_argument(
+          "MultigridVCycle: a diagonal entry of level " + std::to_string(l) + " is not positive");
       }
       g.InvDiag[i] = 1.0 / diag[i];
     }
@@ -168,7 +170,8 @@ MultigridVCycle::MultigridVCycle(std::vector<CsrMatrix> operators,
       }
     }
     this->CoarseFactor.compute(dense);
-    this->CoarseDense = this->CoarseFactor.info() == Eigen::Success && this->CoarseFactor.isPositive();
+    this->CoarseDense =
+      this->CoarseFactor.info() == Eigen::Success && this->CoarseFactor.isPositive();
   }
 }
 
@@ -233,34 +236,40 @@ void MultigridVCycle::Smooth(Grid& g, int k, bool zeroStart)
     g.A.Multiply(x, t, k);
   }
   const double invTheta = 1.0 / g.Theta;
-  blockrows::ForRows(n, 3 * kk, [&](std::size_t r0, std::size_t r1) {
-    for (std::size_t i = r0; i < r1; ++i)
+  blockrows::ForRows(n,
+    3 * kk,
+    [&](std::size_t r0, std::size_t r1)
     {
-      for (std::size_t c = i * kk; c < (i + 1) * kk; ++c)
+      for (std::size_t i = r0; i < r1; ++i)
       {
-        res[c] = inv[i] * (zeroStart ? b[c] : b[c] - t[c]);
-        d[c] = invTheta * res[c];
-        x[c] = zeroStart ? d[c] : x[c] + d[c];
+        for (std::size_t c = i * kk; c < (i + 1) * kk; ++c)
+        {
+          res[c] = inv[i] * (zeroStart ? b[c] : b[c] - t[c]);
+          d[c] = invTheta * res[c];
+          x[c] = zeroStart ? d[c] : x[c] + d[c];
+        }
       }
-    }
-  });
+    });
   double rho = 1.0 / g.Sigma;
   for (int step = 1; step < kChebyshevDegree; ++step)
   {
     g.A.Multiply(d, t, k);
     const double rhoNext = 1.0 / (2.0 * g.Sigma - rho);
     const double keep = rhoNext * rho, push = 2.0 * rhoNext / g.Delta;
-    blockrows::ForRows(n, 4 * kk, [&](std::size_t r0, std::size_t r1) {
-      for (std::size_t i = r0; i < r1; ++i)
+    blockrows::ForRows(n,
+      4 * kk,
+      [&](std::size_t r0, std::size_t r1)
       {
-        for (std::size_t c = i * kk; c < (i + 1) * kk; ++c)
+        for (std::size_t i = r0; i < r1; ++i)
         {
-          res[c] -= inv[i] * t[c];
-          d[c] = keep * d[c] + push * res[c];
-          x[c] += d[c];
+          for (std::size_t c = i * kk; c < (i + 1) * kk; ++c)
+          {
+            res[c] -= inv[i] * t[c];
+            d[c] = keep * d[c] + push * res[c];
+            x[c] += d[c];
+          }
         }
-      }
-    });
+      });
     rho = rhoNext;
   }
 }
@@ -300,22 +309,28 @@ void MultigridVCycle::Cycle(std::size_t l, int k)
   this->Smooth(g, k, true);
   // Restrict the residual b - A x to the next level's right-hand side.
   g.A.Multiply(g.X.data(), g.T.data(), k);
-  blockrows::ForRows(n, kk, [&](std::size_t r0, std::size_t r1) {
-    for (std::size_t c = r0 * kk; c < r1 * kk; ++c)
+  blockrows::ForRows(n,
+    kk,
+    [&](std::size_t r0, std::size_t r1)
     {
-      g.R[c] = g.B[c] - g.T[c];
-    }
-  });
+      for (std::size_t c = r0 * kk; c < r1 * kk; ++c)
+      {
+        g.R[c] = g.B[c] - g.T[c];
+      }
+    });
   Grid& coarse = this->Level[l + 1];
   g.Restrict.Multiply(g.R.data(), coarse.B.data(), k);
   this->Cycle(l + 1, k);
   g.Interp.Multiply(coarse.X.data(), g.T.data(), k);
-  blockrows::ForRows(n, kk, [&](std::size_t r0, std::size_t r1) {
-    for (std::size_t c = r0 * kk; c < r1 * kk; ++c)
+  blockrows::ForRows(n,
+    kk,
+    [&](std::size_t r0, std::size_t r1)
     {
-      g.X[c] += g.T[c];
-    }
-  });
+      for (std::size_t c = r0 * kk; c < r1 * kk; ++c)
+      {
+        g.X[c] += g.T[c];
+      }
+    });
   this->Smooth(g, k, false);
 }
 

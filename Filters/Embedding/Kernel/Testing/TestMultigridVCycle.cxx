@@ -32,7 +32,8 @@ Eigen::SparseMatrix<double> JumpLaplacianLower(int m)
       for (int i = 0; i < m; ++i)
       {
         const int a = id(i, j, k);
-        const int nb[3] = { i + 1 < m ? id(i + 1, j, k) : -1, j + 1 < m ? id(i, j + 1, k) : -1,
+        const int nb[3] = { i + 1 < m ? id(i + 1, j, k) : -1,
+          j + 1 < m ? id(i, j + 1, k) : -1,
           k + 1 < m ? id(i, j, k + 1) : -1 };
         for (const int b : nb)
         {
