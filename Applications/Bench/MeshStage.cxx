@@ -101,6 +101,8 @@ av::MeshingPipelineOptions PipelineOptions(const MeshStageOptions& options,
   po.Improvement.PlanarBoundary = options.PlanarBoundary;
   po.Improvement.StraightCreases = options.StraightCreases;
   po.Improvement.Insertions = options.VertexInsertion;
+  po.Improvement.Collapses = options.Collapses;
+  po.Improvement.EdgeLengthRuleMinAngle = options.EdgeRuleAngle;
   po.Improvement.SnapToBoundary = options.BoundarySnap;
   po.Improvement.InputBoundaryMoves = options.InputBoundaryMoves;
   po.Improvement.BoundaryFlipMaxDihedral = options.BoundaryFlipMaxDihedral;
@@ -126,6 +128,7 @@ void CopyMeshingCounts(const av::MeshingPipelineResult& m, MeshStageResult& r)
   r.ImprovementCreaseMoves = m.Improvement.NumCreaseSmoothed;
   r.ImprovementInsertions = m.Improvement.NumInsertions;
   r.ImprovementPeels = m.Improvement.NumBoundaryPeels;
+  r.ImprovementCollapses = m.Improvement.NumCollapses;
   r.ImprovementSnaps = m.Improvement.NumBoundarySnaps;
   r.ImprovementWorstBefore = m.Improvement.WorstBefore;
   r.ImprovementWorstAfter = m.Improvement.WorstAfter;

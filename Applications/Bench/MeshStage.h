@@ -47,6 +47,8 @@ struct MeshStageOptions
   bool PlanarBoundary = true; ///< ...also on planar boundary patches (MeshImprovementOptions)
   bool StraightCreases = true; ///< ...and along straight creases (MeshImprovementOptions)
   bool VertexInsertion = true; ///< tets: vertex insertion (MeshImprovementOptions::Insertions)
+  bool Collapses = true; ///< edge collapses / contractions (MeshImprovementOptions::Collapses)
+  double EdgeRuleAngle = 20.0; ///< MeshImprovementOptions::EdgeLengthRuleMinAngle (degrees)
   bool BoundarySnap = true;    ///< tets: MeshImprovementOptions::SnapToBoundary
   bool InputBoundaryMoves = true; ///< tets: MeshImprovementOptions::InputBoundaryMoves
   double BoundaryFlipMaxDihedral = 10.0; ///< ...and edges of nearly coplanar boundary faces
@@ -88,6 +90,7 @@ struct MeshStageResult
   std::size_t ImprovementCreaseMoves = 0; ///< of those, moves along straight creases
   std::size_t ImprovementInsertions = 0;  ///< tets: inserted vertices
   std::size_t ImprovementPeels = 0;       ///< tets: boundary tets removed
+  std::size_t ImprovementCollapses = 0;   ///< edge collapses (triangles) / contractions (tets)
   std::size_t ImprovementSnaps = 0;       ///< tets: boundary vertices moved onto the boundary
   /// The improvement's own worst element angle (its metric measure), degrees, before and after
   double ImprovementWorstBefore = 0.0, ImprovementWorstAfter = 0.0;

@@ -96,6 +96,8 @@ struct Args
   bool PlanarBoundary = true; // ...and on planar boundary patches
   bool StraightCreases = true; // ...and along straight creases
   bool VertexInsertion = true; // tets: vertex insertion in the mesh improvement
+  bool Collapses = true;       // edge collapses (triangles) / contractions (tets)
+  double EdgeRuleAngle = 20.0; // the edge-length rule binds tets of at least this angle
   bool BoundarySnap = true;    // tets: off-boundary vertices moved onto the boundary
   bool InputBoundaryMoves = true; // tets: folded-boundary vertices move on the input's boundary
   double BoundaryFlipDihedral = 10.0; // ...and nearly planar ones (degrees)
@@ -597,6 +599,8 @@ avbench::MeshStageOptions MeshStageOptionsFor(const Args& a, const Case& c)
   o.PlanarBoundary = a.PlanarBoundary;
   o.StraightCreases = a.StraightCreases;
   o.VertexInsertion = a.VertexInsertion;
+  o.Collapses = a.Collapses;
+  o.EdgeRuleAngle = a.EdgeRuleAngle;
   o.BoundarySnap = a.BoundarySnap;
   o.InputBoundaryMoves = a.InputBoundaryMoves;
   o.BoundaryFlipMaxDihedral = a.BoundaryFlipDihedral;
@@ -646,6 +650,7 @@ void ReportMesh(const Case& c, const avbench::MeshStageOptions& o,
   out.Set("mesh_improvement_crease_moves", r.ImprovementCreaseMoves);
   out.Set("mesh_improvement_insertions", r.ImprovementInsertions);
   out.Set("mesh_improvement_peels", r.ImprovementPeels);
+  out.Set("mesh_improvement_collapses", r.ImprovementCollapses);
   out.Set("mesh_improvement_snaps", r.ImprovementSnaps);
   out.Set("mesh_improvement_worst_before", r.ImprovementWorstBefore);
   out.Set("mesh_improvement_worst_after", r.ImprovementWorstAfter);
@@ -854,7 +859,14 @@ void Usage(std::ostream& os)
        "  --no-straight-creases  mesh: feature-line vertices of tet meshes stay (default: they\n"
        "                    slide along straight creases, the two planes kept exactly)\n"
        "  --no-vertex-insertion  mesh: the improvement of tet meshes adds no vertices (default:\n"
-       "                    it inserts one where flips and smoothing leave a tet below 15 deg)\n"
+       "                    it inserts one where flips and smoothing leave a tet below the\n"
+       "                    --edge-rule-angle)\n"
+       "  --no-collapses    mesh: the improvement removes no vertices (default: edge collapses\n"
+       "                    of triangles; tets: contraction of a free interior vertex into a\n"
+       "                    neighbour where a tet below the --edge-rule-angle stays bad)\n"
+       "  --edge-rule-angle A  mesh: tets of at least A degrees keep the edge-length rule (no\n"
+       "                    new out-of-range edges); worse ones may be flipped, smoothed,\n"
+       "                    split, contracted and peeled at that price (default 20)\n"
        "  --no-boundary-snap  mesh: boundary vertices of tet meshes that lie inside the domain\n"
        "                    stay there (default: moved onto the domain's boundary where that\n"
        "                    raises their worst tet)\n"
@@ -916,6 +928,10 @@ void CheckArgs(const Args& a)
   if (a.RepairRounds < 0)
   {
     throw std::runtime_error("--repair-rounds must be >= 0");
+  }
+  if (!(a.EdgeRuleAngle >= 0.0 && a.EdgeRuleAngle <= 90.0))
+  {
+    throw std::runtime_error("--edge-rule-angle must be in [0, 90]");
   }
   if (a.MaxStretch < 0.0 || (a.MaxStretch > 0.0 && a.MaxStretch < 1.0))
   {
@@ -1023,6 +1039,10 @@ bool Parse(int argc, char** argv, Args& a)
       a.StraightCreases = false;
     else if (k == "--no-vertex-insertion")
       a.VertexInsertion = false;
+    else if (k == "--no-collapses")
+      a.Collapses = false;
+    else if (k == "--edge-rule-angle")
+      a.EdgeRuleAngle = std::stod(next());
     else if (k == "--no-boundary-snap")
       a.BoundarySnap = false;
     else if (k == "--no-input-boundary-moves")

@@ -79,9 +79,11 @@ struct MeshImprovementOptions
   /// the count among the vertex's edges.
   bool KeepEdgeLengths = true;
   /// Tets: KeepEdgeLengths binds operations on tets whose quality angle is at least this
-  /// (degrees); a tet below it, bad by the §5.2 count of tets below 15°, may be improved at the
-  /// price of out-of-range edges (the real volumes' worst tets are otherwise stuck). 0: always.
-  double EdgeLengthRuleMinAngle = 15.0;
+  /// (degrees); a tet below it may be improved at the price of out-of-range edges (the real
+  /// volumes' worst tets are otherwise stuck), and only such tets get the insertion, the
+  /// contraction and the peel. 20°: the θ_min bar of issue 13 (15° until 2026-12-06: the §5.2
+  /// bar of a bad tet; the presets' edges in range change by at most 0.03 points). 0: always.
+  double EdgeLengthRuleMinAngle = 20.0;
   /// Test hook: accept operations that do not raise the worst quality they touch (only those
   /// that keep every element positive). Always false in use.
   bool AcceptWorsening = false;
@@ -92,6 +94,12 @@ struct MeshImprovementOptions
   /// Triangles: edge splits (a vertex at the middle of a bad triangle's longest metric edge)
   /// and edge collapses (removal of an end of its shortest), each followed by smoothing of the
   /// vertex left and flips around it, where flips and smoothing alone fail.
+  /// Collapses, tets: edge contraction where flips, smoothing and insertion leave a tet below
+  /// EdgeLengthRuleMinAngle: a free interior end of one of its edges (shortest metric edge
+  /// first) merged into the other end, which stays; kept only if every new tet is positive
+  /// (they then tile the old star exactly), no face gets a third tet, no new edge already
+  /// exists, and the worst tet of the old star gets better. The removed vertex stays as an
+  /// unreferenced point.
   bool Splits = true;
   bool Collapses = true;
   /// Tets: vertex insertion where flips and smoothing fail on a tet below
@@ -107,7 +115,9 @@ struct MeshImprovementOptions
   /// Tets: a tet below EdgeLengthRuleMinAngle with two boundary faces (a fin or a flat sliver
   /// on the boundary: the final mesh's boundary is sharper there than any smooth domain) is
   /// removed where flips, moves and insertion fail, if its two other faces become a manifold
-  /// boundary and no vertex is left without a tet; the volume changes by the tet's.
+  /// boundary and no vertex is left without a tet; the volume changes by the tet's. So is an
+  /// ear with three boundary faces whose apex is in other tets too (a pinched boundary: the
+  /// ear touches the rest only at the apex), its fourth face becoming boundary.
   bool PeelBoundaryTets = true;
   /// Tets: the most volume those removals may take in all, as a fraction of the mesh's volume.
   double BoundaryPeelVolumeBudget = 1e-4;
@@ -157,7 +167,7 @@ struct MeshImprovementResult
   /// fraction of the volume
   double BoundaryVolumeChange = 0.0;
   std::size_t NumSplits = 0;       ///< triangles: edge splits (new vertices appended)
-  std::size_t NumCollapses = 0;    ///< triangles: edge collapses (the removed vertex is unused)
+  std::size_t NumCollapses = 0; ///< edge collapses / tet contractions (removed vertex unused)
   std::size_t NumInsertions = 0;   ///< tets: inserted vertices (new points appended)
   std::size_t NumBoundaryPeels = 0; ///< tets: boundary tets removed (PeelBoundaryTets)
   std::size_t NumBoundarySnaps = 0; ///< tets: vertices moved onto the boundary (SnapToBoundary)
@@ -183,7 +193,7 @@ double MetricSimplexQuality(int simplexDim,
  * removal (n <= MaxEdgeRemovalRing tets around an edge, the optimal triangulation of its ring by
  * dynamic programming), 2-3 flips (tets), 2-2 flips (triangles) and moves of its interior vertices
  * (steepest ascent of the worst incident element with a line search), then for triangles edge
- * collapses and splits and for tets vertex insertion and the boundary peel, is applied when it
+ * collapses and splits and for tets vertex insertion, edge contraction and the boundary peel, is applied when it
  * raises the worst quality among the elements it touches. Nothing inverts: an element's quality
  * must stay positive. The boundary and the domain are preserved exactly, except by the tets'
  * curved-boundary operations and peels within their volume budgets: boundary faces (edges) are
@@ -192,7 +202,8 @@ double MetricSimplexQuality(int simplexDim,
  * PlanarBoundary and StraightCreases say). Vertex metrics stay those given (a move
  * is small against the metric's variation) unless PlacePoint gives them. Unreferenced points are
  * untouched. The cell count may change; the point count only grows by splits and insertions (new
- * points are appended, interior and free; a collapsed vertex stays as an unreferenced point).
+ * points are appended, interior and free; a collapsed or contracted vertex stays as an
+ * unreferenced point).
  * Surface triangles need PlacePoint: a triangle's orientation is that of the sum of its vertices'
  * normals, and no operation may flip one. Throws InputError on wrong sizes, bad ids or non-finite
  * values.

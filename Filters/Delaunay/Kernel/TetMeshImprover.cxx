@@ -43,7 +43,8 @@ TetMeshImprover::TetMeshImprover(SimplexMesh& mesh,
   , Tets(Work.Simplices)
   , Star(Work.Stars)
   // Only the tets keep the edge-length rule and refuse an ascent that ends where it began.
-  , Smoother(Work,
+  , Smoother(
+      Work,
       Options,
       true,
       // A vertex of a planar boundary patch stays in its plane (exactly, up to rounding).
@@ -190,7 +191,8 @@ void TetMeshImprover::MarkBoundaryAndNonManifold(const std::vector<std::uint8_t>
 }
 
 void TetMeshImprover::FindMovableBoundaryVertices(
-  const std::vector<std::array<std::int32_t, 3>>& boundary, const std::vector<std::uint8_t>& flags)
+  const std::vector<std::array<std::int32_t, 3>>& boundary,
+  const std::vector<std::uint8_t>& flags)
 {
   // Boundary faces per vertex: the link edge (b, c) of face (v, b, c) in its order.
   std::vector<std::vector<std::pair<std::int32_t, std::int32_t>>> link(P.size());
@@ -232,7 +234,8 @@ void TetMeshImprover::FindMovableBoundaryVertices(
     {
       // Not one disc: it may still be snapped onto the boundary.
       if (!flags[v] && areaSum[v].norm() > 0.0)
-        ClassifyByDomainBoundary(static_cast<std::int32_t>(v), areaSum[v].normalized(), edges, false);
+        ClassifyByDomainBoundary(
+          static_cast<std::int32_t>(v), areaSum[v].normalized(), edges, false);
       continue;
     }
     if (Options.StraightCreases)
@@ -271,8 +274,10 @@ void TetMeshImprover::FindMovableBoundaryVertices(
   }
 }
 
-void TetMeshImprover::ClassifyByDomainBoundary(std::int32_t v, const Eigen::Vector3d& meanNormal,
-  const std::vector<std::pair<std::int32_t, std::int32_t>>& link, bool disc)
+void TetMeshImprover::ClassifyByDomainBoundary(std::int32_t v,
+  const Eigen::Vector3d& meanNormal,
+  const std::vector<std::pair<std::int32_t, std::int32_t>>& link,
+  bool disc)
 {
   if ((!Options.SnapToBoundary && !(Options.InputBoundaryMoves && disc)) ||
     !Options.ProjectToBoundary)
@@ -579,8 +584,7 @@ bool TetMeshImprover::TryEdgeRemoval(std::int32_t a, std::int32_t b)
     for (const auto& t : tris)
       newVolume += Volume({ a, Ring[t[0]], Ring[t[1]], Ring[t[2]] }) +
         Volume({ b, Ring[t[2]], Ring[t[1]], Ring[t[0]] });
-    const double allowed =
-      curved ? std::abs(Volume({ a, b, Ring.front(), Ring.back() })) : 0.0;
+    const double allowed = curved ? std::abs(Volume({ a, b, Ring.front(), Ring.back() })) : 0.0;
     volumeChange = std::abs(newVolume - oldVolume);
     if (!(volumeChange <= allowed + 1e-9 * std::abs(oldVolume)))
       return false;
@@ -696,7 +700,8 @@ bool TetMeshImprover::TrySnap(std::int32_t v)
 {
   const Eigen::Vector3d start = P[v];
   Eigen::Vector3d placed, normal = PlaneNormal[v];
-  if (!Options.ProjectToBoundary(v, start.data(), PlaneNormal[v].data(), placed.data(), normal.data()))
+  if (!Options.ProjectToBoundary(
+        v, start.data(), PlaneNormal[v].data(), placed.data(), normal.data()))
     return false;
   SnapNeighbours.clear();
   for (std::int32_t t : Star[v])
@@ -1040,6 +1045,8 @@ bool TetMeshImprover::TryPeel(std::int32_t tet)
     else if (nInner < 2)
       inner[nInner++] = n;
   }
+  if (boundaryFaces == 3 && nInner == 1)
+    return PeelEar(tet, inner[0]);
   if (boundaryFaces != 2 || nInner != 2)
     return false;
   // The two boundary faces are opposite c and d, i.e. they share the edge (a, b).
@@ -1081,6 +1088,137 @@ bool TetMeshImprover::TryPeel(std::int32_t tet)
   return true;
 }
 
+// A tet with three boundary faces whose apex (the vertex on all three) has other tets: the ear
+// touches the rest of the mesh only at that vertex (a pinched boundary, found at the creases of
+// the real volumes). Its removal un-pinches the apex and leaves its base as boundary; every
+// edge of the base keeps its number of boundary faces (one of the ear's for the base), so no
+// edge becomes non-manifold.
+bool TetMeshImprover::PeelEar(std::int32_t tet, std::int32_t inner)
+{
+  const Tet t = Tets[tet];
+  std::int32_t apex = -1;
+  for (int m = 0; m < 4; ++m)
+    if (Across(tet, m) >= 0)
+      apex = t[m];
+  if (apex < 0 || Star[apex].size() < 2)
+    return false;
+  const double before = std::min(Quality(t), Quality(Tets[inner]));
+  const double after = Quality(Tets[inner]);
+  const double volume = std::abs(Volume(t));
+  if (!Accepts(after, before) ||
+    PeeledVolume + volume > Options.BoundaryPeelVolumeBudget * MeshVolume)
+    return false;
+  Work.Kill(tet);
+  for (std::int32_t v : t)
+  {
+    Work.Fixed[v] = 1;
+    PlaneNormal[v].setZero();
+    LineDirection[v].setZero();
+    Curved[v] = 0;
+    OffBoundary[v] = 0;
+  }
+  PeeledVolume += volume;
+  ++Peels;
+  return true;
+}
+
+bool TetMeshImprover::OnBoundary(std::int32_t v) const
+{
+  for (std::int32_t u : Star[v])
+    for (int m = 0; m < 4; ++m)
+      if (Tets[u][m] != v && Across(u, m) < 0)
+        return true;
+  return false;
+}
+
+// Where a free interior vertex has a small star of flat tets around it (a site squeezed
+// between its neighbours), no position of it is good: removing it is (Klingner & Shewchuk's
+// edge contraction).
+bool TetMeshImprover::TryContraction(std::int32_t tet)
+{
+  const Tet t = Tets[tet];
+  std::array<std::pair<double, int>, 6> edges;
+  int n = 0;
+  for (int i = 0; i < 4; ++i)
+    for (int j = i + 1; j < 4; ++j)
+      edges[n++] = { Work.EdgeLength(t[i], t[j]), 4 * i + j };
+  std::sort(edges.begin(), edges.end());
+  for (const auto& e : edges)
+  {
+    const std::int32_t a = t[e.second / 4], b = t[e.second % 4];
+    if (ContractInto(b, a) || ContractInto(a, b))
+      return true;
+  }
+  return false;
+}
+
+bool TetMeshImprover::ContractInto(std::int32_t keep, std::int32_t remove)
+{
+  if (Work.Fixed[remove] || Star[remove].empty() || OnBoundary(remove))
+    return false;
+  double before = std::numeric_limits<double>::infinity();
+  double after = std::numeric_limits<double>::infinity();
+  ContractedTets.clear();
+  for (std::int32_t u : Star[remove])
+  {
+    const Tet& q = Tets[u];
+    before = std::min(before, Quality(q));
+    if (IndexIn(q, keep) >= 0)
+      continue; // on the edge: dies
+    Tet nq = q;
+    nq[IndexIn(nq, remove)] = keep;
+    after = std::min(after, Quality(nq));
+    ContractedTets.push_back(nq);
+  }
+  if (ContractedTets.empty() || !Accepts(after, before))
+    return false;
+  // Every new edge (keep, w) must be new unless w is on the contracted edge's link.
+  for (const Tet& nq : ContractedTets)
+    for (std::int32_t w : nq)
+      if (w != keep && Work.HasEdge(keep, w))
+      {
+        bool onLink = false;
+        for (std::int32_t u : Star[remove])
+          onLink = onLink || (IndexIn(Tets[u], keep) >= 0 && IndexIn(Tets[u], w) >= 0);
+        if (!onLink)
+          return false;
+      }
+  // No face on keep in more than two tets afterwards.
+  ContractedFaces.clear();
+  auto addFaces = [&](const Tet& q)
+  {
+    for (int m = 0; m < 4; ++m)
+    {
+      if (q[m] == keep)
+        continue;
+      std::array<std::int32_t, 3> f = {
+        q[FaceOpposite[m][0]], q[FaceOpposite[m][1]], q[FaceOpposite[m][2]]
+      };
+      std::sort(f.begin(), f.end());
+      ContractedFaces.push_back(f);
+    }
+  };
+  for (std::int32_t u : Star[keep])
+    if (IndexIn(Tets[u], remove) < 0)
+      addFaces(Tets[u]);
+  for (const Tet& nq : ContractedTets)
+    addFaces(nq);
+  std::sort(ContractedFaces.begin(), ContractedFaces.end());
+  for (std::size_t i = 0; i + 2 < ContractedFaces.size(); ++i)
+    if (ContractedFaces[i] == ContractedFaces[i + 2])
+      return false;
+  if (Options.KeepEdgeLengths && !EdgeRuleWaived)
+    return false;
+  const std::vector<std::int32_t> star = Star[remove];
+  for (std::int32_t u : star)
+    Work.Kill(u);
+  for (const Tet& nq : ContractedTets)
+    Work.Add(nq);
+  Work.Fixed[remove] = 1; // unreferenced from now on
+  ++Contractions;
+  return true;
+}
+
 bool TetMeshImprover::Improve(std::int32_t tet)
 {
   const Tet t = Tets[tet];
@@ -1105,6 +1243,9 @@ bool TetMeshImprover::Improve(std::int32_t tet)
     (Options.KeepEdgeLengths ? Options.EdgeLengthRuleMinAngle : Options.TargetAngle) * Pi / 180.0);
   if (Options.Insertions && Work.IsAlive(tet) && Quality(Tets[tet]) < insertBelow &&
     TryInsertion(tet))
+    return true;
+  if (Options.Collapses && Work.IsAlive(tet) && Quality(Tets[tet]) < insertBelow &&
+    TryContraction(tet))
     return true;
   if (Options.PeelBoundaryTets && Options.PlanarBoundary && Work.IsAlive(tet) &&
     Quality(Tets[tet]) < std::sin(Options.EdgeLengthRuleMinAngle * Pi / 180.0) && TryPeel(tet))
@@ -1131,6 +1272,7 @@ void TetMeshImprover::Run(MeshImprovementResult& result)
   result.NumInsertions = Insertions;
   result.NumBoundaryPeels = Peels;
   result.NumBoundarySnaps = Snaps;
+  result.NumCollapses = Contractions;
   result.BoundaryVolumeChange =
     MeshVolume > 0.0 ? (BoundaryVolumeChange + PeeledVolume) / MeshVolume : 0.0;
   result.Moved = std::move(Work.Moved);

@@ -45,8 +45,10 @@ private:
   /// ProjectToBoundary puts it elsewhere. Its one move is then
   /// TrySnap; it stays fixed once snapped. InputBoundaryMoves: if v is on the domain's boundary
   /// and its faces form one disc (`disc`), it moves as a curved-patch vertex instead.
-  void ClassifyByDomainBoundary(std::int32_t v, const Eigen::Vector3d& meanNormal,
-    const std::vector<std::pair<std::int32_t, std::int32_t>>& link, bool disc);
+  void ClassifyByDomainBoundary(std::int32_t v,
+    const Eigen::Vector3d& meanNormal,
+    const std::vector<std::pair<std::int32_t, std::int32_t>>& link,
+    bool disc);
   bool TrySnap(std::int32_t v);
   /// The unit direction of the straight crease through v whose link faces, in disc order, are
   /// `order` (indices into `link`); zero if the disc is not two planar fans meeting on a line
@@ -74,6 +76,17 @@ private:
   bool TryInsertion(std::int32_t tet);
   /// Removes bad tet `tet` if it has exactly two boundary faces (PeelBoundaryTets).
   bool TryPeel(std::int32_t tet);
+  /// TryPeel of a tet with three boundary faces (`inner`: the tet across its fourth).
+  bool PeelEar(std::int32_t tet, std::int32_t inner);
+  /// Edge contraction in bad tet `tet` (MeshImprovementOptions::Collapses): an interior free
+  /// end of one of its edges, shortest metric edge first, merged into the other end.
+  bool TryContraction(std::int32_t tet);
+  /// Merges interior vertex `remove` into `keep` (which stays where it is): the tets on the edge
+  /// die, the rest of remove's star is joined to keep. Applied only if every new tet is positive
+  /// (then they tile remove's old star exactly: volume and boundary unchanged), no face is left
+  /// in more than two tets, no new edge already exists and the worst tet touched gets better.
+  bool ContractInto(std::int32_t keep, std::int32_t remove);
+  bool OnBoundary(std::int32_t v) const; // a boundary face contains v
   /// The cavity of point x seeded with `seed` into Cavity and its boundary faces (outward, in
   /// their tets' order) into CavityFaces: the tets across interior faces whose circumspheres,
   /// mapped by `map`, contain x, then shrunk until x sees every boundary face. False if x cannot
@@ -112,6 +125,9 @@ private:
   // Scratch of the snap: the free interior neighbours, and those moved with their old position.
   std::vector<std::int32_t> SnapNeighbours;
   std::vector<std::pair<std::int32_t, Eigen::Vector3d>> SnapMoved;
+  // Scratch of the contraction: the new tets, and the faces on `keep` after it.
+  std::vector<Tet> ContractedTets;
+  std::vector<std::array<std::int32_t, 3>> ContractedFaces;
   // Per point: the unit normal of its boundary plane where it may move in it, else zero;
   // Curved: the plane is a tangent plane and ProjectToBoundary puts the point on the surface.
   std::vector<Eigen::Vector3d> PlaneNormal;
@@ -124,7 +140,7 @@ private:
   bool EdgeRuleWaived = false; // the tet being improved is below EdgeLengthRuleMinAngle
   std::size_t Flips23 = 0, EdgeRemovals = 0, Smoothed = 0;
   std::size_t BoundaryEdgeRemovals = 0, BoundarySmoothed = 0, CreaseSmoothed = 0;
-  std::size_t Insertions = 0, Peels = 0, Snaps = 0;
+  std::size_t Insertions = 0, Peels = 0, Snaps = 0, Contractions = 0;
   double PeeledVolume = 0.0;                           // Euclidean, times 6
   double MeshVolume = 0.0, BoundaryVolumeChange = 0.0; // Euclidean, times 6
   double MedianEdge = 0.0; // median metric edge length of the input mesh
