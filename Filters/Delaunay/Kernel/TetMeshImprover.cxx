@@ -1068,6 +1068,12 @@ bool TetMeshImprover::TryPeel(std::int32_t tet)
   }
   const double before = std::min({ Quality(t), Quality(Tets[inner[0]]), Quality(Tets[inner[1]]) });
   const double after = std::min(Quality(Tets[inner[0]]), Quality(Tets[inner[1]]));
+  return CommitPeel(tet, after, before);
+}
+
+bool TetMeshImprover::CommitPeel(std::int32_t tet, double after, double before)
+{
+  const Tet t = Tets[tet];
   const double volume = std::abs(Volume(t));
   if (!Accepts(after, before) ||
     PeeledVolume + volume > Options.BoundaryPeelVolumeBudget * MeshVolume)
@@ -1082,7 +1088,6 @@ bool TetMeshImprover::TryPeel(std::int32_t tet)
     Curved[v] = 0;
     OffBoundary[v] = 0;
   }
-  (void)c;
   PeeledVolume += volume;
   ++Peels;
   return true;
@@ -1104,22 +1109,7 @@ bool TetMeshImprover::PeelEar(std::int32_t tet, std::int32_t inner)
     return false;
   const double before = std::min(Quality(t), Quality(Tets[inner]));
   const double after = Quality(Tets[inner]);
-  const double volume = std::abs(Volume(t));
-  if (!Accepts(after, before) ||
-    PeeledVolume + volume > Options.BoundaryPeelVolumeBudget * MeshVolume)
-    return false;
-  Work.Kill(tet);
-  for (std::int32_t v : t)
-  {
-    Work.Fixed[v] = 1;
-    PlaneNormal[v].setZero();
-    LineDirection[v].setZero();
-    Curved[v] = 0;
-    OffBoundary[v] = 0;
-  }
-  PeeledVolume += volume;
-  ++Peels;
-  return true;
+  return CommitPeel(tet, after, before);
 }
 
 bool TetMeshImprover::OnBoundary(std::int32_t v) const

@@ -78,6 +78,9 @@ private:
   bool TryPeel(std::int32_t tet);
   /// TryPeel of a tet with three boundary faces (`inner`: the tet across its fourth).
   bool PeelEar(std::int32_t tet, std::int32_t inner);
+  /// Removes boundary tet `tet` if `after` (the worst tet left) beats `before` and the peel
+  /// budget allows its volume.
+  bool CommitPeel(std::int32_t tet, double after, double before);
   /// Edge contraction in bad tet `tet` (MeshImprovementOptions::Collapses): an interior free
   /// end of one of its edges, shortest metric edge first, merged into the other end.
   bool TryContraction(std::int32_t tet);
