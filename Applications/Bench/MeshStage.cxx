@@ -139,6 +139,9 @@ void CopyMeshingCounts(const av::MeshingPipelineResult& m, MeshStageResult& r)
   r.InvertedBeforeImprovement = m.InvertedBeforeImprovement;
   r.ValidDualReplaced = m.ValidDual.Replaced;
   r.ValidDualSeconds = m.ValidDualSeconds;
+  r.ValidDualTargetCells = m.ValidDual.TargetCells;
+  r.ValidDualKeptCells = m.ValidDual.KeptCells;
+  r.ValidDualTargetFlips = m.ValidDual.Flips.NumTargetFlips;
   r.SliversPerturbed = m.NumSlivers;
   r.OdtMovedSites = m.NumOdtMovedSites;
   const av::DelaunayRepairResult& repaired = m.Repaired;

@@ -102,8 +102,11 @@ struct MeshStageResult
   std::size_t InvertedBeforeImprovement = 0; ///< dual's inverted (or flat) cells before it
   bool ValidDualReplaced = false;  ///< the repaired dual was invalid: Delaunay of the sites
   double ValidDualSeconds = 0.0;
-  double MeshSeconds = 0.0; ///< wall of sampling + RVD + RDT + repair
-  std::size_t Cells = 0;    ///< restricted Delaunay cells
+  /// Of the replacement: the dual's valid cells offered as flip targets, those in the result,
+  /// and the flips made only to create one (MakeDualValid).
+  std::size_t ValidDualTargetCells = 0, ValidDualKeptCells = 0, ValidDualTargetFlips = 0;
+  double MeshSeconds = 0.0;      ///< wall of sampling + RVD + RDT + repair
+  std::size_t Cells = 0;         ///< restricted Delaunay cells
   std::size_t InsertedSites = 0; ///< by the repair (Sites counts the sampled ones only)
   int RepairRounds = 0;
   std::vector<std::size_t> InvertedPerRound; ///< bad dual elements before each repair round

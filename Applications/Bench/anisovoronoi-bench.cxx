@@ -661,6 +661,9 @@ void ReportMesh(const Case& c, const avbench::MeshStageOptions& o,
   out.Set("mesh_improvement_volume_change", r.ImprovementVolumeChange);
   out.Set("valid_dual_replaced", r.ValidDualReplaced);
   out.Set("valid_dual_seconds", r.ValidDualSeconds);
+  out.Set("valid_dual_target_cells", r.ValidDualTargetCells);
+  out.Set("valid_dual_kept_cells", r.ValidDualKeptCells);
+  out.Set("valid_dual_target_flips", r.ValidDualTargetFlips);
   out.Set("inverted_before_mesh_improvement", r.InvertedBeforeImprovement);
   out.Set("repair_rounds", r.RepairRounds);
   out.Set("inverted_per_round", r.InvertedPerRound);

@@ -14,9 +14,9 @@
 
 #include <algorithm>
 #include <array>
-#include <map>
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -405,6 +405,52 @@ double MaxVolumeForVertexCount(const SimplexMesh& surface, std::size_t targetVer
 namespace av
 {
 
+namespace
+{
+/// The tets of a TetGen run on `points` (which must not add a point), as a mesh of `points`.
+SimplexMesh TetsOfPoints(const std::vector<double>& points, const tetgenio& out, const char* what)
+{
+  const std::size_t np = points.size() / 3;
+  if (out.numberoftetrahedra <= 0 || out.tetrahedronlist == nullptr)
+    throw InputError(std::string(what) +
+      ": TetGen produced no tetrahedron (are the points "
+      "coplanar?)");
+  // TetGen drops repeated points and numbers the rest anew: map its points back to the first
+  // input point at the same position.
+  std::map<std::array<double, 3>, std::int32_t> firstAt;
+  for (std::size_t i = np; i-- > 0;)
+    firstAt[{ points[3 * i], points[3 * i + 1], points[3 * i + 2] }] = static_cast<std::int32_t>(i);
+  std::vector<std::int32_t> inputOf(static_cast<std::size_t>(out.numberofpoints));
+  for (std::size_t i = 0; i < inputOf.size(); ++i)
+  {
+    const auto it =
+      firstAt.find({ out.pointlist[3 * i], out.pointlist[3 * i + 1], out.pointlist[3 * i + 2] });
+    if (it == firstAt.end())
+      throw InputError(std::string(what) + ": TetGen added a point");
+    inputOf[i] = it->second;
+  }
+  SimplexMesh m;
+  m.AmbientDim = 3;
+  m.SimplexDim = 3;
+  m.Points = points;
+  const std::size_t nt = static_cast<std::size_t>(out.numberoftetrahedra);
+  const int corners = out.numberofcorners;
+  m.Cells.resize(4 * nt);
+  for (std::size_t c = 0; c < nt; ++c)
+  {
+    std::int32_t* t = m.Cells.data() + 4 * c;
+    for (int k = 0; k < 4; ++k)
+      t[k] = inputOf[static_cast<std::size_t>(
+        out.tetrahedronlist[c * static_cast<std::size_t>(corners) + k])];
+    const Eigen::Map<const Eigen::Vector3d> a(m.Point(t[0])), b(m.Point(t[1])), cc(m.Point(t[2])),
+      d(m.Point(t[3]));
+    if ((b - a).dot((cc - a).cross(d - a)) < 0.0)
+      std::swap(t[2], t[3]);
+  }
+  return m;
+}
+} // namespace
+
 SimplexMesh DelaunayOfPoints(const std::vector<double>& points)
 {
   const std::size_t np = points.size() / 3;
@@ -424,40 +470,64 @@ SimplexMesh DelaunayOfPoints(const std::vector<double>& points)
   {
     throw InputError("DelaunayOfPoints: " + TetGenErrorText(code));
   }
-  if (out.numberoftetrahedra <= 0 || out.tetrahedronlist == nullptr)
-    throw InputError("DelaunayOfPoints: TetGen produced no tetrahedron (are the points "
-                     "coplanar?)");
-  // TetGen drops repeated points and numbers the rest anew: map its points back to the first
-  // input point at the same position.
-  std::map<std::array<double, 3>, std::int32_t> firstAt;
-  for (std::size_t i = np; i-- > 0;)
-    firstAt[{ points[3 * i], points[3 * i + 1], points[3 * i + 2] }] = static_cast<std::int32_t>(i);
-  std::vector<std::int32_t> inputOf(static_cast<std::size_t>(out.numberofpoints));
-  for (std::size_t i = 0; i < inputOf.size(); ++i)
+  return TetsOfPoints(points, out, "DelaunayOfPoints");
+}
+
+SimplexMesh ConstrainedDelaunayOfPoints(const std::vector<double>& points,
+  const std::vector<std::int32_t>& faces)
+{
+  const std::size_t np = points.size() / 3;
+  if (np < 4 || points.size() != 3 * np || faces.size() % 3 != 0)
+    throw InputError("ConstrainedDelaunayOfPoints: needs at least 4 points (3 values each) and "
+                     "faces of 3 ids each");
+  for (const std::int32_t v : faces)
+    if (v < 0 || static_cast<std::size_t>(v) >= np)
+      throw InputError("ConstrainedDelaunayOfPoints: a face id is out of range");
+  // Each face once (TetGen treats a repeated facet as two).
+  std::vector<std::array<std::int32_t, 3>> unique;
+  unique.reserve(faces.size() / 3);
+  for (std::size_t f = 0; f < faces.size(); f += 3)
   {
-    const auto it = firstAt.find({ out.pointlist[3 * i], out.pointlist[3 * i + 1], out.pointlist[3 * i + 2] });
-    if (it == firstAt.end())
-      throw InputError("DelaunayOfPoints: TetGen added a point");
-    inputOf[i] = it->second;
+    std::array<std::int32_t, 3> t{ faces[f], faces[f + 1], faces[f + 2] };
+    std::sort(t.begin(), t.end());
+    if (t[0] == t[1] || t[1] == t[2])
+      throw InputError("ConstrainedDelaunayOfPoints: a face repeats a point");
+    unique.push_back(t);
   }
-  SimplexMesh m;
-  m.AmbientDim = 3;
-  m.SimplexDim = 3;
-  m.Points = points;
-  const std::size_t nt = static_cast<std::size_t>(out.numberoftetrahedra);
-  const int corners = out.numberofcorners;
-  m.Cells.resize(4 * nt);
-  for (std::size_t c = 0; c < nt; ++c)
+  std::sort(unique.begin(), unique.end());
+  unique.erase(std::unique(unique.begin(), unique.end()), unique.end());
+  tetgenio in, out;
+  in.firstnumber = 0;
+  in.numberofpoints = static_cast<int>(np);
+  in.pointlist = new REAL[3 * np];
+  std::copy(points.begin(), points.end(), in.pointlist);
+  const std::size_t nf = unique.size();
+  in.numberoffacets = static_cast<int>(nf);
+  in.facetlist = new tetgenio::facet[nf];
+  for (std::size_t f = 0; f < nf; ++f)
   {
-    std::int32_t* t = m.Cells.data() + 4 * c;
-    for (int k = 0; k < 4; ++k)
-      t[k] = inputOf[static_cast<std::size_t>(out.tetrahedronlist[c * static_cast<std::size_t>(corners) + k])];
-    const Eigen::Map<const Eigen::Vector3d> a(m.Point(t[0])), b(m.Point(t[1])),
-      cc(m.Point(t[2])), d(m.Point(t[3]));
-    if ((b - a).dot((cc - a).cross(d - a)) < 0.0)
-      std::swap(t[2], t[3]);
+    tetgenio::facet& facet = in.facetlist[f];
+    tetgenio::init(&facet);
+    facet.numberofpolygons = 1;
+    facet.polygonlist = new tetgenio::polygon[1];
+    tetgenio::init(&facet.polygonlist[0]);
+    facet.polygonlist[0].numberofvertices = 3;
+    facet.polygonlist[0].vertexlist = new int[3];
+    for (int k = 0; k < 3; ++k)
+      facet.polygonlist[0].vertexlist[k] = unique[f][static_cast<std::size_t>(k)];
   }
-  return m;
+  // PLC, keep the convex hull (the faces are inside it, not its boundary), zero-based, quiet,
+  // no Steiner point on the faces (Y) nor anywhere (S0).
+  char switches[] = "pczQYS0";
+  try
+  {
+    tetrahedralize(switches, &in, &out);
+  }
+  catch (int code)
+  {
+    throw InputError("ConstrainedDelaunayOfPoints: " + TetGenErrorText(code));
+  }
+  return TetsOfPoints(points, out, "ConstrainedDelaunayOfPoints");
 }
 
 } // namespace av

@@ -80,6 +80,16 @@ SimplexMesh TetrahedralizeSphere(double radius, std::size_t targetVertices);
  */
 SimplexMesh DelaunayOfPoints(const std::vector<double>& points);
 
+/**
+ * Constrained Delaunay tetrahedralization of the convex hull of `points` whose faces include
+ * the triangles `faces` (NumFaces x 3 point ids; the faces of a valid partial tet mesh, say),
+ * by TetGen (-pc), without Steiner points: cell ids index `points`, every tet positive. Throws
+ * InputError when TetGen fails, the faces intersect, or it needs a Steiner point to recover
+ * them.
+ */
+SimplexMesh ConstrainedDelaunayOfPoints(const std::vector<double>& points,
+  const std::vector<std::int32_t>& faces);
+
 } // namespace av
 
 #endif

@@ -34,9 +34,21 @@ Face SortedFace(std::int32_t a, std::int32_t b, std::int32_t c)
 class FlipState
 {
 public:
-  FlipState(SimplexMesh& m, const MetricField& metric)
+  FlipState(SimplexMesh& m,
+    const MetricField& metric,
+    const std::vector<std::array<std::int32_t, 4>>* targets)
     : Mesh(m)
   {
+    if (targets)
+    {
+      Targets.reserve(targets->size());
+      for (Tet t : *targets)
+      {
+        std::sort(t.begin(), t.end());
+        Targets.push_back(t);
+      }
+      std::sort(Targets.begin(), Targets.end());
+    }
     Sqrt.resize(m.NumPoints());
     for (std::size_t i = 0; i < m.NumPoints(); ++i)
       Sqrt[i] = SymmetricSqrt(UnpackSymmetric(metric.At(i)));
@@ -68,16 +80,23 @@ public:
         continue;
       ++r.NumChecked;
       const std::int32_t t1 = it->second[0], t2 = it->second[1];
+      if (IsTarget(Tets[t1]) || IsTarget(Tets[t2]))
+        continue;
       const std::int32_t d = Apex(t1, f), e = Apex(t2, f);
-      if (!InSphere(f, d, e))
+      // Without targets (or when the face is not Delaunay) any valid flip; otherwise only one
+      // that creates a target tet.
+      const bool targetOnly = !InSphere(f, d, e);
+      if (targetOnly && Targets.empty())
         continue;
       std::vector<std::int32_t> touched;
-      if (Flip23(t1, t2, f, d, e, touched))
+      bool created = false;
+      if (Flip23(t1, t2, f, d, e, targetOnly, created, touched))
         ++r.NumFlips23;
-      else if (Flip32(f, d, e, touched))
+      else if (Flip32(f, d, e, targetOnly, created, touched))
         ++r.NumFlips32;
       else
         continue;
+      r.NumTargetFlips += targetOnly;
       for (const std::int32_t t : touched)
         for (int skip = 0; skip < 4; ++skip)
           queue.push_back(FaceOf(Tets[t], skip));
@@ -92,8 +111,29 @@ private:
   std::vector<Tet> Tets;
   std::vector<char> Alive;
   std::map<Face, std::vector<std::int32_t>> Faces;
+  std::vector<Tet> Targets; // sorted quadruples, sorted
 
-  Eigen::Vector3d P(std::int32_t i) const { return Eigen::Map<const Eigen::Vector3d>(Mesh.Point(i)); }
+  bool IsTarget(Tet t) const
+  {
+    if (Targets.empty())
+      return false;
+    std::sort(t.begin(), t.end());
+    return std::binary_search(Targets.begin(), Targets.end(), t);
+  }
+
+  /// Whether a flip to `n` (count `k`) may be made: with `targetOnly`, one of them is a target.
+  bool Allowed(const Tet* n, int k, bool targetOnly, bool& created) const
+  {
+    created = false;
+    for (int i = 0; i < k; ++i)
+      created = created || IsTarget(n[i]);
+    return !targetOnly || created;
+  }
+
+  Eigen::Vector3d P(std::int32_t i) const
+  {
+    return Eigen::Map<const Eigen::Vector3d>(Mesh.Point(i));
+  }
 
   static Face FaceOf(const Tet& t, int skip)
   {
@@ -179,11 +219,20 @@ private:
     return (q[4] - x).squaredNorm() < r2 * (1.0 - 1e-9);
   }
 
-  bool Flip23(std::int32_t t1, std::int32_t t2, const Face& f, std::int32_t d, std::int32_t e,
+  bool Flip23(std::int32_t t1,
+    std::int32_t t2,
+    const Face& f,
+    std::int32_t d,
+    std::int32_t e,
+    bool targetOnly,
+    bool& created,
     std::vector<std::int32_t>& touched)
   {
-    const Tet n[3] = { Oriented(f[0], f[1], d, e), Oriented(f[1], f[2], d, e),
-      Oriented(f[2], f[0], d, e) };
+    const Tet n[3] = {
+      Oriented(f[0], f[1], d, e), Oriented(f[1], f[2], d, e), Oriented(f[2], f[0], d, e)
+    };
+    if (!Allowed(n, 3, targetOnly, created))
+      return false;
     for (const Tet& t : n)
       if (!Valid(t))
         return false;
@@ -206,7 +255,12 @@ private:
   }
 
   /// 3-2: an edge of f with exactly the tets (f, d), (f, e) and one with d and e around it.
-  bool Flip32(const Face& f, std::int32_t d, std::int32_t e, std::vector<std::int32_t>& touched)
+  bool Flip32(const Face& f,
+    std::int32_t d,
+    std::int32_t e,
+    bool targetOnly,
+    bool& created,
+    std::vector<std::int32_t>& touched)
   {
     for (int k = 0; k < 3; ++k)
     {
@@ -221,14 +275,14 @@ private:
       for (const std::int32_t t : it1->second)
         if (std::find(it2->second.begin(), it2->second.end(), t) != it2->second.end())
           third = t;
-      if (third < 0)
+      if (third < 0 || IsTarget(Tets[third]))
         continue;
       const auto fc = Faces.find(f);
       const std::int32_t t1 = fc->second[0], t2 = fc->second[1];
       if (EdgeDegree(a, b, t1, 3) != 3)
         continue;
       const Tet n[2] = { Oriented(a, c, d, e), Oriented(b, c, d, e) };
-      if (!Valid(n[0]) || !Valid(n[1]))
+      if (!Allowed(n, 2, targetOnly, created) || !Valid(n[0]) || !Valid(n[1]))
         continue;
       const double before = Volume(Tets[t1]) + Volume(Tets[t2]) + Volume(Tets[third]);
       const double after = Volume(n[0]) + Volume(n[1]);
@@ -293,7 +347,17 @@ MetricDelaunayFlipResult FlipTowardsMetricDelaunay(SimplexMesh& mesh, const Metr
 {
   if (mesh.SimplexDim != 3 || mesh.AmbientDim != 3 || metric.NumPoints() != mesh.NumPoints())
     return {};
-  FlipState s(mesh, metric);
+  FlipState s(mesh, metric, nullptr);
+  return s.Run();
+}
+
+MetricDelaunayFlipResult FlipTowardsMetricDelaunay(SimplexMesh& mesh,
+  const MetricField& metric,
+  const std::vector<std::array<std::int32_t, 4>>& targets)
+{
+  if (mesh.SimplexDim != 3 || mesh.AmbientDim != 3 || metric.NumPoints() != mesh.NumPoints())
+    return {};
+  FlipState s(mesh, metric, &targets);
   return s.Run();
 }
 

@@ -7,7 +7,10 @@
 
 #include "SimplexMesh.h"
 
+#include <array>
 #include <cstddef>
+#include <cstdint>
+#include <vector>
 
 namespace av
 {
@@ -17,8 +20,9 @@ struct MetricDelaunayFlipResult
 {
   std::size_t NumFlips23 = 0;
   std::size_t NumFlips32 = 0;
-  std::size_t NumChecked = 0; ///< interior faces tested
-  bool Capped = false;        ///< stopped at the flip budget (the metric varies: no guarantee)
+  std::size_t NumChecked = 0;     ///< interior faces tested
+  std::size_t NumTargetFlips = 0; ///< of the flips, made to create a target tet
+  bool Capped = false;            ///< stopped at the flip budget (the metric varies: no guarantee)
 };
 
 /**
@@ -34,6 +38,17 @@ struct MetricDelaunayFlipResult
  * neighbors, so the flips need not terminate on their own). Points are not changed.
  */
 MetricDelaunayFlipResult FlipTowardsMetricDelaunay(SimplexMesh& mesh, const MetricField& metric);
+
+/**
+ * The same flips with target tets (`targets`: vertex quadruples of the same points, in any
+ * order; MakeDualValid gives the valid cells of the restricted Delaunay dual): a target tet of
+ * the mesh is never flipped away, and a valid flip that creates a target tet is made even
+ * across a face that is metric Delaunay. The number of target tets in the mesh never falls, so
+ * the mesh moves towards the targets wherever they form a valid mesh.
+ */
+MetricDelaunayFlipResult FlipTowardsMetricDelaunay(SimplexMesh& mesh,
+  const MetricField& metric,
+  const std::vector<std::array<std::int32_t, 4>>& targets);
 
 } // namespace av
 

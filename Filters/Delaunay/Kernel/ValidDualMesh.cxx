@@ -3,9 +3,10 @@
 
 #include "ElementLocator.h"
 #include "InputError.h"
-#include "MeshTopology.h"
 #include "MeshImprovement.h"
+#include "MeshTopology.h"
 #include "MetricAlgebra.h"
+#include "SurfaceFidelity.h"
 #include "TetMesher.h"
 
 #include <Eigen/Dense>
@@ -217,6 +218,150 @@ std::size_t PeelBoundarySlivers(
   return removed;
 }
 
+using Quad = std::array<std::int32_t, 4>;
+
+Quad SortedQuad(const std::int32_t* v)
+{
+  Quad q{ v[0], v[1], v[2], v[3] };
+  std::sort(q.begin(), q.end());
+  return q;
+}
+
+/// The distinct faces of `cells` (sorted quadruples), 3 ids each.
+std::vector<std::int32_t> FacesOf(const std::vector<Quad>& cells)
+{
+  std::vector<std::array<std::int32_t, 3>> faces;
+  faces.reserve(4 * cells.size());
+  for (const Quad& q : cells)
+    for (int skip = 0; skip < 4; ++skip)
+    {
+      std::array<std::int32_t, 3> f;
+      for (int a = 0, n = 0; a < 4; ++a)
+        if (a != skip)
+          f[n++] = q[a];
+      faces.push_back(f); // sorted: q is
+    }
+  std::sort(faces.begin(), faces.end());
+  faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
+  std::vector<std::int32_t> out;
+  out.reserve(3 * faces.size());
+  for (const auto& f : faces)
+    out.insert(out.end(), f.begin(), f.end());
+  return out;
+}
+
+/**
+ * The cells of the dual kept in the replacement: not inverted or flat, every face in at most
+ * two cells and, if in two, with their apexes on either side; no vertex on a cell that fails
+ * those (the overlapping cells of a fold are positive too, so the bad cells' vertices mark the
+ * fold); the centroid in the domain (a cell across a concave part of the boundary is carved
+ * anyway); and no face that crosses a face of another kept cell with which it shares no vertex
+ * (overlapping layers that the rules before miss; TetGen would fail on them). Sorted.
+ */
+std::vector<Quad> ValidDualCells(const SimplexMesh& mesh,
+  const std::vector<std::int32_t>& adjacency,
+  const SiteSet& sites,
+  const RestrictedDelaunayMesh& rdt)
+{
+  const SimplexMesh dual = AsMesh(rdt);
+  const std::size_t n = dual.NumCells();
+  std::vector<std::uint8_t> bad(n, 0);
+  std::vector<std::uint8_t> badVertex(dual.NumPoints(), 0);
+  for (std::size_t c = 0; c < n; ++c)
+    bad[c] = IsFlatOrInverted(dual, c) || (c < rdt.Inverted.size() && rdt.Inverted[c]);
+  const std::vector<CellFacet> facets = SortedCellFacets(dual);
+  auto apexSide = [&](const std::array<std::int32_t, 3>& f, std::size_t c)
+  {
+    std::int32_t apex = -1;
+    for (int a = 0; a < 4; ++a)
+      if (std::find(f.begin(), f.end(), dual.Cell(c)[a]) == f.end())
+        apex = dual.Cell(c)[a];
+    const Eigen::Map<const Eigen::Vector3d> p0(dual.Point(f[0])), p1(dual.Point(f[1])),
+      p2(dual.Point(f[2])), q(dual.Point(apex));
+    return (p1 - p0).cross(p2 - p0).dot(q - p0) > 0.0;
+  };
+  for (std::size_t i = 0; i < facets.size();)
+  {
+    std::size_t j = i + 1;
+    while (j < facets.size() && facets[j].Vertices == facets[i].Vertices)
+      ++j;
+    // A face of more than two cells, or of two cells on the same side of it (they overlap:
+    // a fold whose cells are all positive).
+    const bool overlap = j - i == 2 &&
+      apexSide(facets[i].Vertices, static_cast<std::size_t>(facets[i].Cell)) ==
+        apexSide(facets[i].Vertices, static_cast<std::size_t>(facets[i + 1].Cell));
+    if (j - i > 2 || overlap)
+      for (std::size_t k = i; k < j; ++k)
+        bad[static_cast<std::size_t>(facets[k].Cell)] = 1;
+    i = j;
+  }
+  for (std::size_t c = 0; c < n; ++c)
+    if (bad[c])
+      for (int a = 0; a < 4; ++a)
+        badVertex[static_cast<std::size_t>(dual.Cell(c)[a])] = 1;
+  std::vector<Quad> out;
+  for (std::size_t c = 0; c < n; ++c)
+  {
+    const std::int32_t* v = dual.Cell(c);
+    if (!bad[c] && !badVertex[v[0]] && !badVertex[v[1]] && !badVertex[v[2]] && !badVertex[v[3]] &&
+      CentroidInDomain(mesh, adjacency, sites, dual, c))
+      out.push_back(SortedQuad(v));
+  }
+  std::sort(out.begin(), out.end());
+  if (out.empty())
+    return out;
+  SimplexMesh faces;
+  faces.AmbientDim = 3;
+  faces.SimplexDim = 2;
+  faces.Points = dual.Points;
+  faces.Cells = FacesOf(out);
+  const std::vector<std::uint8_t> crossing = SelfIntersectingTriangles(faces);
+  std::vector<std::array<std::int32_t, 3>> crossed;
+  for (std::size_t f = 0; f < crossing.size(); ++f)
+    if (crossing[f])
+      crossed.push_back({ faces.Cells[3 * f], faces.Cells[3 * f + 1], faces.Cells[3 * f + 2] });
+  if (crossed.empty())
+    return out; // sorted already: crossed stays sorted as FacesOf's faces are
+  std::vector<Quad> kept;
+  for (const Quad& q : out)
+  {
+    bool ok = true;
+    for (int skip = 0; skip < 4 && ok; ++skip)
+    {
+      std::array<std::int32_t, 3> f;
+      for (int a = 0, n = 0; a < 4; ++a)
+        if (a != skip)
+          f[n++] = q[a];
+      ok = !std::binary_search(crossed.begin(), crossed.end(), f);
+    }
+    if (ok)
+      kept.push_back(q);
+  }
+  return kept;
+}
+
+/// The constrained Delaunay tetrahedralization of `points` with `faces`, or the plain one where
+/// TetGen cannot recover them (intersecting faces: a fold the targets missed).
+SimplexMesh DelaunayKeeping(const std::vector<double>& points,
+  const std::vector<std::int32_t>& faces,
+  bool& constrained)
+{
+  constrained = false;
+  if (!faces.empty())
+  {
+    try
+    {
+      SimplexMesh m = ConstrainedDelaunayOfPoints(points, faces);
+      constrained = true;
+      return m;
+    }
+    catch (const InputError&)
+    {
+    }
+  }
+  return DelaunayOfPoints(points);
+}
+
 } // namespace
 
 void RecountFinalDual(const SimplexMesh& input, RestrictedDelaunayMesh& rdt, const SiteSet& sites)
@@ -269,6 +414,8 @@ ValidDualResult MakeDualValid(const SimplexMesh& mesh, const std::vector<std::in
     !DualNeedsReplacement(rdt) || rdt.Points.size() < 12)
     return r;
 
+  const std::vector<Quad> targets = ValidDualCells(mesh, adjacency, sites, rdt);
+  r.TargetCells = targets.size();
   SimplexMesh dt;
   try
   {
@@ -295,7 +442,11 @@ ValidDualResult MakeDualValid(const SimplexMesh& mesh, const std::vector<std::in
     std::vector<std::int32_t> pointBody;
     const std::size_t numBodies = LabelBodies(mesh, pointBody);
     if (numBodies < 2)
-      dt = DelaunayOfPoints(mapped);
+    {
+      bool constrained = false;
+      dt = DelaunayKeeping(mapped, FacesOf(targets), constrained);
+      r.Constrained = constrained;
+    }
     else
     {
       std::vector<std::vector<std::int32_t>> members(numBodies);
@@ -313,9 +464,25 @@ ValidDualResult MakeDualValid(const SimplexMesh& mesh, const std::vector<std::in
         for (std::size_t k = 0; k < ids.size(); ++k)
           for (int d = 0; d < 3; ++d)
             sub[3 * k + d] = mapped[3 * static_cast<std::size_t>(ids[k]) + d];
+        // The body's target cells, in its own numbering.
+        std::vector<std::int32_t> local(mapped.size() / 3, -1);
+        for (std::size_t k = 0; k < ids.size(); ++k)
+          local[static_cast<std::size_t>(ids[k])] = static_cast<std::int32_t>(k);
+        std::vector<Quad> own;
+        for (const Quad& q : targets)
+        {
+          Quad l{ local[q[0]], local[q[1]], local[q[2]], local[q[3]] };
+          if (l[0] >= 0 && l[1] >= 0 && l[2] >= 0 && l[3] >= 0)
+          {
+            std::sort(l.begin(), l.end());
+            own.push_back(l);
+          }
+        }
         try
         {
-          const SimplexMesh part = DelaunayOfPoints(sub);
+          bool constrained = false;
+          const SimplexMesh part = DelaunayKeeping(sub, FacesOf(own), constrained);
+          r.Constrained = r.Constrained || constrained;
           for (std::int32_t v : part.Cells)
             dt.Cells.push_back(ids[static_cast<std::size_t>(v)]);
         }
@@ -359,9 +526,11 @@ ValidDualResult MakeDualValid(const SimplexMesh& mesh, const std::vector<std::in
   dt.Cells = std::move(kept);
   if (siteMetric && siteMetric->NumPoints() == dt.NumPoints())
   {
-    r.Flips = FlipTowardsMetricDelaunay(dt, *siteMetric);
+    r.Flips = FlipTowardsMetricDelaunay(dt, *siteMetric, targets);
     r.BoundarySlivers = PeelBoundarySlivers(dt, *siteMetric, r.VolumeBeforePeel, r.PeeledVolume);
   }
+  for (std::size_t c = 0; c < dt.NumCells(); ++c)
+    r.KeptCells += std::binary_search(targets.begin(), targets.end(), SortedQuad(dt.Cell(c)));
   rdt.Cells = std::move(dt.Cells);
   r.Replaced = true;
   RecountFinalDual(mesh, rdt, sites);

@@ -338,6 +338,40 @@ std::size_t CountSelfIntersections(const SimplexMesh& surface)
   return SelfIntersectionsWith(surface, bvh);
 }
 
+std::vector<std::uint8_t> SelfIntersectingTriangles(const SimplexMesh& surface)
+{
+  CheckSurface(surface, "SelfIntersectingTriangles");
+  const TriangleBvh bvh(surface);
+  std::vector<std::uint8_t> flags(surface.NumCells(), 0);
+  // Each triangle tests all its candidates and sets only its own flag: no shared writes.
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, surface.NumCells(), 128),
+    [&](const tbb::blocked_range<std::size_t>& r)
+    {
+      for (std::size_t i = r.begin(); i != r.end(); ++i)
+      {
+        const std::int32_t* vi = surface.Cell(i);
+        const std::array<Vec3, 3> s = { P(surface, vi[0]), P(surface, vi[1]), P(surface, vi[2]) };
+        bvh.ForEachOverlapping(bvh.TriangleBox(static_cast<std::int32_t>(i)),
+          [&](std::int32_t j)
+          {
+            if (flags[i] || static_cast<std::size_t>(j) == i)
+              return;
+            const std::int32_t* vj = surface.Cell(j);
+            for (int a = 0; a < 3; ++a)
+              for (int b = 0; b < 3; ++b)
+                if (vi[a] == vj[b])
+                  return;
+            const std::array<Vec3, 3> t = {
+              P(surface, vj[0]), P(surface, vj[1]), P(surface, vj[2])
+            };
+            if (TrianglesIntersect(s, t))
+              flags[i] = 1;
+          });
+      }
+    });
+  return flags;
+}
+
 std::size_t CountFlippedTriangles(const SimplexMesh& surface,
   const std::vector<double>& vertexNormals,
   std::vector<std::uint8_t>* flipped)

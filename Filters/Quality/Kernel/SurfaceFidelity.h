@@ -50,6 +50,12 @@ HausdorffResult SampledHausdorffDistance(const SimplexMesh& surface,
 std::size_t CountSelfIntersections(const SimplexMesh& surface);
 
 /**
+ * One flag per triangle of `surface`: 1 where it intersects another triangle with which it
+ * shares no vertex (the pairs CountSelfIntersections counts). Runs in parallel.
+ */
+std::vector<std::uint8_t> SelfIntersectingTriangles(const SimplexMesh& surface);
+
+/**
  * Triangles of `surface` whose normal points against `vertexNormals` (3 per vertex of
  * `surface`, e.g. the input surface's normals interpolated at the output vertices): the dot
  * product of the triangle normal with the mean of its vertices' reference normals is <= 0.

@@ -10,6 +10,7 @@
 
 #include <Eigen/Dense>
 
+#include <algorithm>
 #include <cmath>
 #include <initializer_list>
 
@@ -121,7 +122,36 @@ int TestSurfaceFidelity(int, char*[])
     av::SimplexMesh shifted = torus;
     for (std::size_t i = 0; i < shifted.NumPoints(); ++i)
       shifted.Points[3 * i] += 1.0;
-    AV_CHECK(av::CountSelfIntersections(Concatenate(torus, shifted)) > 100);
+    const av::SimplexMesh both = Concatenate(torus, shifted);
+    AV_CHECK(av::CountSelfIntersections(both) > 100);
+    // The flags mark the triangles of those pairs: none on the embedded torus; on the two
+    // tori, only triangles of the overlap (those where the shifted copy crosses the first), in
+    // both copies, and each flagged triangle really crosses one of the other copy.
+    const std::vector<std::uint8_t> none = av::SelfIntersectingTriangles(torus);
+    AV_CHECK(none.size() == torus.NumCells() &&
+      std::count(none.begin(), none.end(), std::uint8_t(1)) == 0);
+    const std::vector<std::uint8_t> flags = av::SelfIntersectingTriangles(both);
+    const std::size_t n = torus.NumCells();
+    const auto first = std::count(flags.begin(), flags.begin() + static_cast<std::ptrdiff_t>(n), 1);
+    const auto second = std::count(flags.begin() + static_cast<std::ptrdiff_t>(n), flags.end(), 1);
+    AV_CHECK_MSG(first > 10 && second > 10 && first + second < static_cast<std::ptrdiff_t>(n),
+      first << " + " << second << " flagged of " << 2 * n);
+    for (std::size_t t = 0; t < 2 * n; t += 97)
+    {
+      av::SimplexMesh pair = both;
+      pair.Cells.clear();
+      const std::size_t lo = t < n ? n : 0;
+      pair.Cells.insert(
+        pair.Cells.end(), both.Cells.begin() + 3 * t, both.Cells.begin() + 3 * t + 3);
+      pair.Cells.insert(
+        pair.Cells.end(), both.Cells.begin() + 3 * lo, both.Cells.begin() + 3 * (lo + n));
+      // The triangle against the other copy alone: crossings with it are its own pairs.
+      AV_CHECK((av::CountSelfIntersections(pair) > 0) == (flags[t] == 1));
+    }
+    // Two triangles that cross: both flagged.
+    const std::vector<std::uint8_t> two = av::SelfIntersectingTriangles(
+      Pair({ 0, 0, 0, 2, 0, 0, 0, 2, 0, 0.5, 0.5, -1, 0.5, 0.5, 1, 3, 3, 0.5 }));
+    AV_CHECK(two.size() == 2 && two[0] == 1 && two[1] == 1);
   }
 
   // Flipped triangles against reference normals (+z): one reversed triangle of a square.
