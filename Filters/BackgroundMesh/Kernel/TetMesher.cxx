@@ -20,6 +20,11 @@
 #include <string>
 #include <vector>
 
+#include <cerrno>
+#include <sys/types.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 namespace av
 {
 namespace
@@ -407,6 +412,40 @@ namespace av
 
 namespace
 {
+/// write() of all `size` bytes (false on an error).
+bool WriteAll(int fd, const void* data, std::size_t size)
+{
+  const char* p = static_cast<const char*>(data);
+  while (size > 0)
+  {
+    const ssize_t n = write(fd, p, size);
+    if (n < 0 && errno == EINTR)
+      continue;
+    if (n <= 0)
+      return false;
+    p += n;
+    size -= static_cast<std::size_t>(n);
+  }
+  return true;
+}
+
+/// read() of exactly `size` bytes (false on an error or an early end).
+bool ReadAll(int fd, void* data, std::size_t size)
+{
+  char* p = static_cast<char*>(data);
+  while (size > 0)
+  {
+    const ssize_t n = read(fd, p, size);
+    if (n < 0 && errno == EINTR)
+      continue;
+    if (n <= 0)
+      return false;
+    p += n;
+    size -= static_cast<std::size_t>(n);
+  }
+  return true;
+}
+
 /// The tets of a TetGen run on `points` (which must not add a point), as a mesh of `points`.
 SimplexMesh TetsOfPoints(const std::vector<double>& points, const tetgenio& out, const char* what)
 {
@@ -518,16 +557,67 @@ SimplexMesh ConstrainedDelaunayOfPoints(const std::vector<double>& points,
   }
   // PLC, keep the convex hull (the faces are inside it, not its boundary), zero-based, quiet,
   // no Steiner point on the faces (Y) nor anywhere (S0).
-  char switches[] = "pczQYS0";
-  try
+  // TetGen 1.5 can crash (SIGSEGV in its memory release) instead of reporting an error on faces
+  // that intersect in a way the caller did not detect: it runs in a child process, which sends
+  // the cells back through a pipe, so that a crash becomes an InputError here.
+  int fds[2];
+  if (pipe(fds) != 0)
+    throw InputError("ConstrainedDelaunayOfPoints: no pipe for the TetGen process");
+  const pid_t child = fork();
+  if (child < 0)
   {
-    tetrahedralize(switches, &in, &out);
+    close(fds[0]);
+    close(fds[1]);
+    throw InputError("ConstrainedDelaunayOfPoints: no TetGen process (fork failed)");
   }
-  catch (int code)
+  if (child == 0)
   {
-    throw InputError("ConstrainedDelaunayOfPoints: " + TetGenErrorText(code));
+    close(fds[0]);
+    std::int64_t count = -1; // -1: TetGen reported an error
+    std::vector<std::int32_t> cells;
+    char switches[] = "pczQYS0";
+    try
+    {
+      tetrahedralize(switches, &in, &out);
+      cells = TetsOfPoints(points, out, "ConstrainedDelaunayOfPoints").Cells;
+      count = static_cast<std::int64_t>(cells.size());
+    }
+    catch (...)
+    {
+    }
+    const bool ok = WriteAll(fds[1], &count, sizeof count) &&
+      (count <= 0 || WriteAll(fds[1], cells.data(), cells.size() * sizeof(std::int32_t)));
+    _exit(ok ? 0 : 1);
   }
-  return TetsOfPoints(points, out, "ConstrainedDelaunayOfPoints");
+  close(fds[1]);
+  std::int64_t count = -2;
+  bool ok = ReadAll(fds[0], &count, sizeof count);
+  std::vector<std::int32_t> cells;
+  if (ok && count > 0 && count % 4 == 0 && static_cast<std::uint64_t>(count) <= (1ull << 34))
+  {
+    cells.resize(static_cast<std::size_t>(count));
+    ok = ReadAll(fds[0], cells.data(), cells.size() * sizeof(std::int32_t));
+  }
+  close(fds[0]);
+  int status = 0;
+  while (waitpid(child, &status, 0) < 0 && errno == EINTR)
+  {
+  }
+  if (WIFSIGNALED(status))
+    throw InputError("ConstrainedDelaunayOfPoints: TetGen crashed (signal " +
+      std::to_string(WTERMSIG(status)) + "; intersecting faces?)");
+  if (!ok || !WIFEXITED(status) || WEXITSTATUS(status) != 0 || count <= 0 || cells.empty())
+    throw InputError("ConstrainedDelaunayOfPoints: TetGen failed on these faces (intersecting "
+                     "or coplanar points?)");
+  for (const std::int32_t v : cells)
+    if (v < 0 || static_cast<std::size_t>(v) >= np)
+      throw InputError("ConstrainedDelaunayOfPoints: a bad cell from the TetGen process");
+  SimplexMesh m;
+  m.AmbientDim = 3;
+  m.SimplexDim = 3;
+  m.Points = points;
+  m.Cells = std::move(cells);
+  return m;
 }
 
 } // namespace av
