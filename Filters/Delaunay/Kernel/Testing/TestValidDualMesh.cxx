@@ -381,9 +381,10 @@ void TestConstrainedDelaunayKeepsTargets()
   // Faces that cross (TetGen fails on them, and TetGen 1.5 may crash rather than report it; it
   // runs in a child process): an InputError, and the caller goes on. Then the same call works.
   std::vector<double> pts = c.Points;
-  const double extra[] = { 0.3, 0.3, 0.5, 0.6, 0.3, 0.5, 0.45, 0.6, 0.5, // a flat triangle
-    0.45, 0.45, 0.2, 0.45, 0.45, 0.8, 0.48, 0.46, 0.8 };                 // one piercing it
-  pts.insert(pts.end(), extra, extra + 18);
+  const std::vector<double> flat = { 0.3, 0.3, 0.5, 0.6, 0.3, 0.5, 0.45, 0.6, 0.5 };
+  const std::vector<double> piercing = { 0.45, 0.45, 0.2, 0.45, 0.45, 0.8, 0.48, 0.46, 0.8 };
+  pts.insert(pts.end(), flat.begin(), flat.end());
+  pts.insert(pts.end(), piercing.begin(), piercing.end());
   const std::int32_t b = static_cast<std::int32_t>(c.Points.size() / 3);
   threw = false;
   try
