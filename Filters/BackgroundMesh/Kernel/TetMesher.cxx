@@ -412,13 +412,14 @@ namespace av
 
 namespace
 {
-/// write() of all `size` bytes (false on an error).
-bool WriteAll(int fd, const void* data, std::size_t size)
+/// All `size` bytes through `io` (read or write; retried on EINTR), false on an error or an
+/// early end.
+template <typename Buffer, typename Io>
+bool TransferAll(int fd, Buffer* p, std::size_t size, Io io)
 {
-  const char* p = static_cast<const char*>(data);
   while (size > 0)
   {
-    const ssize_t n = write(fd, p, size);
+    const ssize_t n = io(fd, p, size);
     if (n < 0 && errno == EINTR)
       continue;
     if (n <= 0)
@@ -429,21 +430,14 @@ bool WriteAll(int fd, const void* data, std::size_t size)
   return true;
 }
 
-/// read() of exactly `size` bytes (false on an error or an early end).
+bool WriteAll(int fd, const void* data, std::size_t size)
+{
+  return TransferAll(fd, static_cast<const char*>(data), size, ::write);
+}
+
 bool ReadAll(int fd, void* data, std::size_t size)
 {
-  char* p = static_cast<char*>(data);
-  while (size > 0)
-  {
-    const ssize_t n = read(fd, p, size);
-    if (n < 0 && errno == EINTR)
-      continue;
-    if (n <= 0)
-      return false;
-    p += n;
-    size -= static_cast<std::size_t>(n);
-  }
-  return true;
+  return TransferAll(fd, static_cast<char*>(data), size, ::read);
 }
 
 /// The tets of a TetGen run on `points` (which must not add a point), as a mesh of `points`.
