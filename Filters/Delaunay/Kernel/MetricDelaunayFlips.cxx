@@ -36,19 +36,16 @@ class FlipState
 public:
   FlipState(SimplexMesh& m,
     const MetricField& metric,
-    const std::vector<std::array<std::int32_t, 4>>* targets)
+    const std::vector<std::array<std::int32_t, 4>>& targets)
     : Mesh(m)
   {
-    if (targets)
+    Targets.reserve(targets.size());
+    for (Tet t : targets)
     {
-      Targets.reserve(targets->size());
-      for (Tet t : *targets)
-      {
-        std::sort(t.begin(), t.end());
-        Targets.push_back(t);
-      }
-      std::sort(Targets.begin(), Targets.end());
+      std::sort(t.begin(), t.end());
+      Targets.push_back(t);
     }
+    std::sort(Targets.begin(), Targets.end());
     Sqrt.resize(m.NumPoints());
     for (std::size_t i = 0; i < m.NumPoints(); ++i)
       Sqrt[i] = SymmetricSqrt(UnpackSymmetric(metric.At(i)));
@@ -343,21 +340,13 @@ private:
 
 } // namespace
 
-MetricDelaunayFlipResult FlipTowardsMetricDelaunay(SimplexMesh& mesh, const MetricField& metric)
-{
-  if (mesh.SimplexDim != 3 || mesh.AmbientDim != 3 || metric.NumPoints() != mesh.NumPoints())
-    return {};
-  FlipState s(mesh, metric, nullptr);
-  return s.Run();
-}
-
 MetricDelaunayFlipResult FlipTowardsMetricDelaunay(SimplexMesh& mesh,
   const MetricField& metric,
   const std::vector<std::array<std::int32_t, 4>>& targets)
 {
   if (mesh.SimplexDim != 3 || mesh.AmbientDim != 3 || metric.NumPoints() != mesh.NumPoints())
     return {};
-  FlipState s(mesh, metric, &targets);
+  FlipState s(mesh, metric, targets);
   return s.Run();
 }
 

@@ -36,19 +36,16 @@ struct MetricDelaunayFlipResult
  * domain with the same boundary faces; faces on the boundary or shared by more than two tets
  * are never flipped. At most 10 flips per tet (the criterion changes with the metric between
  * neighbors, so the flips need not terminate on their own). Points are not changed.
- */
-MetricDelaunayFlipResult FlipTowardsMetricDelaunay(SimplexMesh& mesh, const MetricField& metric);
-
-/**
- * The same flips with target tets (`targets`: vertex quadruples of the same points, in any
- * order; MakeDualValid gives the valid cells of the restricted Delaunay dual): a target tet of
- * the mesh is never flipped away, and a valid flip that creates a target tet is made even
- * across a face that is metric Delaunay. The number of target tets in the mesh never falls, so
- * the mesh moves towards the targets wherever they form a valid mesh.
+ *
+ * With target tets (`targets`: vertex quadruples of the same points, in any order;
+ * MakeDualValid gives the valid cells of the restricted Delaunay dual): a target tet of the
+ * mesh is never flipped away, and a valid flip that creates a target tet is made even across a
+ * face that is metric Delaunay. The number of target tets in the mesh never falls, so the mesh
+ * moves towards the targets wherever they form a valid mesh.
  */
 MetricDelaunayFlipResult FlipTowardsMetricDelaunay(SimplexMesh& mesh,
   const MetricField& metric,
-  const std::vector<std::array<std::int32_t, 4>>& targets);
+  const std::vector<std::array<std::int32_t, 4>>& targets = {});
 
 } // namespace av
 

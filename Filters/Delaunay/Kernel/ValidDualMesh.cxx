@@ -227,6 +227,16 @@ Quad SortedQuad(const std::int32_t* v)
   return q;
 }
 
+/// The face of sorted quadruple `q` opposite its vertex `skip` (sorted too).
+std::array<std::int32_t, 3> FaceOf(const Quad& q, int skip)
+{
+  std::array<std::int32_t, 3> f;
+  for (int a = 0, n = 0; a < 4; ++a)
+    if (a != skip)
+      f[n++] = q[a];
+  return f;
+}
+
 /// The distinct faces of `cells` (sorted quadruples), 3 ids each.
 std::vector<std::int32_t> FacesOf(const std::vector<Quad>& cells)
 {
@@ -234,13 +244,7 @@ std::vector<std::int32_t> FacesOf(const std::vector<Quad>& cells)
   faces.reserve(4 * cells.size());
   for (const Quad& q : cells)
     for (int skip = 0; skip < 4; ++skip)
-    {
-      std::array<std::int32_t, 3> f;
-      for (int a = 0, n = 0; a < 4; ++a)
-        if (a != skip)
-          f[n++] = q[a];
-      faces.push_back(f); // sorted: q is
-    }
+      faces.push_back(FaceOf(q, skip));
   std::sort(faces.begin(), faces.end());
   faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
   std::vector<std::int32_t> out;
@@ -327,13 +331,7 @@ std::vector<Quad> ValidDualCells(const SimplexMesh& mesh,
   {
     bool ok = true;
     for (int skip = 0; skip < 4 && ok; ++skip)
-    {
-      std::array<std::int32_t, 3> f;
-      for (int a = 0, n = 0; a < 4; ++a)
-        if (a != skip)
-          f[n++] = q[a];
-      ok = !std::binary_search(crossed.begin(), crossed.end(), f);
-    }
+      ok = !std::binary_search(crossed.begin(), crossed.end(), FaceOf(q, skip));
     if (ok)
       kept.push_back(q);
   }
