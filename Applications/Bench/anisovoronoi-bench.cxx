@@ -140,6 +140,7 @@ struct Case
   PaperValues Paper;
   av::MetricField RawMetric;      ///< before preparation (empty: not prepared)
   av::MetricPreparationResult Prep; ///< what the preparation did
+  double PrepSeconds = 0.0;         ///< its wall time
   bool IsSurface = false;              // a generated surface with a curvature metric
   std::size_t DefaultSites = 0;        // the paper's output vertex count
   avbench::PaperMeshValues PaperMesh{}; // Tab. 5 / Tab. 3 meshing row
@@ -205,7 +206,9 @@ void PrepareCaseMetric(const Args& a, Case& c, std::size_t sites)
   av::MetricPreparationOptions o = a.Preparation;
   o.Dimension = c.Mesh.AmbientDim == 2 ? 2 : 3;
   o.TargetSites = static_cast<double>(sites);
+  const av::Stopwatch watch;
   c.Prep = av::PrepareMetric(c.Mesh, c.Metric, o);
+  c.PrepSeconds = watch.Seconds();
   c.RawMetric = std::move(c.Metric);
   c.Metric = c.Prep.Metric;
   // Back from cell units to the input's scale (the embedding's regime, as the CLI does), then
@@ -452,6 +455,9 @@ void ReportEmbedding(const Args& a, const Case& c, const av::EmbeddingOptions& o
     out.Set("metric_prep_graded_vertices", c.Prep.NumGraded);
     out.Set("metric_prep_thickness_limited", c.Prep.NumThicknessLimited);
     out.Set("metric_prep_cells_across", c.Prep.CellsAcross);
+    out.Set("metric_prep_seconds", c.PrepSeconds);
+    out.Set("metric_prep_gradations", c.Prep.GradationRuns);
+    out.Set("metric_prep_sweeps", c.Prep.TotalGradationSweeps);
     out.Set("metric_implied_sites", c.Prep.ImpliedSites);
   }
   out.Set("embed_seconds", embedSeconds);

@@ -138,9 +138,11 @@ void ClampSizes(double lo, double hi, std::vector<Mat<D>>& m, std::vector<unsign
 template <int D>
 void Range(const Mat<D>& m, double& lo, double& hi)
 {
-  const auto e = EigenDecompose(m);
-  lo = e.Values.minCoeff();
-  hi = e.Values.maxCoeff();
+  // Eigenvalues only, closed form: a quick test, exact to round-off is enough.
+  Eigen::SelfAdjointEigenSolver<Mat<D>> es;
+  es.computeDirect(m, Eigen::EigenvaluesOnly);
+  lo = es.eigenvalues().minCoeff();
+  hi = es.eigenvalues().maxCoeff();
 }
 
 template <int D>
@@ -405,7 +407,11 @@ MetricPreparationResult Prepare(const SimplexMesh& mesh,
       r.NumGraded = 0;
       r.GradationSweeps = 0;
       if (o.Gradation)
+      {
         r.NumGraded = Grade<D>(mesh, graph, std::log(o.GradationFactor), m, r.GradationSweeps);
+        ++r.GradationRuns;
+        r.TotalGradationSweeps += r.GradationSweeps;
+      }
       ClampSizes<D>(lo, hi, m, clamped);
       r.NumHMaxClamped = static_cast<std::size_t>(
         std::count_if(clamped.begin(), clamped.end(), [](unsigned char f) { return f & 1; }));

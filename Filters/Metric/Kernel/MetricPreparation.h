@@ -87,6 +87,8 @@ struct MetricPreparationResult
   double ImpliedSites = 0.0;           ///< Complexity / UnitVertexMeasure: the sites it asks for
   int NormalizationRounds = 0;         ///< rounds run (0 without TargetSites)
   int GradationSweeps = 0;             ///< sweeps of the last gradation
+  int GradationRuns = 0;               ///< gradations run in all (one per normalization round)
+  int TotalGradationSweeps = 0;        ///< their sweeps added up
   std::size_t NumGraded = 0;           ///< vertices the last gradation changed
   std::size_t NumHMinClamped = 0;      ///< vertices with an eigenvalue lowered to 1 / HMin^2
   std::size_t NumHMaxClamped = 0;      ///< vertices with an eigenvalue raised to 1 / HMax^2

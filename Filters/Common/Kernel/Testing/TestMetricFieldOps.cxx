@@ -23,6 +23,26 @@ Eigen::Matrix3d RandomSpd(std::mt19937& rng)
   return a * a.transpose() + 0.05 * Eigen::Matrix3d::Identity();
 }
 
+/// A random metric with eigenvalues spread over [1, stretch^2] in random directions.
+Eigen::Matrix3d RandomStretched(std::mt19937& rng, double stretch)
+{
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const Eigen::Matrix3d q = Eigen::HouseholderQR<Eigen::Matrix3d>(RandomSpd(rng)).householderQ();
+  Eigen::Vector3d l;
+  for (int k = 0; k < 3; ++k)
+    l[k] = std::pow(stretch, 2.0 * u(rng));
+  return 1e3 * u(rng) * q * l.asDiagonal() * q.transpose();
+}
+
+/// The intersection by its definition, with Eigen's generalized solver: P^T a P = I,
+/// P^T b P = diag(mu), the result P^-T diag(max(1, mu)) P^-1.
+Eigen::Matrix3d ReferenceIntersection(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b)
+{
+  const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::Matrix3d> ges(b, a);
+  const Eigen::Matrix3d pinv = ges.eigenvectors().inverse();
+  return pinv.transpose() * ges.eigenvalues().cwiseMax(1.0).asDiagonal() * pinv;
+}
+
 void CheckLogEuclideanMean()
 {
   double a[6], b[6];
@@ -68,6 +88,20 @@ void CheckIntersection()
     // Intersecting with itself, or with a smaller metric, changes nothing.
     AV_CHECK((av::IntersectMetrics(a, a) - a).norm() < 1e-9 * a.norm());
     AV_CHECK((av::IntersectMetrics(a, 0.5 * a) - a).norm() < 1e-9 * a.norm());
+  }
+  // Against the definition, with stretches up to 1000 (the gradation's metrics reach 25 and
+  // more), and IntersectInto's change flag: set exactly when b pokes out of a.
+  for (int t = 0; t < 2000; ++t)
+  {
+    const Eigen::Matrix3d a = RandomStretched(rng, 1000.0), b = RandomStretched(rng, 1000.0);
+    const Eigen::Matrix3d ref = ReferenceIntersection(a, b);
+    AV_CHECK((av::IntersectMetrics(a, b) - ref).norm() < 1e-9 * ref.norm());
+    Eigen::Matrix3d into = a;
+    const double mu =
+      Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::Matrix3d>(b, a).eigenvalues().maxCoeff();
+    const bool changed = av::IntersectInto(into, b, 1e-6);
+    AV_CHECK(changed == (mu > 1.0 + 1e-6) || std::abs(mu - 1.0 - 1e-6) < 1e-9);
+    AV_CHECK(changed ? (into - ref).norm() < 1e-9 * ref.norm() : into == a);
   }
   // Axis-aligned: the larger eigenvalue in each direction.
   const Eigen::Matrix2d x = Eigen::Vector2d(4.0, 1.0).asDiagonal();
