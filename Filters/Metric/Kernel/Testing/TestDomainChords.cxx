@@ -189,6 +189,22 @@ void CheckThicknessLimit()
   AV_CHECK_MSG(fit.CellsAcross > 0.0 && fit.CellsAcross < 2.0, "cells across " << fit.CellsAcross);
   AV_CHECK_MSG(std::abs(fit.ImpliedSites / 5.0 - 1.0) < 0.06, "implied sites " << fit.ImpliedSites);
 
+  // With the gradation, a thin part's floor also holds the sizes graded from it, so scaling
+  // the metric down stops lowering the complexity (squareBend). The preparation must then
+  // lower the cells across instead of driving the scale to 0, and still meet the target in a
+  // few gradations (31 before that, 10 now).
+  const av::SimplexMesh plate = Slab(12, 12, 1, 1.0, 1.0, 0.05, [](int, int, int) { return true; });
+  av::MetricPreparationOptions g;
+  g.MinCellsAcross = 2.0;
+  g.TargetSites = 40.0;
+  const av::MetricPreparationResult graded =
+    av::PrepareMetric(plate, Isotropic(plate.NumPoints(), 0.5), g);
+  AV_CHECK_MSG(
+    graded.CellsAcross > 0.0 && graded.CellsAcross < 2.0, "cells across " << graded.CellsAcross);
+  AV_CHECK_MSG(
+    std::abs(graded.ImpliedSites / 40.0 - 1.0) < 0.05, "implied sites " << graded.ImpliedSites);
+  AV_CHECK_MSG(graded.GradationRuns <= 16, graded.GradationRuns << " gradations");
+
   // Bad input.
   o.MinCellsAcross = -1.0;
   AV_CHECK_THROWS(av::PrepareMetric(slab, big, o));
