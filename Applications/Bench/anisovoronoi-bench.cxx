@@ -67,6 +67,7 @@ struct Args
   int Threads = 0;
   std::uint64_t Seed = 1;
   double Mu = 100.0;
+  bool ScaleFreeRegularizer = false;
   int Anderson = 5;
   bool DoubleSolve = false;
   bool SeparateBodies = true; // bodies apart in the embedding (EmbeddingOptions)
@@ -413,6 +414,7 @@ av::EmbeddingOptions EmbeddingOptionsFor(const Args& a, const Case& c, int dim)
   const bool gaussian = !c.Real && !c.IsSurface && c.Preset == av::AnalyticPreset::Gaussian2D;
   o.Iterations = a.Iterations >= 0 ? a.Iterations : (gaussian ? 20 : 50);
   o.Mu = a.Mu;
+  o.ScaleFreeRegularizer = a.ScaleFreeRegularizer;
   o.Seed = a.Seed;
   o.AndersonWindow = a.Anderson;
   o.SinglePrecisionSolve = !a.DoubleSolve;
@@ -502,6 +504,7 @@ void ReportEmbedding(const Args& a, const Case& c, const av::EmbeddingOptions& o
     out.Set("iterations_to_paper_error", reached);
   }
   out.Set("mu", o.Mu);
+  out.Set("scale_free_regularizer", o.ScaleFreeRegularizer);
   out.Set("anderson", o.AndersonWindow);
   out.Set("init", a.Init);
   out.Set("weighted", a.Weighted);
@@ -821,6 +824,8 @@ void Usage(std::ostream& os)
        "  --threads T       limit TBB threads (default: all cores)\n"
        "  --seed S          random seed of the initial field (default 1)\n"
        "  --mu M            regularizer weight (default 100)\n"
+       "  --scale-free-regularizer  E_reg in units of the largest bounding-box extent\n"
+       "                    (default: in the input's length unit, as printed in the paper)\n"
        "  --anderson W      Anderson window, 0 = plain local/global (default 5)\n"
        "  --double-solve    global steps with CHOLMOD's double solve (default: float factor copy)\n"
        "  --no-separate-bodies  parts of the input with no shared point stay where the solve\n"
@@ -988,6 +993,8 @@ bool Parse(int argc, char** argv, Args& a)
       a.Seed = static_cast<std::uint64_t>(std::stoull(next()));
     else if (k == "--mu")
       a.Mu = std::stod(next());
+    else if (k == "--scale-free-regularizer")
+      a.ScaleFreeRegularizer = true;
     else if (k == "--anderson")
       a.Anderson = std::stoi(next());
     else if (k == "--double-solve")

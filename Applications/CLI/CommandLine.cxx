@@ -58,6 +58,9 @@ options:
   --feature-corners ARRAY  with --feature-patches: point array, nonzero points are corners
   --seed S                 random seed (default 1)
   --mu X                   regularization weight (default 100)
+  --scale-free-regularizer  regularizer in units of the input's largest extent, so that mm
+                           and m give the same embedding (default: in the input's own length
+                           unit, as the paper prints it)
   --shrink F               shrink factor of the Voronoi cells (default 0.8; 1 = none)
   --tensor-as-metric       tensor: use eigenvalues as metric eigenvalues, not stretches
   --clamp                  tensor: clamp eigenvalues instead of taking absolute values
@@ -312,6 +315,8 @@ Options ParseCommandLine(int argc, char* argv[])
       o.Smooth = ParseInt(a, next());
     else if (a == "--mu")
       o.Mu = ParseDouble(a, next());
+    else if (a == "--scale-free-regularizer")
+      o.ScaleFreeRegularizer = true;
     else if (a == "--shrink")
       o.Shrink = ParseDouble(a, next());
     else if (a == "--min-eigenvalue")

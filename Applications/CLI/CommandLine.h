@@ -32,6 +32,7 @@ struct Options
   bool ValidDual = true;
   bool RepairNonManifold = true, DoubleSolve = false, ImproveMesh = true, SeparateBodies = true;
   bool ImproveBoundary = true; // the mesh improvement also works on the tet boundary
+  bool ScaleFreeRegularizer = false; // --scale-free-regularizer: E_reg in units of the extent
   bool KeepFeatureSites = false; // surfaces: the ODT steps keep the crease sites on the creases
   /// Metric preparation (on for tensor:ARRAY; metric, preset and .sol inputs only when a
   /// preparation option is given, PrepareAsked). SitesGiven: --sites was on the command line.

@@ -388,6 +388,7 @@ void RunMeshingStages(const Options& o,
                                                            : vtkAnisoEmbedding::VERTEX_MEAN);
   s.Embedding->SetSeparateBodies(o.SeparateBodies);
   s.Embedding->SetMu(o.Mu);
+  s.Embedding->SetScaleFreeRegularizer(o.ScaleFreeRegularizer);
   s.Embedding->SetSeed(o.Seed);
   runner.Run(s.Embedding, EmbeddingStage(o));
 

@@ -46,6 +46,7 @@ av::EmbeddingOptions MakeOptions(vtkAnisoEmbedding* self)
     ? av::EmbeddingGlobalSolver::Iterative
     : av::EmbeddingGlobalSolver::Automatic;
   options.Mu = self->GetMu();
+  options.ScaleFreeRegularizer = self->GetScaleFreeRegularizer();
   options.Seed = static_cast<std::uint64_t>(self->GetSeed());
   options.RelativeEnergyTolerance = self->GetRelativeEnergyTolerance();
   options.ElementMeasureWeighting = self->GetElementMeasureWeighting();
@@ -308,6 +309,7 @@ void vtkAnisoEmbedding::PrintSelf(ostream& os, vtkIndent indent)
      << "\n";
   os << indent << "ErrorWarningThreshold: " << this->ErrorWarningThreshold << "\n";
   os << indent << "Mu: " << this->Mu << "\n";
+  os << indent << "ScaleFreeRegularizer: " << this->ScaleFreeRegularizer << "\n";
   os << indent << "Seed: " << this->Seed << "\n";
   os << indent << "RelativeEnergyTolerance: " << this->RelativeEnergyTolerance << "\n";
   os << indent << "ElementMeasureWeighting: " << this->ElementMeasureWeighting << "\n";

@@ -124,6 +124,17 @@ public:
   ///@}
 
   ///@{
+  /// Measure the regularizer in units of the input's largest bounding-box extent, so that μ
+  /// means the same for a part in millimetres and in metres; off (default): in the input's own
+  /// length unit, as the paper prints it (its inputs are unit-sized; a part given in mm is then
+  /// regularized 10^6 times more strongly than the same part in m). On: lower L_avg on large-unit
+  /// inputs, worse final meshes on the coarse real volumes (Filters/Embedding/README.md).
+  vtkSetMacro(ScaleFreeRegularizer, bool);
+  vtkGetMacro(ScaleFreeRegularizer, bool);
+  vtkBooleanMacro(ScaleFreeRegularizer, bool);
+  ///@}
+
+  ///@{
   /// Seed of the random initial field (default 1): same seed, same result.
   vtkSetMacro(Seed, int);
   vtkGetMacro(Seed, int);
@@ -223,6 +234,7 @@ protected:
   int GlobalSolver = AUTOMATIC_SOLVER;
   double ErrorWarningThreshold = 50.0;
   double Mu = 100.0;
+  bool ScaleFreeRegularizer = false;
   int Seed = 1;
   double RelativeEnergyTolerance = 0.0;
   bool ElementMeasureWeighting = false;

@@ -4,6 +4,7 @@
 #define av_SimplexMesh_h
 
 #include "InputError.h" // every kernel that takes a SimplexMesh may throw it
+#include <algorithm>
 
 #include <cstddef>
 #include <cstdint>
@@ -31,6 +32,36 @@ struct SimplexMesh
   const double* Point(std::size_t i) const { return Points.data() + i * AmbientDim; }
   const std::int32_t* Cell(std::size_t c) const { return Cells.data() + c * (SimplexDim + 1); }
 };
+
+/// Axis-aligned bounds of the mesh points (AmbientDim entries of lo and hi; +-1e300 when empty).
+inline void PointBounds(const SimplexMesh& mesh, double lo[3], double hi[3])
+{
+  for (int d = 0; d < 3; ++d)
+  {
+    lo[d] = 1e300;
+    hi[d] = -1e300;
+  }
+  for (std::size_t i = 0; i < mesh.NumPoints(); ++i)
+  {
+    for (int d = 0; d < mesh.AmbientDim; ++d)
+    {
+      lo[d] = std::min(lo[d], mesh.Point(i)[d]);
+      hi[d] = std::max(hi[d], mesh.Point(i)[d]);
+    }
+  }
+}
+
+/// The largest extent of the mesh's bounding box (0 for an empty mesh or a single point).
+inline double LargestExtent(const SimplexMesh& mesh)
+{
+  double lo[3], hi[3], ext = 0.0;
+  PointBounds(mesh, lo, hi);
+  for (int d = 0; d < mesh.AmbientDim; ++d)
+  {
+    ext = std::max(ext, hi[d] - lo[d]);
+  }
+  return ext;
+}
 
 /**
  * A symmetric metric per mesh vertex, always stored as a full 3x3 symmetric tensor in

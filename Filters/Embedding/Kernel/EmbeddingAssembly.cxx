@@ -94,7 +94,7 @@ void EmbeddingSolver::Internals::AddElementEntries(
 void EmbeddingSolver::Internals::AddRegularizerEntries(std::size_t c, ColumnScatter& scatter) const
 {
   // Regularizer rows i with c in {i} U N(i), i.e. i in {c} U N(c).
-  const double mu = this->Options.Mu;
+  const double mu = this->Options.Mu * this->RegularizerScale;
   const std::int32_t ci = static_cast<std::int32_t>(c);
   auto addRow = [&](std::int32_t i) {
     if (!this->Interior[i])

@@ -330,7 +330,7 @@ double EmbeddingSolver::Internals::RegularizerEnergy() const
   {
     sum += p;
   }
-  return sum;
+  return sum * this->RegularizerScale;
 }
 
 EmbeddingEnergy EmbeddingSolver::Internals::LocalStep()

@@ -495,21 +495,16 @@ void EmbeddingSolver::Internals::InitializeState(const SimplexMesh& mesh)
   const int m = this->M, mb = this->MB;
   const std::size_t np = this->NP;
   this->X.assign(np * mb, 0.0);
-  double lo[3] = { 1e300, 1e300, 1e300 }, hi[3] = { -1e300, -1e300, -1e300 };
   for (std::size_t i = 0; i < np; ++i)
   {
     for (int d = 0; d < m; ++d)
     {
       this->X[i * mb + d] = mesh.Point(i)[d];
-      lo[d] = std::min(lo[d], mesh.Point(i)[d]);
-      hi[d] = std::max(hi[d], mesh.Point(i)[d]);
     }
   }
-  double ext = 0.0;
-  for (int d = 0; d < m; ++d)
-  {
-    ext = std::max(ext, hi[d] - lo[d]);
-  }
+  double lo[3], hi[3];
+  PointBounds(mesh, lo, hi);
+  const double ext = LargestExtent(mesh);
   const bool smooth = this->Options.Initialization == EmbeddingInitialization::Smooth;
   const double amp = ext *
     (this->Options.InitialAmplitude > 0.0 ? this->Options.InitialAmplitude : (smooth ? 0.2 : 1e-3));

@@ -28,6 +28,11 @@ EmbeddingSolver::EmbeddingSolver(
   p.NP = mesh.NumPoints();
   p.NE = mesh.NumCells();
   p.Cells = mesh.Cells;
+  if (options.ScaleFreeRegularizer)
+  {
+    const double ext = LargestExtent(mesh);
+    p.RegularizerScale = ext > 0.0 ? 1.0 / (ext * ext) : 1.0;
+  }
   p.BuildTopology(mesh);
   p.NumBodies = LabelBodies(mesh, p.PointBody);
   if (options.TargetAverageErrorPercent > 0.0 &&

@@ -45,7 +45,7 @@ enum class EmbeddingElementMetric
 struct EmbeddingEnergy
 {
   double Embedding = 0.0;      ///< E_em, Eq. 11 (weighted if ElementMeasureWeighting)
-  double Regularization = 0.0; ///< E_reg (quadratic reading, see Filters/Embedding/README.md)
+  double Regularization = 0.0; ///< E_reg (quadratic reading; / ℓ² with ScaleFreeRegularizer)
   double Total = 0.0;          ///< E_em + Mu * E_reg
 };
 
@@ -93,6 +93,14 @@ struct EmbeddingOptions
   int TargetDim = 8;       ///< m-bar, in [AmbientDim + 1, 20]
   int Iterations = 50;     ///< local/global iterations always run (the paper's 50; >= 0)
   double Mu = 100.0;       ///< weight of the regularizer (>= 0)
+  /// Measure the regularizer's Laplacians in units of the mesh's largest bounding-box extent ℓ
+  /// (E_reg / ℓ²), so that Mu means the same for a part given in millimetres and in metres (the
+  /// paper's μ = 100 was chosen on unit-sized inputs). false (default): E_reg in the input's own
+  /// length unit, as printed in the paper, so a mesh 1000x larger is regularized 10^6x more
+  /// strongly. Unit-sized inputs (extent 1) are the same either way. Off by default because the
+  /// weaker regularization of large-unit inputs gives lower L_avg but worse final meshes on the
+  /// coarse real volumes (Filters/Embedding/README.md, "Regularizer and length unit").
+  bool ScaleFreeRegularizer = false;
   std::uint64_t Seed = 1;  ///< seed of the initial random field (runs are reproducible)
   /// Stop when (E_prev - E) / E_prev falls below this (0 = run all iterations).
   double RelativeEnergyTolerance = 0.0;

@@ -48,6 +48,7 @@ struct EmbeddingSolver::Internals
   std::vector<std::int32_t> Pinned;     // vertex -> pinned (smallest) vertex of its component
   std::vector<std::int32_t> Reduced;    // vertex -> unknown index, -1 when pinned
   std::vector<double> X;                // NP x MB row-major: the embedding
+  double RegularizerScale = 1.0;        // 1 / ℓ² with ScaleFreeRegularizer, else 1
   std::vector<double> C;                // NE x (K+1) x F: per-element right-hand sides
   struct Cholesky : Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower>
   {

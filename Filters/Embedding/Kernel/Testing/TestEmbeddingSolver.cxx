@@ -132,6 +132,55 @@ void CheckPlainRandomWeighted(const SimplexMesh& cube, const MetricField& cubeMe
   AV_CHECK(r.EnergyHistory.back().Total < r.EnergyHistory.front().Total);
 }
 
+/// ScaleFreeRegularizer: the same part in another length unit (coordinates x 1000, the same
+/// dimensionless metric) embeds to the same shape, 1000x larger. The paper's raw E_reg (the
+/// default) regularizes the larger copy 10^6x more strongly and fits worse.
+void CheckUnitInvariance(const SimplexMesh& cube, const MetricField& cubeMetric,
+  const EdgeLengthErrorEvaluator& cubeError)
+{
+  const double s = 1000.0;
+  SimplexMesh big = cube;
+  for (double& x : big.Points)
+  {
+    x = s * (x + 0.25);
+  }
+  const EdgeLengthErrorEvaluator bigError(big, cubeMetric);
+  EmbeddingOptions o;
+  o.Iterations = 20;
+  o.MaxIterations = 0; // a fixed count
+  o.SinglePrecisionSolve = false;
+  o.ScaleFreeRegularizer = true;
+  const EmbeddingResult small = ComputeEmbedding(cube, cubeMetric, o);
+  const EmbeddingResult large = ComputeEmbedding(big, cubeMetric, o);
+  const double eSmall = cubeError.Evaluate(small.Embedded).AveragePercent;
+  const double eLarge = bigError.Evaluate(large.Embedded).AveragePercent;
+  double worst = 0.0, scale = 0.0;
+  for (std::size_t i = 0; i < cube.NumPoints(); ++i)
+  {
+    for (int d = 3; d < o.TargetDim; ++d)
+    {
+      worst = std::max(worst, std::abs(large.Embedded.At(i)[d] - s * small.Embedded.At(i)[d]));
+      scale = std::max(scale, std::abs(s * small.Embedded.At(i)[d]));
+    }
+  }
+  std::cout << "unit x1000: L_avg " << eSmall << " / " << eLarge
+            << " %, free coordinates differ by " << worst / scale << " of their largest\n";
+  AV_CHECK(std::abs(eLarge - eSmall) < 1e-6 * eSmall);
+  AV_CHECK(worst < 1e-6 * scale);
+  AV_CHECK(std::abs(small.EnergyHistory.back().Total - large.EnergyHistory.back().Total) <
+    1e-6 * small.EnergyHistory.back().Total);
+
+  // The cube's extent is 1: the paper's form gives the very same embedding there...
+  EmbeddingOptions paper = o;
+  paper.ScaleFreeRegularizer = false;
+  AV_CHECK(ComputeEmbedding(cube, cubeMetric, paper).Embedded.Coords == small.Embedded.Coords);
+  // ... and depends on the unit: the copy in millimetres is flattened by the regularizer.
+  const double ePaperLarge =
+    bigError.Evaluate(ComputeEmbedding(big, cubeMetric, paper).Embedded).AveragePercent;
+  std::cout << "paper's E_reg, unit x1000: L_avg " << ePaperLarge << " %\n";
+  AV_CHECK(ePaperLarge > 2.0 * eSmall);
+}
+
 /// Single-precision against double-precision solves.
 void CheckFloatSolves(const SimplexMesh& cube, const MetricField& cubeMetric)
 {
@@ -368,6 +417,7 @@ int TestEmbeddingSolver(int, char*[])
   const EdgeLengthErrorEvaluator cubeError(cube, cubeMetric);
   CheckIdentityMetric(cube);
   CheckCube1(cube, cubeMetric, cubeError);
+  CheckUnitInvariance(cube, cubeMetric, cubeError);
   CheckElementMetric(cube, cubeMetric, cubeError);
   CheckPlainRandomWeighted(cube, cubeMetric);
   CheckFloatSolves(cube, cubeMetric);
