@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "MetricAlgebra.h"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -163,6 +165,66 @@ double SurfaceStretchRatio(const Eigen::Matrix3d& m)
     return std::numeric_limits<double>::infinity();
   }
   return std::sqrt(ev(2) / ev(1));
+}
+
+Eigen::Vector3d SurfaceMetricNormal(const Eigen::Matrix3d& m)
+{
+  const SymmetricEigen3 e = EigenDecompose(m);
+  if (!(e.Values(2) > 0.0) || std::abs(e.Values(0)) > 1e-6 * e.Values(2))
+  {
+    return Eigen::Vector3d::Zero();
+  }
+  return e.Vectors.col(0).normalized();
+}
+
+Eigen::Matrix3d MoveSurfaceMetric(
+  const Eigen::Matrix3d& s, const Eigen::Vector3d& from, const Eigen::Vector3d& to)
+{
+  const double c0 = from.dot(to);
+  const Eigen::Vector3d b = c0 < 0.0 ? Eigen::Vector3d(-to) : to;
+  const double c = std::abs(c0);
+  if (from.squaredNorm() == 0.0 || c >= 1.0 - 1e-15)
+  {
+    return s;
+  }
+  // Rodrigues with v = from x b, |v| = sin: R = I + [v]x + [v]x^2 / (1 + cos).
+  const Eigen::Vector3d v = from.cross(b);
+  Eigen::Matrix3d vx;
+  vx << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
+  const Eigen::Matrix3d r = Eigen::Matrix3d::Identity() + vx + vx * vx / (1.0 + c);
+  return r * s * r.transpose();
+}
+
+double SurfaceEdgeMetricLength2(const Eigen::Vector3d& d,
+  const Eigen::Matrix3d& rootA,
+  const Eigen::Vector3d& normalA,
+  const Eigen::Matrix3d& rootB,
+  const Eigen::Vector3d& normalB)
+{
+  const double dn = d.norm();
+  if (!(dn > 0.0))
+  {
+    return 0.0;
+  }
+  const Eigen::Vector3d t = d / dn;
+  auto moved = [&t](const Eigen::Matrix3d& root, const Eigen::Vector3d& n) -> Eigen::Matrix3d
+  {
+    Eigen::Vector3d to = n - n.dot(t) * t;
+    if (to.squaredNorm() < 1e-24)
+    {
+      to = t.unitOrthogonal(); // the edge along the normal: any plane through it
+    }
+    return MoveSurfaceMetric(root, n, to.normalized());
+  };
+  return (0.5 * (moved(rootA, normalA) + moved(rootB, normalB)) * d).squaredNorm();
+}
+
+std::vector<Eigen::Vector3d> SurfaceMetricNormals(const MetricField& field)
+{
+  std::vector<Eigen::Vector3d> n(field.NumPoints());
+  tbb::parallel_for(std::size_t(0), n.size(),
+    [&](std::size_t i) { n[i] = SurfaceMetricNormal(UnpackSymmetric(field.At(i))); });
+  return n;
 }
 
 void EigenvalueRange(const MetricField& field, bool dim2, double& minEig, double& maxEig)

@@ -9,6 +9,8 @@
 
 #include <Eigen/Dense>
 
+#include <vector>
+
 namespace av
 {
 
@@ -76,6 +78,38 @@ double StretchRatio(const Eigen::Matrix2d& m);
  * (the third, along the normal, is ~0 and ignored).
  */
 double SurfaceStretchRatio(const Eigen::Matrix3d& m);
+
+/**
+ * The normal of a rank-2 surface metric (pass the metric, not its square root, whose round-off is
+ * larger): the unit eigenvector of its smallest eigenvalue when that is at most 1e-6 of the
+ * largest; the zero vector for a metric of full rank (no tangent plane to move) or a zero one.
+ */
+Eigen::Vector3d SurfaceMetricNormal(const Eigen::Matrix3d& m);
+
+/**
+ * A surface metric (or its square root) `s` with normal `from` (SurfaceMetricNormal) moved by the
+ * smallest rotation R that takes `from` onto the line of the unit vector `to` (either sign): R s
+ * R^T measures in the plane normal to `to` the lengths s measures in its own tangent plane. Where
+ * a vertex normal is far from an adjacent triangle's (a thin CAD rim, a crease), s itself gives
+ * the triangle's edges along `from` almost no length. `from` = 0: s is returned as it is.
+ */
+Eigen::Matrix3d MoveSurfaceMetric(
+  const Eigen::Matrix3d& s, const Eigen::Vector3d& from, const Eigen::Vector3d& to);
+
+/**
+ * The squared §5.1 length |(A_a + A_b) / 2 d|² of the edge d = b − a on a surface whose vertex
+ * metric roots A_a, A_b are rank 2 with normals n_a, n_b (SurfaceMetricNormal; 0 = full rank):
+ * each A is first moved (MoveSurfaceMetric) by the smallest rotation that puts d into its
+ * tangent plane, so that an edge along a vertex normal gets that vertex's tangent lengths.
+ */
+double SurfaceEdgeMetricLength2(const Eigen::Vector3d& d,
+  const Eigen::Matrix3d& rootA,
+  const Eigen::Vector3d& normalA,
+  const Eigen::Matrix3d& rootB,
+  const Eigen::Vector3d& normalB);
+
+/// SurfaceMetricNormal of every tensor of a field (in parallel).
+std::vector<Eigen::Vector3d> SurfaceMetricNormals(const MetricField& field);
 
 /// Smallest and largest eigenvalue over a whole field (3x3 tensors; 2x2 block when dim2 is true).
 void EigenvalueRange(const MetricField& field, bool dim2, double& minEig, double& maxEig);

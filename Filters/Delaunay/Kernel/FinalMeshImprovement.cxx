@@ -6,6 +6,7 @@
 #include "ValidDualMesh.h"
 
 #include "MeshQuality.h"
+#include "MetricAlgebra.h" // SurfaceMetricNormals
 #include "MeshTopology.h"
 #include "TriangleBvh.h"
 
@@ -59,21 +60,6 @@ bool LocateOnSurface(const SimplexMesh& mesh,
   for (int i = 0; i < 3; ++i)
     lambda[i] /= sum;
   return true;
-}
-
-/// The metric (6 packed values) at barycentric `lambda` of `cell`, as InterpolateMetricAtSites.
-void MetricAt(const SimplexMesh& mesh,
-  const MetricField& metric,
-  std::int32_t cell,
-  const double* lambda,
-  double* out)
-{
-  const std::int32_t* e = mesh.Cell(static_cast<std::size_t>(cell));
-  for (int j = 0; j < 6; ++j)
-    out[j] = 0.0;
-  for (int i = 0; i <= mesh.SimplexDim; ++i)
-    for (int j = 0; j < 6; ++j)
-      out[j] += lambda[i] * metric.At(static_cast<std::size_t>(e[i]))[j];
 }
 
 /// Site `v` (v == NumSites(): a new one) at barycentric `lambda` of `cell`.
@@ -233,6 +219,8 @@ MeshImprovementResult ImproveFinalMesh(const SimplexMesh& mesh,
     return none;
   }
   const MetricField siteMetric = InterpolateMetricAtSites(mesh, metric, sites);
+  const std::vector<Eigen::Vector3d> metricNormals =
+    surface ? SurfaceMetricNormals(metric) : std::vector<Eigen::Vector3d>();
   std::vector<std::uint8_t> fixed(sites.NumSites(), 0);
   if (fixedSites)
     for (std::size_t i = 0; i < fixedSites->size() && i < fixed.size(); ++i)
@@ -321,7 +309,7 @@ MeshImprovementResult ImproveFinalMesh(const SimplexMesh& mesh,
       placed[d] = p[d];
       normal[d] = n[d];
     }
-    MetricAt(mesh, metric, cell, lambda, m);
+    InterpolateMetricInCell(mesh, metric, metricNormals, cell, lambda, m);
     return true;
   };
   // A split's or an insertion's vertex becomes an inserted site (after the repair's).

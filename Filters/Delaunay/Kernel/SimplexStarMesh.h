@@ -5,12 +5,14 @@
 #ifndef av_SimplexStarMesh_h
 #define av_SimplexStarMesh_h
 
+#include "MetricAlgebra.h" // MoveSurfaceMetric, SurfaceEdgeMetricLength2
 #include "MetricSimplexQuality.h"
 #include "SimplexMesh.h"
 
 #include <Eigen/Dense>
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <vector>
@@ -33,7 +35,9 @@ public:
     std::vector<Eigen::Matrix3d> sqrtMetrics,
     const std::vector<std::uint8_t>* fixed);
 
-  /// The metric quality (MetricSimplexQuality.h); triangles are oriented by their normals.
+  /// The metric quality (MetricSimplexQuality.h); triangles are oriented by their normals, and
+  /// each vertex's (rank-2, normal Normals[v]) metric is moved into the triangle's plane first
+  /// (MoveSurfaceMetric: a no-op in 2D).
   double Quality(const Simplex& t) const
   {
     const auto& p = Points;
@@ -42,13 +46,19 @@ public:
       return TetMetricQuality(
         p[t[0]], p[t[1]], p[t[2]], p[t[3]], s[t[0]], s[t[1]], s[t[2]], s[t[3]]);
     else
+    {
+      const Eigen::Vector3d n = (p[t[1]] - p[t[0]]).cross(p[t[2]] - p[t[0]]);
+      const double len = n.norm();
+      auto moved = [&](int i) -> Eigen::Matrix3d
+      { return len > 0.0 ? MoveSurfaceMetric(s[t[i]], Normals[t[i]], n / len) : s[t[i]]; };
       return OrientedTriangleMetricQuality(p[t[0]],
         p[t[1]],
         p[t[2]],
-        s[t[0]],
-        s[t[1]],
-        s[t[2]],
+        moved(0),
+        moved(1),
+        moved(2),
         Normals[t[0]] + Normals[t[1]] + Normals[t[2]]);
+    }
   }
   bool IsAlive(std::int32_t t) const { return Simplices[t][0] != kDead; }
   bool CanMove(std::int32_t v) const { return !Fixed[v] && !Stars[v].empty(); }
@@ -56,10 +66,15 @@ public:
   double StarWorst(std::int32_t v) const; ///< over v's star; +inf if empty
   /// The first simplex of v's non-empty star with its worst quality.
   std::int32_t WorstInStar(std::int32_t v) const;
-  /// §5.1 edge length: Q_ab = (S_a + S_b) / 2.
+  /// §5.1 edge length: Q_ab = (S_a + S_b) / 2; triangles: each S moved so that the edge lies in
+  /// its tangent plane (SurfaceEdgeMetricLength2; the same in 2D).
   double EdgeLength(std::int32_t a, std::int32_t b) const
   {
-    return (0.5 * (SqrtMetrics[a] + SqrtMetrics[b]) * (Points[b] - Points[a])).norm();
+    if constexpr (K == 3)
+      return (0.5 * (SqrtMetrics[a] + SqrtMetrics[b]) * (Points[b] - Points[a])).norm();
+    else
+      return std::sqrt(SurfaceEdgeMetricLength2(
+        Points[b] - Points[a], SqrtMetrics[a], Normals[a], SqrtMetrics[b], Normals[b]));
   }
   bool HasEdge(std::int32_t a, std::int32_t b) const;
   static int IndexIn(const Simplex& t, std::int32_t v); ///< position of v in t, -1 if none

@@ -43,12 +43,16 @@ EdgeLengthErrorEvaluator::EdgeLengthErrorEvaluator(const SimplexMesh& mesh, cons
       " values, expected 6 per point (" + std::to_string(6 * np) + ")");
   }
   const std::vector<Eigen::Matrix3d> a = VertexMetricRoots(metric, mesh.AmbientDim);
+  const bool surface = mesh.AmbientDim == 3 && mesh.SimplexDim == 2;
+  const std::vector<Eigen::Vector3d> normals =
+    surface ? SurfaceMetricNormals(metric) : std::vector<Eigen::Vector3d>();
   this->Edges = UniqueEdges(mesh);
   const std::size_t ne = this->Edges.size() / 2;
   this->MetricLength.resize(ne);
   tbb::parallel_for(std::size_t(0), ne, [&](std::size_t e) {
-    this->MetricLength[e] =
-      std::sqrt(MetricEdgeLength2(mesh, a, this->Edges[2 * e], this->Edges[2 * e + 1]));
+    const std::int32_t p = this->Edges[2 * e], q = this->Edges[2 * e + 1];
+    this->MetricLength[e] = std::sqrt(surface ? SurfaceMetricEdgeLength2(mesh, a, normals, p, q)
+                                              : MetricEdgeLength2(mesh, a, p, q));
   });
   for (std::size_t e = 0; e < ne; ++e)
   {

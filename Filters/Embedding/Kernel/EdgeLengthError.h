@@ -3,9 +3,10 @@
 #ifndef av_EdgeLengthError_h
 #define av_EdgeLengthError_h
 
+#include "MetricAlgebra.h" // MoveSurfaceMetric
 #include "SimplexMesh.h"
 
-#include <Eigen/Core>
+#include <Eigen/Dense>
 
 #include <cstdint>
 #include <vector>
@@ -38,6 +39,21 @@ inline double MetricEdgeLength2(
     d(k) = mesh.Point(b)[k] - mesh.Point(a)[k];
   }
   return (0.5 * (roots[a] + roots[b]) * d).squaredNorm();
+}
+
+/// The same on a surface whose vertex metrics are rank 2 with normals `normals`
+/// (SurfaceMetricNormals; 0 = full rank): each A is first moved by the smallest rotation that puts
+/// the edge into its tangent plane, so that an edge along a vertex normal (a thin CAD rim) is
+/// measured with that vertex's tangent lengths instead of getting almost none.
+inline double SurfaceMetricEdgeLength2(const SimplexMesh& mesh,
+  const std::vector<Eigen::Matrix3d>& roots,
+  const std::vector<Eigen::Vector3d>& normals,
+  std::int32_t a,
+  std::int32_t b)
+{
+  const Eigen::Vector3d d = Eigen::Map<const Eigen::Vector3d>(mesh.Point(b)) -
+    Eigen::Map<const Eigen::Vector3d>(mesh.Point(a));
+  return SurfaceEdgeMetricLength2(d, roots[a], normals[a], roots[b], normals[b]);
 }
 
 /**

@@ -359,6 +359,13 @@ void EmbeddingSolver::Internals::BuildElements(const SimplexMesh& mesh, const Me
   {
     vertexRoots = VertexMetricRoots(metric, m);
   }
+  // Surfaces: each vertex metric is moved into the triangle's plane before the mean (a rim
+  // vertex's tangent plane can be nearly normal to its long CAD triangles).
+  std::vector<Eigen::Vector3d> normals;
+  if (m == 3 && k == 2 && !edgeLengths)
+  {
+    normals = SurfaceMetricNormals(metric);
+  }
   tbb::enumerable_thread_specific<std::size_t> fallbacks(0);
   tbb::parallel_for(std::size_t(0), this->NE, [&](std::size_t j) {
     const std::int32_t* cell = mesh.Cell(j);
@@ -398,11 +405,18 @@ void EmbeddingSolver::Internals::BuildElements(const SimplexMesh& mesh, const Me
     // Element metric: average of the vertex metrics (or, EdgeLengths, the metric of the edges'
     // §5.1 lengths); A = its symmetric square root.
     Eigen::Matrix3d mm = Eigen::Matrix3d::Zero();
+    const Eigen::Vector3d faceNormal = normals.empty()
+      ? Eigen::Vector3d::Zero()
+      : Eigen::Vector3d(wm.col(0).cross(wm.col(1)).normalized());
     for (int l = 0; l < nv; ++l)
     {
       if (m == 2)
       {
         mm.topLeftCorner<2, 2>() += UnpackSymmetric2(metric.At(cell[l]));
+      }
+      else if (!normals.empty())
+      {
+        mm += MoveSurfaceMetric(UnpackSymmetric(metric.At(cell[l])), normals[cell[l]], faceNormal);
       }
       else
       {

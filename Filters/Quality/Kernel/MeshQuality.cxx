@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "MeshQuality.h"
 
+#include "MetricAlgebra.h" // MoveSurfaceMetric, SurfaceMetricNormals
+
 #include <Eigen/Dense>
 #include <tbb/parallel_for.h>
 
@@ -27,14 +29,6 @@ Eigen::Matrix3d MetricTensor(const double* v, int ambientDim)
     m(0, 2) = m(2, 0) = m(1, 2) = m(2, 1) = 0.0;
   }
   return m;
-}
-
-/// Symmetric square root; negative eigenvalues (round-off on rank-deficient metrics) -> 0.
-Eigen::Matrix3d SymmetricSqrt(const Eigen::Matrix3d& m)
-{
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(m);
-  Eigen::Vector3d s = es.eigenvalues().cwiseMax(0.0).cwiseSqrt();
-  return es.eigenvectors() * s.asDiagonal() * es.eigenvectors().transpose();
 }
 
 void CheckMesh(const SimplexMesh& mesh, const char* who)
@@ -101,9 +95,11 @@ Eigen::Vector3d PointOf(const SimplexMesh& mesh, std::int32_t id)
 }
 
 /// One cell's G, smallest angle and orientation in the metric of its averaged square roots
-/// A = mean of the vertex A_i (paper §5.2).
+/// A = mean of the vertex A_i (paper §5.2). Surfaces (`normals` not empty): each A_i moved into
+/// the triangle's plane first (MoveSurfaceMetric).
 void CellQuality(const SimplexMesh& mesh,
   const std::vector<Eigen::Matrix3d>& sqrtM,
+  const std::vector<Eigen::Vector3d>& normals,
   std::size_t c,
   MeshQualityResult& res)
 {
@@ -115,8 +111,15 @@ void CellQuality(const SimplexMesh& mesh,
   Eigen::Vector3d x[4], y[4];
   for (int i = 0; i < nv; ++i)
   {
-    a += sqrtM[static_cast<std::size_t>(ids[i])];
     x[i] = PointOf(mesh, ids[i]);
+  }
+  const Eigen::Vector3d faceNormal =
+    normals.empty() ? Eigen::Vector3d::Zero() : Eigen::Vector3d((x[1] - x[0]).cross(x[2] - x[0]));
+  const double fn = faceNormal.norm();
+  for (int i = 0; i < nv; ++i)
+  {
+    const auto v = static_cast<std::size_t>(ids[i]);
+    a += fn > 0.0 ? MoveSurfaceMetric(sqrtM[v], normals[v], faceNormal / fn) : sqrtM[v];
   }
   a /= nv;
   for (int i = 0; i < nv; ++i)
@@ -156,6 +159,7 @@ void CellQuality(const SimplexMesh& mesh,
 /// Unique edges and their metric lengths with Q_ab = (A_a + A_b) / 2.
 void EdgeMetricLengths(const SimplexMesh& mesh,
   const std::vector<Eigen::Matrix3d>& sqrtM,
+  const std::vector<Eigen::Vector3d>& normals,
   MeshQualityResult& res)
 {
   const std::size_t nc = mesh.NumCells();
@@ -188,9 +192,11 @@ void EdgeMetricLengths(const SimplexMesh& mesh,
         const auto b = static_cast<std::int32_t>(keys[e] % static_cast<std::int64_t>(np));
         res.Edges[2 * e] = a;
         res.Edges[2 * e + 1] = b;
-        const Eigen::Matrix3d q =
-          0.5 * (sqrtM[static_cast<std::size_t>(a)] + sqrtM[static_cast<std::size_t>(b)]);
-        res.EdgeLengths[e] = (q * (PointOf(mesh, b) - PointOf(mesh, a))).norm();
+        const auto ua = static_cast<std::size_t>(a), ub = static_cast<std::size_t>(b);
+        const Eigen::Vector3d d = PointOf(mesh, b) - PointOf(mesh, a);
+        res.EdgeLengths[e] = normals.empty()
+          ? (0.5 * (sqrtM[ua] + sqrtM[ub]) * d).norm()
+          : std::sqrt(SurfaceEdgeMetricLength2(d, sqrtM[ua], normals[ua], sqrtM[ub], normals[ub]));
       }
     });
 }
@@ -272,6 +278,10 @@ MeshQualityResult EvaluateMeshQuality(const SimplexMesh& mesh, const MetricField
         sqrtM[i] = SymmetricSqrt(MetricTensor(metric.At(i), m));
     });
 
+  // Surfaces: the rank-2 vertex metrics' normals, to move them into each triangle's plane.
+  const std::vector<Eigen::Vector3d> normals = m == 3 && mesh.SimplexDim == 2
+    ? SurfaceMetricNormals(metric)
+    : std::vector<Eigen::Vector3d>();
   MeshQualityResult res;
   res.G.assign(nc, 0.0);
   res.MinAngle.assign(nc, 0.0);
@@ -280,9 +290,9 @@ MeshQualityResult EvaluateMeshQuality(const SimplexMesh& mesh, const MetricField
     [&](const tbb::blocked_range<std::size_t>& r)
     {
       for (std::size_t c = r.begin(); c != r.end(); ++c)
-        CellQuality(mesh, sqrtM, c, res);
+        CellQuality(mesh, sqrtM, normals, c, res);
     });
-  EdgeMetricLengths(mesh, sqrtM, res);
+  EdgeMetricLengths(mesh, sqrtM, normals, res);
   Summarize(mesh.SimplexDim, res);
   return res;
 }
@@ -385,24 +395,51 @@ MetricField InterpolateMetricAtSites(const SimplexMesh& mesh,
         " is not a cell of the mesh");
   MetricField out;
   out.Values.assign(6 * ns, 0.0);
-  const int nv = mesh.VerticesPerCell();
+  // Surfaces: rank-2 vertex metrics are moved into the cell's plane first, so that the
+  // interpolated one is rank 2 in that plane (a plain mean of tilted ones is not).
+  const std::vector<Eigen::Vector3d> normals = mesh.AmbientDim == 3 && mesh.SimplexDim == 2
+    ? SurfaceMetricNormals(metric)
+    : std::vector<Eigen::Vector3d>();
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, ns),
     [&](const tbb::blocked_range<std::size_t>& r)
     {
       for (std::size_t s = r.begin(); s != r.end(); ++s)
-      {
-        const std::int32_t* ids = mesh.Cell(static_cast<std::size_t>(sites.CellIds[s]));
-        double* o = out.Values.data() + 6 * s;
-        for (int i = 0; i < nv; ++i)
-        {
-          const double w = sites.Bary[4 * s + static_cast<std::size_t>(i)];
-          const double* v = metric.At(static_cast<std::size_t>(ids[i]));
-          for (int j = 0; j < 6; ++j)
-            o[j] += w * v[j];
-        }
-      }
+        InterpolateMetricInCell(
+          mesh, metric, normals, sites.CellIds[s], sites.Bary.data() + 4 * s, out.Values.data() + 6 * s);
     });
   return out;
+}
+
+void InterpolateMetricInCell(const SimplexMesh& mesh,
+  const MetricField& metric,
+  const std::vector<Eigen::Vector3d>& normals,
+  std::int32_t cell,
+  const double* lambda,
+  double* out)
+{
+  const std::int32_t* ids = mesh.Cell(static_cast<std::size_t>(cell));
+  Eigen::Vector3d faceNormal = Eigen::Vector3d::Zero();
+  if (!normals.empty())
+  {
+    faceNormal = (PointOf(mesh, ids[1]) - PointOf(mesh, ids[0]))
+                   .cross(PointOf(mesh, ids[2]) - PointOf(mesh, ids[0]));
+  }
+  const double fn = faceNormal.norm();
+  for (int j = 0; j < 6; ++j)
+    out[j] = 0.0;
+  for (int i = 0; i <= mesh.SimplexDim; ++i)
+  {
+    const auto v = static_cast<std::size_t>(ids[i]);
+    double moved[6];
+    const double* m = metric.At(v);
+    if (fn > 0.0)
+    {
+      PackSymmetric(MoveSurfaceMetric(UnpackSymmetric(m), normals[v], faceNormal / fn), moved);
+      m = moved;
+    }
+    for (int j = 0; j < 6; ++j)
+      out[j] += lambda[i] * m[j];
+  }
 }
 
 } // namespace av

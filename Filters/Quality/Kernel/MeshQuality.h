@@ -6,6 +6,8 @@
 
 #include "SimplexMesh.h"
 
+#include <Eigen/Core>
+
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -77,11 +79,22 @@ std::vector<double> SimplexQualityInEmbedding(const std::vector<std::int32_t>& c
 
 /**
  * The metric at each site: barycentric interpolation of the per-vertex metric of `mesh`
- * (the mesh the sites live on, e.g. the input mesh of the sampler) in the site's cell.
+ * (the mesh the sites live on, e.g. the input mesh of the sampler) in the site's cell. On a
+ * surface with rank-2 vertex metrics each is first moved into the cell's plane
+ * (MoveSurfaceMetric), so the result is rank 2 in that plane.
  * Throws InputError on wrong sizes or cell ids.
  */
 MetricField InterpolateMetricAtSites(
   const SimplexMesh& mesh, const MetricField& metric, const SiteSet& sites);
+
+/// The metric (6 packed values) at barycentric `lambda` of `cell`, as InterpolateMetricAtSites;
+/// `normals`: SurfaceMetricNormals(metric) on a surface, empty otherwise. No checks.
+void InterpolateMetricInCell(const SimplexMesh& mesh,
+  const MetricField& metric,
+  const std::vector<Eigen::Vector3d>& normals,
+  std::int32_t cell,
+  const double* lambda,
+  double* out);
 
 } // namespace av
 

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // MetricFieldOps on known answers: log-Euclidean means are geometric and SPD, intersections
 // contain both metrics and keep the smaller size per direction, the complexity of a uniform
-// metric on a box is its metric volume.
+// metric on a box is its metric volume; surface metrics moved into another plane keep their
+// tangent lengths.
 #include "AnisoTestChecks.h"
 #include "MetricAlgebra.h"
 #include "MetricFieldOps.h"
@@ -130,8 +131,52 @@ void CheckComplexity()
 }
 } // namespace
 
+/// MoveSurfaceMetric / SurfaceMetricNormal / SurfaceEdgeMetricLength2 on known answers.
+void CheckSurfaceMetricMove()
+{
+  std::mt19937 rng(7);
+  for (int trial = 0; trial < 200; ++trial)
+  {
+    // A rank-2 metric with stretch 3 in the plane normal to a random n.
+    const Eigen::Matrix3d q = Eigen::HouseholderQR<Eigen::Matrix3d>(RandomSpd(rng)).householderQ();
+    const Eigen::Vector3d n = q.col(2), t1 = q.col(0), t2 = q.col(1);
+    const Eigen::Matrix3d m = t1 * t1.transpose() + 9.0 * t2 * t2.transpose();
+    const Eigen::Vector3d found = av::SurfaceMetricNormal(m);
+    AV_CHECK(std::abs(std::abs(found.dot(n)) - 1.0) < 1e-12);
+    const Eigen::Vector3d to = q * Eigen::Vector3d(RandomSpd(rng).col(0)).normalized();
+    const Eigen::Matrix3d moved = av::MoveSurfaceMetric(m, found, to);
+    // Null along `to`, the same eigenvalues, and the direction normal to both normals (the
+    // rotation's axis) measured as before.
+    AV_CHECK((moved * to).norm() < 1e-12 * m.norm());
+    const Eigen::Vector3d ev0 = av::EigenDecompose(m).Values, ev1 = av::EigenDecompose(moved).Values;
+    AV_CHECK((ev0 - ev1).norm() < 1e-12 * m.norm());
+    const Eigen::Vector3d axis = n.cross(to);
+    if (axis.norm() > 1e-6)
+    {
+      const Eigen::Vector3d u = axis.normalized();
+      AV_CHECK(std::abs(u.dot(moved * u) - u.dot(m * u)) < 1e-12 * m.norm());
+    }
+    // Either sign of the target, and a zero source, leave it as it is.
+    AV_CHECK(av::MoveSurfaceMetric(m, found, -found) == m);
+    AV_CHECK(av::MoveSurfaceMetric(m, Eigen::Vector3d::Zero(), to) == m);
+  }
+  AV_CHECK(av::SurfaceMetricNormal(Eigen::Matrix3d::Identity()).norm() == 0.0);
+
+  // Identity tangent metric normal to z: an edge along z (a rim) has its full length, not 0; an
+  // edge in the plane keeps the plain §5.1 length; a 45 deg edge its full length (plain: 1/sqrt2).
+  const Eigen::Matrix3d root = Eigen::Vector3d(1, 1, 0).asDiagonal();
+  const Eigen::Vector3d z = Eigen::Vector3d::UnitZ();
+  auto len = [&](const Eigen::Vector3d& d)
+  { return std::sqrt(av::SurfaceEdgeMetricLength2(d, root, z, root, z)); };
+  AV_CHECK(std::abs(len(Eigen::Vector3d(0, 0, 0.3)) - 0.3) < 1e-12);
+  AV_CHECK(std::abs(len(Eigen::Vector3d(0.4, 0, 0)) - 0.4) < 1e-15);
+  AV_CHECK(std::abs(len(Eigen::Vector3d(1, 0, 1)) - std::sqrt(2.0)) < 1e-12);
+  AV_CHECK(std::abs((root * Eigen::Vector3d(1, 0, 1)).norm() - 1.0) < 1e-15);
+}
+
 int TestMetricFieldOps(int, char*[])
 {
+  CheckSurfaceMetricMove();
   CheckLogEuclideanMean();
   CheckIntersection();
   CheckComplexity();

@@ -11,6 +11,7 @@
 #include "SurfaceCurvatureMetric.h"
 #include "SurfaceGenerators.h"
 
+#include <Eigen/Geometry> // the reference rotation
 #include <Eigen/SVD>
 
 #include <cmath>
@@ -51,7 +52,9 @@ double Regularizer(const av::SimplexMesh& mesh,
 /// E_em (Eq. 11, unweighted) recomputed the slow way: per triangle T = X G (G from the
 /// pseudo-inverse of the edge matrix), A = sqrt of the element metric, V the polar factor of
 /// T A from a full SVD, E = sum ||T - V A||^2. Checks the solver's closed-form rank-2 route.
-/// The element metric: the mean vertex metric, or (edgeLengths, no element blended) the
+/// The element metric: the mean of the vertex metrics, each turned by the smallest rotation that
+/// takes its normal onto the triangle's (a quaternion here, the solver uses Rodrigues), or
+/// (edgeLengths, no element blended) the
 /// rank-2 metric with w^T M w = l(a, b)^2 on the three edges, solved here as a 3 x 3 linear
 /// system in the tangent frame's (m11, m12, m22).
 double EmbeddingEnergyBySvd(const av::SimplexMesh& mesh,
@@ -64,12 +67,20 @@ double EmbeddingEnergyBySvd(const av::SimplexMesh& mesh,
   {
     const std::int32_t* c = mesh.Cell(j);
     Eigen::Matrix<double, 3, 2> w;
-    Eigen::Matrix3d m = Eigen::Matrix3d::Zero();
-    for (int l = 0; l < 3; ++l)
-      m += av::UnpackSymmetric(metric.At(c[l])) / 3.0;
     for (int l = 0; l < 2; ++l)
       for (int d = 0; d < 3; ++d)
         w(d, l) = mesh.Point(c[l + 1])[d] - mesh.Point(c[0])[d];
+    const Eigen::Vector3d face = w.col(0).cross(w.col(1)).normalized();
+    Eigen::Matrix3d m = Eigen::Matrix3d::Zero();
+    for (int l = 0; l < 3; ++l)
+    {
+      const Eigen::Matrix3d mv = av::UnpackSymmetric(metric.At(c[l]));
+      const Eigen::Vector3d nv = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(mv).eigenvectors().col(0);
+      const Eigen::Matrix3d r =
+        Eigen::Quaterniond::FromTwoVectors(nv, nv.dot(face) < 0.0 ? Eigen::Vector3d(-face) : face)
+          .toRotationMatrix();
+      m += r * mv * r.transpose() / 3.0;
+    }
     const Eigen::Matrix<double, 2, 3> wp = (w.transpose() * w).inverse() * w.transpose();
     if (edgeLengths)
     {

@@ -3,6 +3,7 @@
 // that only give G = 1 when A is the averaged per-vertex square root of the metric.
 #include "MeshQuality.h"
 #include "AnisoTestChecks.h"
+#include "MetricAlgebra.h"
 
 #include <Eigen/Dense>
 
@@ -286,8 +287,44 @@ void CheckBadInput()
 
 } // namespace
 
+/// An equilateral triangle in z = 0 whose vertex metrics are rank 2 in a plane tilted 60 deg about
+/// x (isotropic there: a rim vertex's normal averaged over two faces). Moved into the triangle's
+/// plane they are the identity there: G = 1, every edge of length 1. Restricted without the move
+/// the y lengths shrink by cos 60 (G = 0.65), and the site interpolation would not be rank 2.
+void CheckTiltedSurfaceMetric()
+{
+  av::SimplexMesh m;
+  m.AmbientDim = 3;
+  m.SimplexDim = 2;
+  m.Points = { 0, 0, 0, 1, 0, 0, 0.5, std::sqrt(3.0) / 2.0, 0 };
+  m.Cells = { 0, 1, 2 };
+  const double a = 60.0 * 3.14159265358979323846 / 180.0;
+  const Eigen::Vector3d n(0.0, -std::sin(a), std::cos(a));
+  const Eigen::Matrix3d tangent = Eigen::Matrix3d::Identity() - n * n.transpose();
+  av::MetricField f;
+  f.Values.resize(18);
+  for (int v = 0; v < 3; ++v)
+    av::PackSymmetric(tangent, f.Values.data() + 6 * v);
+  const av::MeshQualityResult r = av::EvaluateMeshQuality(m, f);
+  std::cout << "tilted surface metric: G " << r.G[0] << ", edges " << r.EdgeLengths[0] << " "
+            << r.EdgeLengths[1] << " " << r.EdgeLengths[2] << "\n";
+  AV_CHECK(std::abs(r.G[0] - 1.0) < 1e-12);
+  for (double l : r.EdgeLengths)
+    AV_CHECK(std::abs(l - 1.0) < 1e-12);
+
+  av::SiteSet sites;
+  sites.Dim = 3;
+  sites.CellIds = { 0 };
+  sites.Bary = { 0.2, 0.3, 0.5, 0.0 };
+  sites.Coords = { 0, 0, 0 };
+  const av::MetricField at = av::InterpolateMetricAtSites(m, f, sites);
+  const Eigen::Matrix3d ms = av::UnpackSymmetric(at.Values.data());
+  AV_CHECK((ms - Eigen::Vector3d(1, 1, 0).asDiagonal().toDenseMatrix()).norm() < 1e-12);
+}
+
 int TestMeshQuality(int, char*[])
 {
+  CheckTiltedSurfaceMetric();
   CheckRegularTetIdentityMetric();
   CheckPreStretched1SAlong();
   CheckRotatedAnisotropicMetricAll6();
