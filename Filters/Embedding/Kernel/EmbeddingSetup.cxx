@@ -516,9 +516,12 @@ void EmbeddingSolver::Internals::InitializeState(const SimplexMesh& mesh)
       this->X[i * mb + d] = mesh.Point(i)[d];
     }
   }
-  double lo[3], hi[3];
+  double lo[3], hi[3], ext = 0.0;
   PointBounds(mesh, lo, hi);
-  const double ext = LargestExtent(mesh);
+  for (int d = 0; d < m; ++d)
+  {
+    ext = std::max(ext, hi[d] - lo[d]);
+  }
   const bool smooth = this->Options.Initialization == EmbeddingInitialization::Smooth;
   const double amp = ext *
     (this->Options.InitialAmplitude > 0.0 ? this->Options.InitialAmplitude : (smooth ? 0.2 : 1e-3));

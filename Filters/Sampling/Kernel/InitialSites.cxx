@@ -40,18 +40,8 @@ std::vector<std::size_t> MortonCellOrder(const SimplexMesh& mesh)
 {
   const int nv = mesh.VerticesPerCell(), m = mesh.AmbientDim;
   const std::size_t nc = mesh.NumCells();
-  double lo[3] = { 0, 0, 0 }, hi[3] = { 0, 0, 0 }, ext[3] = { 0, 0, 0 };
-  for (int d = 0; d < m; ++d)
-  {
-    lo[d] = std::numeric_limits<double>::infinity();
-    hi[d] = -lo[d];
-  }
-  for (std::size_t v = 0; v < mesh.NumPoints(); ++v)
-    for (int d = 0; d < m; ++d)
-    {
-      lo[d] = std::min(lo[d], mesh.Point(v)[d]);
-      hi[d] = std::max(hi[d], mesh.Point(v)[d]);
-    }
+  double lo[3], hi[3], ext[3] = { 0, 0, 0 };
+  PointBounds(mesh, lo, hi);
   for (int d = 0; d < m; ++d)
     ext[d] = hi[d] - lo[d];
   std::vector<std::pair<std::uint32_t, std::size_t>> keys(nc);
