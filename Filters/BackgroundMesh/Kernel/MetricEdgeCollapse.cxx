@@ -86,8 +86,10 @@ struct CollapseContext
   std::vector<std::uint8_t> Class; ///< 0 corner, 1 line, 2 boundary (tets) / top, 3 top
   std::unordered_set<std::uint64_t> Lines;
   std::vector<char> Alive;
-  std::vector<char> Locked;
   std::vector<std::int32_t> StarOffsets, Stars; ///< point -> cells, rebuilt every pass
+  /// Cells a point gained during the pass (a collapse onto it): with them the stars stay exact,
+  /// so any edge can collapse after its neighbours did, in the same pass.
+  std::vector<std::vector<std::int32_t>> Gained;
 };
 
 /// The alive cells around `p` into `out`; false when there are more than kMaxStar.
@@ -97,6 +99,14 @@ bool GatherStar(const CollapseContext& ctx, std::int32_t p, std::int32_t* out, i
   for (std::int32_t i = ctx.StarOffsets[p]; i < ctx.StarOffsets[p + 1]; ++i)
   {
     const std::int32_t c = ctx.Stars[i];
+    if (!ctx.Alive[c])
+      continue;
+    if (n == kMaxStar)
+      return false;
+    out[n++] = c;
+  }
+  for (const std::int32_t c : ctx.Gained[p])
+  {
     if (!ctx.Alive[c])
       continue;
     if (n == kMaxStar)
@@ -184,9 +194,6 @@ bool TryCollapse(CollapseContext& ctx, std::int32_t a, std::int32_t b)
     return false;
   std::int32_t vertsA[kMaxStar * 4], vertsB[kMaxStar * 4];
   const int nva = StarVertices(s, starA, na, a, vertsA);
-  for (int i = 0; i < nva; ++i)
-    if (ctx.Locked[vertsA[i]])
-      return false;
   const int nvb = StarVertices(s, starB, nb, b, vertsB);
 
   // Link condition: a vertex next to both a and b must lie in an element through a-b.
@@ -322,13 +329,11 @@ bool TryCollapse(CollapseContext& ctx, std::int32_t a, std::int32_t b)
     std::int32_t* v = s.Cells.data() + static_cast<std::size_t>(changed[i]) * nv;
     for (int q = 0; q < nv; ++q)
       v[q] = v[q] == a ? b : v[q];
+    ctx.Gained[b].push_back(changed[i]);
   }
   for (int i = 0; i < na; ++i)
     if (CellHas(s, starA[i], b) && CellHas(s, starA[i], a))
       ctx.Alive[starA[i]] = 0;
-  for (int i = 0; i < nva; ++i)
-    ctx.Locked[vertsA[i]] = 1;
-  ctx.Locked[a] = 1;
   if (ca == 1)
   {
     for (int i = 0; i < nva; ++i)
@@ -519,14 +524,14 @@ std::size_t CollapseShortEdges(AdaptiveMeshState& s,
   {
     BuildStars(ctx);
     const auto edges = ShortEdges(ctx, shortLength);
-    ctx.Locked.assign(s.NumPoints(), 0);
+    ctx.Gained.assign(s.NumPoints(), {});
     std::size_t done = 0;
+    // An edge of the list keeps its length while both ends live (collapses move no point);
+    // TryCollapse refuses it once a collapse removed it.
     for (const auto& e : edges)
     {
       const std::int32_t a = static_cast<std::int32_t>(e.second >> 32);
       const std::int32_t b = static_cast<std::int32_t>(e.second & 0xffffffffu);
-      if (ctx.Locked[a] || ctx.Locked[b])
-        continue;
       // Remove the end of the higher stratum (an interior point rather than a boundary one).
       const bool aFirst = ctx.Class[a] >= ctx.Class[b];
       if (TryCollapse(ctx, aFirst ? a : b, aFirst ? b : a) ||
