@@ -116,6 +116,7 @@ struct Args
   av::MetricPreparationOptions Preparation = DefaultPreparation();
   double MaxStretch = 0.0;    // surface cases: curvature metric cap (0: the case's own)
   double Adapt = 0.0;        // L_bg of the adapted background mesh (0 = the preset's grid)
+  bool NoAdapt = false;      // real tensor cases: --no-adapt keeps a coarse input mesh
   int RvdRepeats = 3;        // voronoi stage: best of N
   bool RvdGeometry = true;   // voronoi stage: also the runs with ComputeGeometry
   bool RvdEmbeddedPoints = false; // voronoi stage: geometry runs keep the R^Dim vertices
@@ -147,6 +148,8 @@ struct Case
   avbench::PaperMeshValues PaperMesh{}; // Tab. 5 / Tab. 3 meshing row
   double MaxStretch = 0.0;             // surface cases: the curvature metric's cap
   av::AdaptedMeshResult Background; ///< --adapt: the figures of the adaptation
+  av::BackgroundResolution InputResolution; ///< real cases: the given mesh against the metric
+  bool Adapted = false; ///< the embedding runs on Background.Mesh
 };
 
 PaperValues PaperFor(av::AnalyticPreset p)
@@ -244,18 +247,19 @@ av::MetricField CarryToAdapted(const av::AdaptedMeshResult& bg, const av::Metric
 
 /// --adapt L on a real case: the embedding runs on the background adapted to the (prepared)
 /// metric and the sites, as the CLI's --adapt-length L.
-void AdaptRealCase(const Args& a, Case& c, std::size_t sites)
+void AdaptRealCase(const Args& a, Case& c, std::size_t sites, double length)
 {
   av::AdaptedMeshOptions o;
   o.NumberOfSites = static_cast<int>(sites);
-  o.TargetLength = a.Adapt;
+  o.TargetLength = length;
   o.FeatureAngle = a.FeatureAngle;
   c.Background = av::AdaptBackgroundMesh(c.Mesh, c.Metric, o);
   if (!c.RawMetric.Values.empty())
     c.RawMetric = CarryToAdapted(c.Background, c.RawMetric);
   c.Mesh = c.Background.Mesh;
   c.Metric = c.Background.Metric;
-  c.MeshDescription += " -> adapted " + std::to_string(a.Adapt).substr(0, 4);
+  c.MeshDescription += " -> adapted " + std::to_string(length).substr(0, 4);
+  c.Adapted = true;
   StretchRange(c, c.StretchMin, c.StretchMax);
 }
 
@@ -285,8 +289,13 @@ Case BuildRealCase(const Args& a)
     PrepareCaseMetric(a, c, a.Sites > 0 ? a.Sites : c.DefaultSites);
     StretchRange(c, c.StretchMin, c.StretchMax);
   }
+  const std::size_t sites = a.Sites > 0 ? a.Sites : c.DefaultSites;
+  c.InputResolution = av::MeasureBackgroundResolution(c.Mesh, c.Metric, static_cast<int>(sites), 1.5);
+  // Tensor fields on a mesh coarser than the output are adapted by default, as in the CLI.
   if (a.Adapt > 0.0)
-    AdaptRealCase(a, c, a.Sites > 0 ? a.Sites : c.DefaultSites);
+    AdaptRealCase(a, c, sites, a.Adapt);
+  else if (!a.NoAdapt && !c.IsSurface && av::CoarserThanOutput(c.InputResolution))
+    AdaptRealCase(a, c, sites, av::kAutomaticBackgroundEdgeLength);
   return c;
 }
 
@@ -374,6 +383,7 @@ Case BuildCase(const Args& a)
     c.Mesh = c.Background.Mesh;
     c.Metric = av::EvaluateAnalyticMetric(c.Preset, c.Mesh);
     c.MeshDescription += "-adapted-" + std::to_string(a.Adapt).substr(0, 4);
+    c.Adapted = true;
   }
   if (a.Prepare)
     PrepareCaseMetric(a, c, a.Sites > 0 ? a.Sites : c.DefaultSites);
@@ -900,7 +910,10 @@ void Usage(std::ostream& os)
        "  --adapt L         embed on the adapted background mesh (MetricAdaptedMesh) with edges "
        "of\n"
        "                    at most L output edges for the sites (0.5: two per output edge);\n"
-       "                    on real: cases, after the metric preparation\n"
+       "                    on real: cases, after the metric preparation. Default: real\n"
+       "                    tensor cases whose mesh is coarser than the output (mean edge\n"
+       "                    longer than one output edge) are adapted with L = 1.5\n"
+       "  --no-adapt        real tensor cases: embed on the given mesh, however coarse\n"
        "  --reference-embedding  the preset's exact isometric embedding (x, y, z, H) instead\n"
        "                    of the solver (all presets but sphere-cos): separates the\n"
        "                    embedding's share of a quality loss from the rest\n"
@@ -1133,6 +1146,8 @@ bool Parse(int argc, char** argv, Args& a)
       a.Preparation.Gradation = false;
     else if (k == "--adapt")
       a.Adapt = std::stod(next());
+    else if (k == "--no-adapt")
+      a.NoAdapt = true;
     else if (!k.empty() && k[0] != '-' && a.CaseName.empty())
       a.CaseName = k;
     else
@@ -1172,9 +1187,15 @@ bool RunCase(const Args& args, const std::string& name, const StageFn& stage, in
     out.Set("stretch_min", c.StretchMin);
     out.Set("stretch_max", c.StretchMax);
     out.Set("input_mesh_seconds", c.MeshSeconds);
-    if (a.Adapt > 0.0)
+    if (c.Real)
     {
-      out.Set("adapt_length", a.Adapt);
+      out.Set("input_mean_edge", c.InputResolution.MeanEdgeLength);
+      out.Set("input_long_edges", c.InputResolution.LongEdgeFraction);
+    }
+    out.Set("background_adapted", c.Adapted);
+    if (c.Adapted)
+    {
+      out.Set("adapt_length", a.Adapt > 0.0 ? a.Adapt : av::kAutomaticBackgroundEdgeLength);
       out.Set("background_seconds", c.Background.Seconds);
       out.Set("background_splits", c.Background.NumSplits);
       out.Set("background_collapses", c.Background.NumCollapses);

@@ -88,9 +88,13 @@ meshing:
                            interpolate the input's point data onto it (a coarse FE mesh
                            cannot carry a fast-varying metric; default 0 = off)
   --adapt                  adapt the background mesh to the metric and --sites before the
-                           embedding: split long metric edges, collapse short ones
-                           (edges of at most 0.5 output edges; default off)
-  --adapt-length L         --adapt with edges of at most L output edges (in (0, 10])
+                           embedding: split long metric edges, collapse short ones (edges of
+                           at most --adapt-length output edges). Default: tensor: fields are
+                           adapted when the mesh is coarser than the output (mean edge longer
+                           than one output edge), other metrics keep their mesh
+  --no-adapt               never adapt the background mesh
+  --adapt-length L         the longest background edge, in output edges (in (0, 10],
+                           default 1.5; implies --adapt)
   --no-repair              keep inverted mesh elements (default: insert sites at their dual
                            Voronoi vertices until none is left, paper §4.2)
   --repair-rounds N        insertion rounds at most (default 10)
@@ -201,7 +205,7 @@ void CheckOptions(const Options& o)
     Fail("--feature-corners needs --feature-patches", 2);
   if (!(o.Shrink > 0 && o.Shrink <= 1))
     Fail("--shrink must be in (0, 1]", 2);
-  if (!(o.AdaptLength >= 0 && o.AdaptLength <= 10))
+  if (!(o.AdaptLength > 0 && o.AdaptLength <= 10))
     Fail("--adapt-length must be in (0, 10]", 2);
   if (o.RepairRounds < 0 || o.RepairRounds > 1000)
     Fail("--repair-rounds must be in [0, 1000]", 2);
@@ -308,9 +312,14 @@ Options ParseCommandLine(int argc, char* argv[])
     else if (a == "--refine")
       o.Refine = ParseInt(a, next());
     else if (a == "--adapt")
-      o.AdaptLength = 0.5;
+      o.Adapt = "always";
+    else if (a == "--no-adapt")
+      o.Adapt = "never";
     else if (a == "--adapt-length")
+    {
       o.AdaptLength = ParseDouble(a, next());
+      o.Adapt = "always";
+    }
     else if (a == "--smooth")
       o.Smooth = ParseInt(a, next());
     else if (a == "--mu")

@@ -24,7 +24,9 @@ struct Options
   std::string
     FeaturePatches; // surfaces: cell array of patch ids whose borders are the feature lines
   std::string FeatureCorners; // with it: point array, nonzero = corner
-  double AdaptLength = 0.0; ///< --adapt / --adapt-length: L_bg of the adapted background (0 = off)
+  double AdaptLength = 1.5; ///< --adapt-length: L_bg of the adapted background
+  /// --adapt: always; --no-adapt: never; default: tensor: fields on a mesh coarser than the output
+  std::string Adapt = "auto";
   bool Features = true;
   double Mu = 100.0, Shrink = 0.8, MinEigenvalue = 1e-3, MaxAnisotropy = 25.0;
   double MaxStretch = 10.0; ///< curvature: cap on s2 / s1 (0 = none)

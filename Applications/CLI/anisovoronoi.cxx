@@ -350,7 +350,8 @@ std::string RunInputStages(Options& o, MeshingStages& s, StageRunner& runner)
   if (o.Refine > 0)
     s.Domain = RunRefinement(o, s.Simplices, runner);
   const std::string metricName = RunMetric(o, s, runner);
-  if (o.AdaptLength > 0)
+  const bool tensorField = o.Metric.rfind("tensor:", 0) == 0;
+  if (o.Adapt == "always" || (o.Adapt == "auto" && tensorField))
   {
     // 3b. --adapt: the mesh the embedding runs on follows the metric and the sites.
     auto adapted = vtkSmartPointer<vtkAnisoAdaptedBackgroundMesh>::New();
@@ -359,8 +360,15 @@ std::string RunInputStages(Options& o, MeshingStages& s, StageRunner& runner)
       0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, metricName.c_str());
     adapted->SetNumberOfSites(o.Sites);
     adapted->SetTargetEdgeLength(o.AdaptLength);
+    adapted->SetOnlyWhenCoarse(o.Adapt == "auto");
     adapted->SetFeatureAngle(o.FeatureAngle);
     runner.Run(adapted, BackgroundStage);
+    if (!o.Quiet)
+      std::cerr << "[anisovoronoi] background mesh: mean edge "
+                << adapted->GetInputMeanEdgeLength() << " output edges for " << o.Sites
+                << " sites: "
+                << (adapted->GetAdapted() ? "adapted" : "fine enough, kept (--adapt forces it)")
+                << std::endl;
     s.Metric = adapted;
   }
   return metricName;
@@ -484,6 +492,9 @@ std::vector<std::pair<std::string, std::string>> ReportEntries(const Options& o,
     { "adapt_length", JsonNumber(o.AdaptLength) },
     { "background_input_vertices", JsonNumber(FieldValue(embedded, "BackgroundInputPoints")) },
     { "background_seconds", JsonNumber(runner.SecondsOf(BackgroundStage)) },
+    { "background_adapted", FieldValue(embedded, "BackgroundAdapted") > 0.0 ? "true" : "false" },
+    { "background_input_mean_edge",
+      JsonNumber(FieldValue(embedded, "BackgroundInputMeanEdgeLength")) },
     { "dim", std::to_string(o.Dim) },
     { "iterations", std::to_string(o.Iterations) },
     { "embedding_iterations", JsonNumber(FieldValue(embedded, "EmbeddingIterations")) },

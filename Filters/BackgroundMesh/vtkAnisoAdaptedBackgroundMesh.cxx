@@ -103,6 +103,26 @@ void BuildOutput(vtkDataSet* input,
   // A new mesh: the input's feature edges and corners (point ids) do not apply to it.
   vtkAnisoDataConversion::RemoveFeatureFieldData(output->GetFieldData());
 }
+
+/// The input as an AdaptBackgroundMesh result with nothing changed (each point its own parent).
+av::AdaptedMeshResult IdentityResult(av::SimplexMesh mesh, av::MetricField metric)
+{
+  av::AdaptedMeshResult r;
+  const std::size_t np = mesh.NumPoints(), nc = mesh.NumCells();
+  r.ParentIds.assign(4 * np, -1);
+  r.ParentWeights.assign(4 * np, 0.0);
+  for (std::size_t i = 0; i < np; ++i)
+  {
+    r.ParentIds[4 * i] = static_cast<std::int32_t>(i);
+    r.ParentWeights[4 * i] = 1.0;
+  }
+  r.CellParent.resize(nc);
+  for (std::size_t c = 0; c < nc; ++c)
+    r.CellParent[c] = static_cast<std::int32_t>(c);
+  r.Mesh = std::move(mesh);
+  r.Metric = std::move(metric);
+  return r;
+}
 }
 
 vtkAnisoAdaptedBackgroundMesh::vtkAnisoAdaptedBackgroundMesh()
@@ -157,6 +177,31 @@ int vtkAnisoAdaptedBackgroundMesh::RequestData(vtkInformation* request,
     return 0;
   }
   this->UpdateProgress(0.05);
+  av::BackgroundResolution given;
+  if (!vtkAnisoFilterUtilities::RunKernel(this,
+        "background resolution",
+        [&] {
+          given = av::MeasureBackgroundResolution(
+            mesh, metric, this->NumberOfSites, this->TargetEdgeLength);
+        }))
+  {
+    return 0;
+  }
+  this->InputMeanEdgeLength = given.MeanEdgeLength;
+  this->Adapted = !this->OnlyWhenCoarse || av::CoarserThanOutput(given);
+  using vtkAnisoFilterUtilities::AddFieldValue;
+  if (!this->Adapted)
+  {
+    // Fine enough already: the input mesh as it is (same points, cells and data).
+    BuildOutput(input, metricArray, IdentityResult(std::move(mesh), std::move(metric)), output);
+    output->GetFieldData()->ShallowCopy(input->GetFieldData());
+    AddFieldValue(output->GetFieldData(), "BackgroundAdapted", 0.0);
+    AddFieldValue(output->GetFieldData(), "BackgroundInputMeanEdgeLength", given.MeanEdgeLength);
+    this->NumberOfSplits = this->NumberOfCollapses = 0;
+    this->Seconds = 0.0;
+    this->UpdateProgress(1.0);
+    return 1;
+  }
   av::AdaptedMeshResult r;
   if (!vtkAnisoFilterUtilities::RunKernel(this,
         "background mesh adaptation",
@@ -177,8 +222,9 @@ int vtkAnisoAdaptedBackgroundMesh::RequestData(vtkInformation* request,
   this->NumberOfSplits = static_cast<vtkIdType>(r.NumSplits);
   this->NumberOfCollapses = static_cast<vtkIdType>(r.NumCollapses);
   this->Seconds = r.Seconds;
-  using vtkAnisoFilterUtilities::AddFieldValue;
   vtkFieldData* fd = output->GetFieldData();
+  AddFieldValue(fd, "BackgroundAdapted", 1.0);
+  AddFieldValue(fd, "BackgroundInputMeanEdgeLength", given.MeanEdgeLength);
   AddFieldValue(fd, "BackgroundMetricScale", r.MetricScale);
   AddFieldValue(fd, "BackgroundMaxEdgeLength", r.MaxEdgeLength);
   AddFieldValue(fd, "BackgroundMeanEdgeLength", r.MeanEdgeLength);
@@ -195,6 +241,7 @@ void vtkAnisoAdaptedBackgroundMesh::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "NumberOfSites: " << this->NumberOfSites << "\n";
   os << indent << "TargetEdgeLength: " << this->TargetEdgeLength << "\n";
+  os << indent << "OnlyWhenCoarse: " << this->OnlyWhenCoarse << "\n";
   os << indent << "CollapseRatio: " << this->CollapseRatio << "\n";
   os << indent << "Refine: " << this->Refine << "\n";
   os << indent << "Coarsen: " << this->Coarsen << "\n";

@@ -344,7 +344,9 @@ int vtkAnisoTensorPipeline::RequestData(vtkInformation*,
   }
 
   std::string error;
-  if (this->AdaptBackgroundMesh)
+  const bool adapt = this->AdaptBackgroundMesh == ADAPT_ALWAYS ||
+    (this->AdaptBackgroundMesh == ADAPT_WHEN_COARSE && this->FieldModeUsed == TENSOR_FIELD);
+  if (adapt)
   {
     vtkNew<vtkAnisoAdaptedBackgroundMesh> adapted;
     adapted->SetInputData(withMetric);
@@ -353,6 +355,7 @@ int vtkAnisoTensorPipeline::RequestData(vtkInformation*,
         0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, metricName.c_str());
     adapted->SetNumberOfSites(this->NumberOfCells);
     adapted->SetTargetEdgeLength(this->BackgroundEdgeLength);
+    adapted->SetOnlyWhenCoarse(this->AdaptBackgroundMesh == ADAPT_WHEN_COARSE);
     adapted->SetFeatureAngle(this->FeatureAngle);
     if (!this->RunStage(adapted, "adapted background mesh", 0.05, 0.1, error))
     {

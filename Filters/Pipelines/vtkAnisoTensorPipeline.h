@@ -152,11 +152,20 @@ public:
   vtkSetClampMacro(GradationFactor, double, 1.0001, 1000.0);
   vtkGetMacro(GradationFactor, double);
   /// Adapt the background mesh to the metric and NumberOfCells before the embedding
-  /// (vtkAnisoAdaptedBackgroundMesh; default off) with edges of at most BackgroundEdgeLength
-  /// output edges (default 0.5).
-  vtkSetMacro(AdaptBackgroundMesh, bool);
-  vtkGetMacro(AdaptBackgroundMesh, bool);
-  vtkBooleanMacro(AdaptBackgroundMesh, bool);
+  /// (vtkAnisoAdaptedBackgroundMesh) with edges of at most BackgroundEdgeLength output edges
+  /// (default 1.5): ADAPT_NEVER, ADAPT_ALWAYS, or ADAPT_WHEN_COARSE (default): in Tensor Field
+  /// mode, when the mesh is coarser than the output (its mean edge longer than one output edge;
+  /// a coarse FE mesh cannot carry the metric at the scale of the cells); a metric field keeps
+  /// its mesh. SetAdaptBackgroundMesh(true / false) still means always / never.
+  enum AdaptModes
+  {
+    ADAPT_NEVER = 0,
+    ADAPT_ALWAYS = 1,
+    ADAPT_WHEN_COARSE = 2
+  };
+  vtkSetClampMacro(AdaptBackgroundMesh, int, ADAPT_NEVER, ADAPT_WHEN_COARSE);
+  vtkGetMacro(AdaptBackgroundMesh, int);
+  vtkBooleanMacro(AdaptBackgroundMesh, int);
   vtkSetClampMacro(BackgroundEdgeLength, double, 1e-3, 10.0);
   vtkGetMacro(BackgroundEdgeLength, double);
   ///@}
@@ -236,8 +245,8 @@ protected:
   double MinCellsAcross = 1.25;
   bool Gradation = true;
   double GradationFactor = 1.3;
-  bool AdaptBackgroundMesh = false;
-  double BackgroundEdgeLength = 0.5;
+  int AdaptBackgroundMesh = ADAPT_WHEN_COARSE;
+  double BackgroundEdgeLength = 1.5;
   int Seed = 1;
 
   double AverageEdgeLengthError = 0.0;

@@ -98,8 +98,10 @@ AdaptiveMeshState InitialState(const SimplexMesh& mesh, const MetricField& metri
   return s;
 }
 
-/// Longest and mean normalized edge length of the state.
-void EdgeStatistics(const AdaptiveMeshState& s, double& maxLength, double& meanLength)
+/// Longest and mean normalized edge length of the state, and the fraction of its edges longer
+/// than `longLength`.
+void EdgeStatistics(const AdaptiveMeshState& s, double& maxLength, double& meanLength,
+  double longLength, double& longFraction)
 {
   const int nv = s.Nv(), ne = s.SimplexDim == 3 ? 6 : 3;
   std::vector<std::uint64_t> keys(s.NumCells() * ne);
@@ -109,26 +111,38 @@ void EdgeStatistics(const AdaptiveMeshState& s, double& maxLength, double& meanL
         EdgeKey(s.Cells[c * nv + kSimplexEdges[e][0]], s.Cells[c * nv + kSimplexEdges[e][1]]);
   tbb::parallel_sort(keys.begin(), keys.end());
   keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
-  using MaxSum = std::pair<double, double>;
-  const MaxSum r = tbb::parallel_reduce(
+  struct Stats
+  {
+    double Max = 0.0, Sum = 0.0, Long = 0.0;
+  };
+  const Stats r = tbb::parallel_reduce(
     tbb::blocked_range<std::size_t>(0, keys.size(), 4096),
-    MaxSum{ 0.0, 0.0 },
-    [&](const tbb::blocked_range<std::size_t>& range, MaxSum acc)
+    Stats{},
+    [&](const tbb::blocked_range<std::size_t>& range, Stats acc)
     {
       for (std::size_t i = range.begin(); i != range.end(); ++i)
       {
         const double l = s.EdgeLength(static_cast<std::int32_t>(keys[i] >> 32),
           static_cast<std::int32_t>(keys[i] & 0xffffffffu));
-        acc.first = std::max(acc.first, l);
-        acc.second += l;
+        acc.Max = std::max(acc.Max, l);
+        acc.Sum += l;
+        acc.Long += l > longLength ? 1.0 : 0.0;
       }
       return acc;
     },
-    [](MaxSum x, MaxSum y) {
-      return MaxSum{ std::max(x.first, y.first), x.second + y.second };
+    [](Stats x, Stats y) {
+      return Stats{ std::max(x.Max, y.Max), x.Sum + y.Sum, x.Long + y.Long };
     });
-  maxLength = r.first;
-  meanLength = keys.empty() ? 0.0 : r.second / static_cast<double>(keys.size());
+  const double n = static_cast<double>(keys.size());
+  maxLength = r.Max;
+  meanLength = keys.empty() ? 0.0 : r.Sum / n;
+  longFraction = keys.empty() ? 0.0 : r.Long / n;
+}
+
+/// s of AdaptedMeshResult::MetricScale for `complexity`.
+double NormalizingScale(int sites, int simplexDim, double complexity)
+{
+  return std::pow(sites * UnitVertexMeasure(simplexDim) / complexity, 2.0 / simplexDim);
 }
 /// Complexity of the working mesh's metric.
 double StateComplexity(const AdaptiveMeshState& s)
@@ -173,8 +187,7 @@ AdaptedMeshResult AdaptBackgroundMesh(const SimplexMesh& mesh,
                      "sqrt(det M)); it cannot be scaled to a number of sites");
   const int k = mesh.SimplexDim;
   // s^(k/2) C / UnitVertexMeasure(k) = sites: an output edge has normalized length about 1.
-  result.MetricScale =
-    std::pow(options.NumberOfSites * UnitVertexMeasure(k) / result.Complexity, 2.0 / k);
+  result.MetricScale = NormalizingScale(options.NumberOfSites, k, result.Complexity);
   AdaptiveMeshState s = InitialState(mesh, metric, result.MetricScale);
   // All splits come before all collapses: a split point then always lies in one input element,
   // so its parents are that element's vertices (exact weights, on the input surface).
@@ -185,7 +198,7 @@ AdaptedMeshResult AdaptBackgroundMesh(const SimplexMesh& mesh,
     // The input's complexity (mean metric per coarse cell) misjudges a fast-varying field; the
     // refined mesh resolves it: rescale once from it, refine on when the scale grew.
     const double c = StateComplexity(s);
-    const double scale = std::pow(options.NumberOfSites * UnitVertexMeasure(k) / c, 2.0 / k);
+    const double scale = NormalizingScale(options.NumberOfSites, k, c);
     if (done && c > 0.0 && std::isfinite(scale) &&
       std::abs(scale / result.MetricScale - 1.0) > 0.05)
     {
@@ -204,7 +217,8 @@ AdaptedMeshResult AdaptBackgroundMesh(const SimplexMesh& mesh,
       options.MaxCoarsenPasses,
       result.CoarsenPasses);
   CompactMesh(s);
-  EdgeStatistics(s, result.MaxEdgeLength, result.MeanEdgeLength);
+  double longFraction = 0.0;
+  EdgeStatistics(s, result.MaxEdgeLength, result.MeanEdgeLength, options.TargetLength, longFraction);
   result.Mesh.AmbientDim = s.AmbientDim;
   result.Mesh.SimplexDim = s.SimplexDim;
   result.Mesh.Points = std::move(s.Points);
@@ -215,6 +229,24 @@ AdaptedMeshResult AdaptBackgroundMesh(const SimplexMesh& mesh,
   result.CellParent = std::move(s.CellParent);
   result.Seconds = clock.Seconds();
   return result;
+}
+
+BackgroundResolution MeasureBackgroundResolution(const SimplexMesh& mesh,
+  const MetricField& metric,
+  int numberOfSites,
+  double targetLength)
+{
+  CheckInput(mesh, metric);
+  if (numberOfSites <= 0 || !(targetLength > 0.0))
+    throw InputError("MeasureBackgroundResolution: needs a positive number of sites and length");
+  const double complexity = MetricComplexity(mesh, metric);
+  if (!(complexity > 0.0) || !std::isfinite(complexity))
+    throw InputError("MeasureBackgroundResolution: the metric has zero complexity");
+  const AdaptiveMeshState s =
+    InitialState(mesh, metric, NormalizingScale(numberOfSites, mesh.SimplexDim, complexity));
+  BackgroundResolution r;
+  EdgeStatistics(s, r.MaxEdgeLength, r.MeanEdgeLength, targetLength, r.LongEdgeFraction);
+  return r;
 }
 
 } // namespace av

@@ -173,12 +173,53 @@ int TestAnisoAdaptedBackgroundMesh(int, char*[])
     filter->SetInputData(input);
     filter->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "Metric");
     filter->SetNumberOfSites(200);
+    filter->SetTargetEdgeLength(0.5);
     filter->Update();
     AV_CHECK(events->Errors == 0);
     CheckOutput(input, filter->GetOutput(), components);
+    AV_CHECK(FieldValue(filter->GetOutput(), "BackgroundAdapted") == 1.0);
     // The input is untouched.
     AV_CHECK(input->GetNumberOfPoints() == inputPoints);
     AV_CHECK(input->GetPointData()->GetArray("Metric")->GetComponent(5, 2) == firstMetric);
+  }
+  // OnlyWhenCoarse: a grid coarser than the output is adapted, one finer than it (few sites)
+  // passes through with its own points and data.
+  {
+    vtkSmartPointer<vtkUnstructuredGrid> input = MakeGrid(4, 6);
+    vtkNew<vtkAnisoAdaptedBackgroundMesh> filter;
+    events->Reset();
+    Watch(filter, events);
+    filter->SetInputData(input);
+    filter->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "Metric");
+    filter->OnlyWhenCoarseOn();
+    filter->SetNumberOfSites(2000);
+    filter->Update();
+    AV_CHECK(events->Errors == 0);
+    AV_CHECK(filter->GetInputMeanEdgeLength() > 1.0);
+    AV_CHECK(filter->GetAdapted());
+    AV_CHECK(filter->GetOutput()->GetNumberOfPoints() > input->GetNumberOfPoints());
+    filter->SetNumberOfSites(5);
+    filter->Update();
+    AV_CHECK(events->Errors == 0);
+    AV_CHECK(filter->GetInputMeanEdgeLength() < 1.0);
+    AV_CHECK(!filter->GetAdapted());
+    vtkUnstructuredGrid* out = filter->GetOutput();
+    AV_CHECK(FieldValue(out, "BackgroundAdapted") == 0.0);
+    AV_CHECK(out->GetNumberOfPoints() == input->GetNumberOfPoints());
+    AV_CHECK(out->GetNumberOfCells() == input->GetNumberOfCells());
+    bool same = out->GetNumberOfPoints() == input->GetNumberOfPoints();
+    for (vtkIdType i = 0; same && i < out->GetNumberOfPoints(); ++i)
+    {
+      double a[3], b[3];
+      out->GetPoint(i, a);
+      input->GetPoint(i, b);
+      same = a[0] == b[0] && a[1] == b[1] && a[2] == b[2] &&
+        out->GetPointData()->GetArray("F")->GetTuple1(i) ==
+          input->GetPointData()->GetArray("F")->GetTuple1(i) &&
+        out->GetPointData()->GetArray("Metric")->GetComponent(i, 2) ==
+          input->GetPointData()->GetArray("Metric")->GetComponent(i, 2);
+    }
+    AV_CHECK(same);
   }
   // No metric array: a clear error, no output.
   {
