@@ -216,6 +216,33 @@ void TestBoundaryLayer()
   AV_CHECK(r.Mesh.NumPoints() < 60000u);
 }
 
+/// MeasureBackgroundResolution: the adapted mesh meets the criterion it measures (max edge, no
+/// long edge), the coarse input does not; lengths scale as sites^(1/k) (8x the sites: 2x the
+/// normalized lengths in 3D), and CoarserThanOutput follows the mean edge.
+void TestResolution()
+{
+  const double lo[3] = { 0, 0, 0 }, hi[3] = { 1, 1, 1 };
+  const SimplexMesh input = MakeKuhnTetGrid(4, 4, 4, lo, hi);
+  const MetricField metric = LayerMetric(input);
+  AdaptedMeshOptions o;
+  o.NumberOfSites = 300;
+  o.TargetLength = 1.5;
+  const BackgroundResolution given = MeasureBackgroundResolution(input, metric, 300, 1.5);
+  AV_CHECK(given.MaxEdgeLength > 1.5 && given.LongEdgeFraction > 0.0);
+  AV_CHECK(given.MeanEdgeLength > 1.0 && CoarserThanOutput(given));
+  const BackgroundResolution more = MeasureBackgroundResolution(input, metric, 2400, 1.5);
+  AV_CHECK_NEAR(more.MeanEdgeLength / given.MeanEdgeLength, 2.0, 1e-9);
+  AV_CHECK_NEAR(more.MaxEdgeLength / given.MaxEdgeLength, 2.0, 1e-9);
+  AV_CHECK(!CoarserThanOutput(MeasureBackgroundResolution(input, metric, 2, 1.5)));
+  const AdaptedMeshResult r = AdaptBackgroundMesh(input, metric, o);
+  const BackgroundResolution adapted = MeasureBackgroundResolution(r.Mesh, r.Metric, 300, 1.5);
+  AV_CHECK_MSG(adapted.LongEdgeFraction == 0.0 && adapted.MaxEdgeLength <= 1.5 * (1 + 1e-6),
+    "adapted: max edge " << adapted.MaxEdgeLength << ", long " << adapted.LongEdgeFraction);
+  AV_CHECK_NEAR(adapted.MeanEdgeLength, r.MeanEdgeLength, 0.05 * r.MeanEdgeLength);
+  AV_CHECK(!CoarserThanOutput(adapted));
+  AV_CHECK_THROWS(MeasureBackgroundResolution(input, metric, 0, 1.5));
+}
+
 /// A fine grid and few sites: coarsening shrinks it, keeps the box and the criterion.
 void TestCoarsening()
 {
@@ -387,6 +414,7 @@ void TestBadInput()
 int TestMetricAdaptedMesh(int, char*[])
 {
   TestBoundaryLayer();
+  TestResolution();
   TestCoarsening();
   Test2D();
   TestSurface();
