@@ -92,30 +92,6 @@ struct CollapseContext
   std::vector<std::vector<std::int32_t>> Gained;
 };
 
-/// The alive cells around `p` into `out`; false when there are more than kMaxStar.
-bool GatherStar(const CollapseContext& ctx, std::int32_t p, std::int32_t* out, int& n)
-{
-  n = 0;
-  for (std::int32_t i = ctx.StarOffsets[p]; i < ctx.StarOffsets[p + 1]; ++i)
-  {
-    const std::int32_t c = ctx.Stars[i];
-    if (!ctx.Alive[c])
-      continue;
-    if (n == kMaxStar)
-      return false;
-    out[n++] = c;
-  }
-  for (const std::int32_t c : ctx.Gained[p])
-  {
-    if (!ctx.Alive[c])
-      continue;
-    if (n == kMaxStar)
-      return false;
-    out[n++] = c;
-  }
-  return true;
-}
-
 bool CellHas(const AdaptiveMeshState& s, std::int32_t c, std::int32_t p)
 {
   const std::int32_t* v = s.Cells.data() + static_cast<std::size_t>(c) * s.Nv();
@@ -123,6 +99,28 @@ bool CellHas(const AdaptiveMeshState& s, std::int32_t c, std::int32_t p)
     if (v[k] == p)
       return true;
   return false;
+}
+
+/// The alive cells around `p` into `out`; false when there are more than kMaxStar. A cell listed
+/// for p may have lost it in this pass (p collapsed onto a neighbour): only cells holding p count.
+bool GatherStar(const CollapseContext& ctx, std::int32_t p, std::int32_t* out, int& n)
+{
+  n = 0;
+  const auto take = [&](std::int32_t c) {
+    if (!ctx.Alive[c] || !CellHas(ctx.S, c, p))
+      return true;
+    if (n == kMaxStar)
+      return false;
+    out[n++] = c;
+    return true;
+  };
+  for (std::int32_t i = ctx.StarOffsets[p]; i < ctx.StarOffsets[p + 1]; ++i)
+    if (!take(ctx.Stars[i]))
+      return false;
+  for (const std::int32_t c : ctx.Gained[p])
+    if (!take(c))
+      return false;
+  return true;
 }
 
 /// Unique sorted vertices of the cells, without `self`.
@@ -190,8 +188,8 @@ bool TryCollapse(CollapseContext& ctx, std::int32_t a, std::int32_t b)
     return false;
   std::int32_t starA[kMaxStar], starB[kMaxStar];
   int na = 0, nb = 0;
-  if (!GatherStar(ctx, a, starA, na) || !GatherStar(ctx, b, starB, nb))
-    return false;
+  if (!GatherStar(ctx, a, starA, na) || !GatherStar(ctx, b, starB, nb) || na == 0 || nb == 0)
+    return false; // a or b was removed by an earlier collapse of the pass
   std::int32_t vertsA[kMaxStar * 4], vertsB[kMaxStar * 4];
   const int nva = StarVertices(s, starA, na, a, vertsA);
   const int nvb = StarVertices(s, starB, nb, b, vertsB);
