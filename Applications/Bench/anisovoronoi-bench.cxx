@@ -486,8 +486,9 @@ void ReportEmbedding(const Args& a, const Case& c, const av::EmbeddingOptions& o
   out.Set("anderson_rejected", r.AndersonRejected);
   out.Set("solve_precision", a.DoubleSolve ? "double" : "single");
   out.Set("double_precision_retries", r.DoublePrecisionRetries);
-  out.Set("global_solver", r.IterativeSolve ? "iterative" : "direct");
-  if (r.IterativeSolve)
+  out.Set("global_solver",
+    r.IterativeSolve ? "iterative" : (r.SwitchedToDirect ? "iterative, then direct" : "direct"));
+  if (r.IterativeSolve || r.SwitchedToDirect)
   {
     out.Set("cg_tolerance", o.IterativeTolerance);
     out.Set("amg_matrix", o.SparsePreconditioner ? "element-adjacent" : "full");

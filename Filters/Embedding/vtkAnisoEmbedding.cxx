@@ -122,6 +122,7 @@ void AddFigures(vtkFieldData* fd, const av::EdgeLengthErrorResult& errors, doubl
   AddFieldValue(fd, "EmbeddingIterations", result.IterationsDone);
   AddFieldValue(fd, "EmbeddingConverged", result.Converged ? 1 : 0);
   AddFieldValue(fd, "IterativeSolve", result.IterativeSolve ? 1 : 0);
+  AddFieldValue(fd, "SwitchedToDirect", result.SwitchedToDirect ? 1 : 0);
   AddFieldValue(fd, "FactorSeconds", result.FactorSeconds);
   AddFieldValue(fd, "SolveSeconds", result.SolveSeconds);
   AddFieldValue(fd, "DoublePrecisionRetries", result.DoublePrecisionRetries);

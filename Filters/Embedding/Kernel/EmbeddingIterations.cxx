@@ -12,6 +12,7 @@
 
 #include <string>
 #include <algorithm>
+#include <cmath>
 #include <utility>
 
 namespace av
@@ -36,9 +37,25 @@ Eigen::MatrixXd EmbeddingSolver::Internals::GlobalStep(const Eigen::MatrixXd& cu
   if (this->Iterative)
   {
     sol = current; // warm start: CG from here cannot raise the energy
+    // An Automatic choice probes CG's convergence on the first step with a short cap.
+    const bool probe = this->SwitchK.rows() > 0;
+    const int cap = this->Iterative->GetMaxIterations();
+    if (probe)
+      this->Iterative->SetMaxIterations(
+        static_cast<int>(std::ceil(2.0 * this->Options.DirectSwitchCgIterations)));
     this->Iterative->Solve(rhs, sol, this->Options.IterativeTolerance);
+    this->SolveSeconds += clock.Seconds();
+    if (probe)
+    {
+      this->Iterative->SetMaxIterations(cap);
+      this->MaybeSwitchToDirect(); // its time counts as factorization
+    }
+    if (this->Iterative)
+      return sol;
+    // Switched to direct: this step is solved again with the factor.
   }
-  else if (this->FloatSolver)
+  const Stopwatch direct;
+  if (this->FloatSolver)
   {
     sol.resize(rhs.rows(), rhs.cols());
     this->FloatSolver->Solve(rhs.data(), sol.data(), static_cast<int>(rhs.cols()));
@@ -48,8 +65,42 @@ Eigen::MatrixXd EmbeddingSolver::Internals::GlobalStep(const Eigen::MatrixXd& cu
     sol = this->Chol.solve(rhs);
     this->RequireSolved();
   }
-  this->SolveSeconds += clock.Seconds();
+  this->SolveSeconds += direct.Seconds();
   return sol;
+}
+
+void EmbeddingSolver::Internals::MaybeSwitchToDirect()
+{
+  if (this->SwitchK.rows() == 0)
+    return;
+  const IterativeSolveStatistics st = this->Iterative->Statistics();
+  Eigen::SparseMatrix<double> kmat = std::move(this->SwitchK);
+  std::vector<double> values = std::move(this->SwitchValues);
+  this->SwitchK = Eigen::SparseMatrix<double>();
+  // The probe's cap is 2x the bar: a solve that hit it did not converge.
+  const bool slow = st.NotConverged > 0 ||
+    static_cast<double>(st.Iterations) >
+      this->Options.DirectSwitchCgIterations * static_cast<double>(st.Solves);
+  if (st.Solves == 0 || !slow)
+    return;
+  const Stopwatch clock;
+  const double iterativeSetup = this->FactorSeconds;
+  try
+  {
+    this->Chol.cholmod().nmethods = 1;
+    this->Chol.cholmod().method[0].ordering = CHOLMOD_NESDIS;
+    this->Chol.analyzePattern(kmat);
+    this->Factor(kmat, values, 0.0);
+  }
+  catch (const InputError&)
+  {
+    return; // the factor does not fit (or fails): stay iterative
+  }
+  this->SwitchedStatistics = st;
+  this->SwitchedToDirect = true;
+  this->Iterative.reset();
+  // Factor() set FactorSeconds to its own time; the iterative setup's share stays counted.
+  this->FactorSeconds = iterativeSetup + clock.Seconds();
 }
 
 Eigen::MatrixXd EmbeddingSolver::Internals::RedoGlobalStepAccurately(const Eigen::MatrixXd& current)
@@ -251,12 +302,17 @@ EmbeddingResult EmbeddingSolver::Run()
     }
   }
   res.IterationSeconds = clock.Seconds();
+  // A switch to direct factored during the iterations (also counted in IterationSeconds).
+  res.FactorSeconds = p.FactorSeconds;
+  res.FactorNonZeros = p.FactorNonZeros;
   res.LocalStepSeconds = p.LocalSeconds;
   res.SolveSeconds = p.SolveSeconds;
-  if (p.Iterative)
+  if (p.Iterative || p.SwitchedToDirect)
   {
-    const IterativeSolveStatistics& st = p.Iterative->Statistics();
-    res.IterativeSolve = true;
+    const IterativeSolveStatistics& st =
+      p.Iterative ? p.Iterative->Statistics() : p.SwitchedStatistics;
+    res.IterativeSolve = p.Iterative != nullptr;
+    res.SwitchedToDirect = p.SwitchedToDirect;
     res.SolverSolves = st.Solves;
     res.SolverIterations = st.Iterations;
     res.SolverMaxIterations = st.MaxIterations;

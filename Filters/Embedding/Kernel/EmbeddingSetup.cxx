@@ -125,12 +125,13 @@ void ValidateSizesAndOptions(
   if (o.Iterations < 0 || !(o.Mu >= 0.0) || !std::isfinite(o.Mu) || o.AndersonWindow < 0 ||
     o.AndersonWindow > 50 || !(o.RelativeEnergyTolerance >= 0.0) ||
     !std::isfinite(o.InitialAmplitude) || o.MaxIterations < 0 ||
-    !(o.ConvergenceTolerance >= 0.0) || !(o.TargetAverageErrorPercent >= 0.0) || !(o.IterativeTolerance > 0.0 && o.IterativeTolerance < 1.0))
+    !(o.ConvergenceTolerance >= 0.0) || !(o.TargetAverageErrorPercent >= 0.0) || !(o.IterativeTolerance > 0.0 && o.IterativeTolerance < 1.0) ||
+    !(o.DirectSwitchCgIterations >= 0.0 && o.DirectSwitchCgIterations <= 1e6))
   {
     throw InputError("embedding: invalid options (need Iterations >= 0, MaxIterations >= 0, "
                      "finite Mu >= 0, AndersonWindow in [0, 50], RelativeEnergyTolerance >= 0, "
                      "ConvergenceTolerance >= 0, TargetAverageErrorPercent >= 0, "
-                     "IterativeTolerance in (0, 1))");
+                     "IterativeTolerance in (0, 1), DirectSwitchCgIterations in [0, 1e6])");
   }
   if (metric.Values.size() != 6 * mesh.NumPoints())
   {

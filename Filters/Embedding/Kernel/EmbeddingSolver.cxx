@@ -41,9 +41,11 @@ EmbeddingSolver::EmbeddingSolver(
     p.ErrorMesh = mesh;
     p.ErrorTarget.reset(new EdgeLengthErrorEvaluator(p.ErrorMesh, metric));
   }
+  const std::size_t iterativeFrom = options.IterativeMinVertices > 0
+    ? options.IterativeMinVertices
+    : IterativeSolverMinVertices(mesh.SimplexDim);
   const bool iterative = options.GlobalSolver == EmbeddingGlobalSolver::Iterative ||
-    (options.GlobalSolver == EmbeddingGlobalSolver::Automatic &&
-      p.NP >= IterativeSolverMinVertices(mesh.SimplexDim));
+    (options.GlobalSolver == EmbeddingGlobalSolver::Automatic && p.NP >= iterativeFrom);
   if (iterative)
   {
     Eigen::SparseMatrix<double> kmat;
@@ -53,6 +55,12 @@ EmbeddingSolver::EmbeddingSolver(
     p.AssembleLower(true, kmat, &values);
     p.InitializeState(mesh);
     p.SetupIterative(kmat, values);
+    if (options.GlobalSolver == EmbeddingGlobalSolver::Automatic &&
+      options.DirectSwitchCgIterations > 0.0 && p.NP <= kDirectSwitchMaxVertices && p.Iterative)
+    {
+      p.SwitchK = kmat;
+      p.SwitchValues = std::move(values);
+    }
     p.SetupSeconds = clock.Seconds() - p.FactorSeconds;
     return;
   }

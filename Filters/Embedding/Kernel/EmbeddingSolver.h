@@ -53,7 +53,9 @@ struct EmbeddingEnergy
 enum class EmbeddingGlobalSolver
 {
   /// Direct below IterativeSolverMinVertices() mesh vertices (20,000 for tet meshes, 150,000 for
-  /// triangle meshes), iterative from there on.
+  /// triangle meshes), iterative from there on, unless CG converges slowly on the mesh (more than
+  /// kDirectSwitchCgIterations per solve in the first global step, up to kDirectSwitchMaxVertices
+  /// vertices, the factor fitting in memory): then direct from the second step on.
   Automatic,
   /// Sparse Cholesky (CHOLMOD supernodal), factorised once; memory grows like n^1.3.
   Direct,
@@ -75,6 +77,16 @@ inline std::size_t IterativeSolverMinVertices(int simplexDim)
 {
   return simplexDim == 3 ? kIterativeSolverMinTetVertices : kIterativeSolverMinVertices;
 }
+/// Automatic: when the first global step's CG solves (capped at twice this) take more than this
+/// many iterations on average, the solver factors the matrix and goes on direct. On grids the
+/// first step takes about 3 (cube2); on squareBend 12, where both solvers cost the same; on meshes
+/// adapted to an anisotropic metric 17 to over 300, where the direct solver was 2-17x faster
+/// (hueeber1, 26k vertices: 2.5 s against 4.9 s; compressor at 10,000 sites, 84.6k vertices:
+/// 18.5 s against 323 s).
+constexpr double kDirectSwitchCgIterations = 15.0;
+/// ... and only meshes up to this many vertices switch (the factor's time grows like n^1.5: at
+/// 343k vertices the factorization alone took 67 s); the memory check of the factor still applies.
+constexpr std::size_t kDirectSwitchMaxVertices = 250000;
 
 class EmbeddingSolver;
 
@@ -113,6 +125,12 @@ struct EmbeddingOptions
   double ConvergenceTolerance = 1e-4;
   double TargetAverageErrorPercent = 2.0;
   EmbeddingGlobalSolver GlobalSolver = EmbeddingGlobalSolver::Automatic;
+  /// Automatic: mesh vertices from which the iterative solver is tried (0 =
+  /// IterativeSolverMinVertices(simplex dimension)).
+  std::size_t IterativeMinVertices = 0;
+  /// Automatic: the mean CG iterations per solve of the first global step above which the
+  /// solver switches to direct (kDirectSwitchCgIterations; 0 = never switch).
+  double DirectSwitchCgIterations = kDirectSwitchCgIterations;
   /// Iterative solver: stop each CG solve at |r| <= IterativeTolerance |b| (warm start from the
   /// current iterate; CG never raises the energy whatever the tolerance, see README).
   double IterativeTolerance = 1e-4;
@@ -155,12 +173,16 @@ struct EmbeddingResult
   bool Aborted = false;     ///< the progress callback asked to stop
   double SetupSeconds = 0.0;     ///< validation, element operators, matrix assembly
   double FactorSeconds = 0.0;    ///< sparse Cholesky analyse + factorise, or the AMG setup
+                                 ///< (+ the factorization of a switch to direct, which happens
+                                 ///< during the iterations and is in IterationSeconds too)
   double IterationSeconds = 0.0; ///< all iterations
   double LocalStepSeconds = 0.0; ///< part of IterationSeconds in local steps (incl. energies)
   double SolveSeconds = 0.0;     ///< part of IterationSeconds in the global-step solves
   int DoublePrecisionRetries = 0; ///< plain steps redone in double (SinglePrecisionSolve)
   std::size_t FactorNonZeros = 0; ///< non-zeros of the Cholesky factor
   bool IterativeSolve = false;    ///< the global steps used the iterative solver
+  /// Automatic: CG converged slowly in the first global step, the rest were direct.
+  bool SwitchedToDirect = false;
   long long SolverSolves = 0;     ///< iterative: CG solves (one per free dimension and step)
   long long SolverIterations = 0; ///< iterative: CG iterations summed over all solves
   int SolverMaxIterations = 0;    ///< iterative: most CG iterations of one solve

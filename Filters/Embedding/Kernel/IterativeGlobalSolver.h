@@ -8,6 +8,7 @@
 #include <Eigen/Dense>
 #include <Eigen/SparseCore>
 
+#include <algorithm>
 #include <memory>
 
 namespace av
@@ -59,6 +60,9 @@ public:
   long long Solve(const Eigen::MatrixXd& rhs, Eigen::MatrixXd& x, double tolerance);
 
   const IterativeSolveStatistics& Statistics() const { return this->Stats; }
+  /// The cap on CG iterations per solve (at least 1); a capped solve counts as NotConverged.
+  void SetMaxIterations(int maxIterations) { this->MaxIterations = std::max(1, maxIterations); }
+  int GetMaxIterations() const { return this->MaxIterations; }
 
 private:
   void SolveBlock(const Eigen::MatrixXd& rhs,

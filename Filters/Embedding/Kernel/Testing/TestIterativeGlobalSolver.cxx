@@ -236,6 +236,32 @@ void CheckSeparatePreconditioner()
   const Eigen::SparseMatrix<double> wrong(n - 1, n - 1);
   AV_CHECK_THROWS(IterativeGlobalSolver(kl, 10, &wrong));
 }
+/// Automatic with slow CG: the first step's CG is cut short, the step is solved again with the
+/// factor and the run goes on direct, so it equals a direct run; with fast CG it stays iterative.
+void CheckSwitchToDirect(const SimplexMesh& cube, const MetricField& metric)
+{
+  EmbeddingOptions o;
+  o.Iterations = 10;
+  o.MaxIterations = 0;
+  o.GlobalSolver = EmbeddingGlobalSolver::Direct;
+  const EmbeddingResult direct = ComputeEmbedding(cube, metric, o);
+  o.GlobalSolver = EmbeddingGlobalSolver::Automatic;
+  o.IterativeMinVertices = 1;       // try the iterative solver on this small grid
+  o.DirectSwitchCgIterations = 0.5; // any CG solve is "slow"
+  const EmbeddingResult switched = ComputeEmbedding(cube, metric, o);
+  AV_CHECK(switched.SwitchedToDirect && !switched.IterativeSolve);
+  AV_CHECK(switched.SolverSolves == 5); // only the first step's 5 solves were iterative
+  AV_CHECK(switched.FactorNonZeros == direct.FactorNonZeros && switched.FactorNonZeros > 0);
+  const double d = RelativeDifference(switched.Embedded, direct.Embedded);
+  std::cout << "switched to direct vs direct: coordinates " << d << "\n";
+  AV_CHECK(d < 1e-12);
+  o.DirectSwitchCgIterations = 1000.0; // CG converges: no switch
+  const EmbeddingResult stays = ComputeEmbedding(cube, metric, o);
+  AV_CHECK(stays.IterativeSolve && !stays.SwitchedToDirect && stays.SolverSolves == 50);
+  o.DirectSwitchCgIterations = 0.0; // never
+  const EmbeddingResult never = ComputeEmbedding(cube, metric, o);
+  AV_CHECK(never.IterativeSolve && !never.SwitchedToDirect);
+}
 } // namespace
 
 int TestIterativeGlobalSolver(int, char*[])
@@ -244,6 +270,7 @@ int TestIterativeGlobalSolver(int, char*[])
   const MetricField metric = EvaluateAnalyticMetric(AnalyticPreset::Cube1, cube);
   CheckSeparatePreconditioner();
   CheckAgreesWithDirect(cube, metric);
+  CheckSwitchToDirect(cube, metric);
   CheckMonotone(cube, metric);
   CheckConvergenceStop(cube, metric);
   CheckErrorTarget(cube, metric);
