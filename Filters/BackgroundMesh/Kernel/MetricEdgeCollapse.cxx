@@ -29,9 +29,15 @@ constexpr int kMaxStar = 96;
 double MetricQuality(const AdaptiveMeshState& s, const std::int32_t* v)
 {
   const int k = s.SimplexDim;
-  Eigen::Matrix3d m = Eigen::Matrix3d::Zero();
+  // Sum the packed tensors, unpack once (the same sums entry by entry).
+  double packed[6] = { 0, 0, 0, 0, 0, 0 };
   for (int i = 0; i <= k; ++i)
-    m += UnpackSymmetric(s.Metric.data() + 6 * static_cast<std::size_t>(v[i]));
+  {
+    const double* mi = s.Metric.data() + 6 * static_cast<std::size_t>(v[i]);
+    for (int q = 0; q < 6; ++q)
+      packed[q] += mi[q];
+  }
+  Eigen::Matrix3d m = UnpackSymmetric(packed);
   m /= (k + 1);
   Eigen::Matrix3d e = Eigen::Matrix3d::Zero();
   const Eigen::Vector3d p0 = s.Position(static_cast<std::size_t>(v[0]));
@@ -327,11 +333,17 @@ bool TryCollapse(CollapseContext& ctx, std::int32_t a, std::int32_t b)
     std::int32_t* v = s.Cells.data() + static_cast<std::size_t>(changed[i]) * nv;
     for (int q = 0; q < nv; ++q)
       v[q] = v[q] == a ? b : v[q];
-    ctx.Gained[b].push_back(changed[i]);
   }
   for (int i = 0; i < na; ++i)
     if (CellHas(s, starA[i], b) && CellHas(s, starA[i], a))
       ctx.Alive[starA[i]] = 0;
+  // b's gained cells: drop those GatherStar would skip (a vertex that absorbs many collapses
+  // would otherwise drag its dead cells along), then add a's.
+  std::vector<std::int32_t>& gained = ctx.Gained[b];
+  gained.erase(std::remove_if(gained.begin(), gained.end(),
+                 [&](std::int32_t c) { return !ctx.Alive[c] || !CellHas(s, c, b); }),
+    gained.end());
+  gained.insert(gained.end(), changed, changed + nChanged);
   if (ca == 1)
   {
     for (int i = 0; i < nva; ++i)
