@@ -75,7 +75,6 @@ void EmbeddingSolver::Internals::MaybeSwitchToDirect()
     return;
   const IterativeSolveStatistics st = this->Iterative->Statistics();
   Eigen::SparseMatrix<double> kmat = std::move(this->SwitchK);
-  std::vector<double> values = std::move(this->SwitchValues);
   this->SwitchK = Eigen::SparseMatrix<double>();
   // The probe's cap is 2x the bar: a solve that hit it did not converge.
   const bool slow = st.NotConverged > 0 ||
@@ -87,9 +86,9 @@ void EmbeddingSolver::Internals::MaybeSwitchToDirect()
   const double iterativeSetup = this->FactorSeconds;
   try
   {
-    this->Chol.cholmod().nmethods = 1;
-    this->Chol.cholmod().method[0].ordering = CHOLMOD_NESDIS;
+    this->UseNestedDissection();
     this->Chol.analyzePattern(kmat);
+    const std::vector<double> values(kmat.valuePtr(), kmat.valuePtr() + kmat.nonZeros());
     this->Factor(kmat, values, 0.0);
   }
   catch (const InputError&)

@@ -58,8 +58,7 @@ EmbeddingSolver::EmbeddingSolver(
     if (options.GlobalSolver == EmbeddingGlobalSolver::Automatic &&
       options.DirectSwitchCgIterations > 0.0 && p.NP <= kDirectSwitchMaxVertices && p.Iterative)
     {
-      p.SwitchK = kmat;
-      p.SwitchValues = std::move(values);
+      p.SwitchK = kmat; // SetupIterative put the values in
     }
     p.SetupSeconds = clock.Seconds() - p.FactorSeconds;
     return;
@@ -71,8 +70,7 @@ EmbeddingSolver::EmbeddingSolver(
   p.AssembleLower(false, kmat, nullptr);
   // Nested dissection keeps the fill of the two-ring stencil (L^T L) well below AMD's
   // (cube2 101x21x21: 38.6M entries with NESDIS, 39.4M METIS, 47.7M AMD).
-  p.Chol.cholmod().nmethods = 1;
-  p.Chol.cholmod().method[0].ordering = CHOLMOD_NESDIS;
+  p.UseNestedDissection();
   std::thread analyser([&p, &kmat]() { p.Chol.analyzePattern(kmat); });
   std::vector<double> values;
   try

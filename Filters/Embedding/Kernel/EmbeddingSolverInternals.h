@@ -62,9 +62,9 @@ struct EmbeddingSolver::Internals
   Cholesky Chol;
   std::unique_ptr<FloatSupernodalSolver> FloatSolver; // SinglePrecisionSolve
   std::unique_ptr<IterativeGlobalSolver> Iterative;   // EmbeddingGlobalSolver::Iterative
-  // Automatic picked the iterative solver: K kept to factor it if CG converges slowly.
+  // Automatic picked the iterative solver: K (with its values) kept to factor it if CG
+  // converges slowly.
   Eigen::SparseMatrix<double> SwitchK;
-  std::vector<double> SwitchValues;
   bool SwitchedToDirect = false;
   IterativeSolveStatistics SwitchedStatistics; // of the iterative solves before the switch
   SimplexMesh ErrorMesh; // a copy for ErrorTarget (the caller's mesh may not outlive us)
@@ -106,6 +106,12 @@ struct EmbeddingSolver::Internals
   Eigen::SparseMatrix<double> ElementAdjacentPart(const Eigen::SparseMatrix<double>& kmat) const;
   /// Builds the iterative solver instead of the factorization (kmat: the pattern, vals: values).
   void SetupIterative(Eigen::SparseMatrix<double>& kmat, const std::vector<double>& vals);
+  /// CHOLMOD's fill-reducing ordering for K: nested dissection (see the constructor).
+  void UseNestedDissection()
+  {
+    this->Chol.cholmod().nmethods = 1;
+    this->Chol.cholmod().method[0].ordering = CHOLMOD_NESDIS;
+  }
   /// After the first iterative global step of an Automatic choice: factors SwitchK and drops the
   /// iterative solver when CG took more than kDirectSwitchCgIterations per solve.
   void MaybeSwitchToDirect();

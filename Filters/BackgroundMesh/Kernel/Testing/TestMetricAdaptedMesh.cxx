@@ -161,10 +161,16 @@ MetricField LayerMetric(const SimplexMesh& m)
   return f;
 }
 
-void TestBoundaryLayer()
+/// The wall-layer case: a 4^3 Kuhn grid of the unit cube with LayerMetric.
+SimplexMesh LayerGrid()
 {
   const double lo[3] = { 0, 0, 0 }, hi[3] = { 1, 1, 1 };
-  const SimplexMesh input = MakeKuhnTetGrid(4, 4, 4, lo, hi);
+  return MakeKuhnTetGrid(4, 4, 4, lo, hi);
+}
+
+void TestBoundaryLayer()
+{
+  const SimplexMesh input = LayerGrid();
   const MetricField metric = LayerMetric(input);
   AdaptedMeshOptions o;
   o.NumberOfSites = 300;
@@ -221,8 +227,7 @@ void TestBoundaryLayer()
 /// normalized lengths in 3D), and CoarserThanOutput follows the mean edge.
 void TestResolution()
 {
-  const double lo[3] = { 0, 0, 0 }, hi[3] = { 1, 1, 1 };
-  const SimplexMesh input = MakeKuhnTetGrid(4, 4, 4, lo, hi);
+  const SimplexMesh input = LayerGrid();
   const MetricField metric = LayerMetric(input);
   AdaptedMeshOptions o;
   o.NumberOfSites = 300;
