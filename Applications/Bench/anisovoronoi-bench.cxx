@@ -5,6 +5,7 @@
 // Stages are functions StageName(const Args&, const Case&, JsonLine&) registered in Stages();
 // a new stage (e.g. "mesh") only adds a function and one table entry.
 #include "AnalyticMetrics.h"
+#include "BoundaryLayerCases.h"
 #include "EdgeLengthError.h"
 #include "EmbeddingSolver.h"
 #include "JsonLine.h"
@@ -77,7 +78,7 @@ struct Args
   int MaxIterations = 500;         // run to convergence up to this many iterations
   double ConvergenceTolerance = 1e-4; // mean relative energy decrease per iteration to stop
   double ErrorTarget = 2.0;        // run past --iterations while L_avg (%) is above this
-  std::string Init = "smooth";
+  std::string Init = "aligned";
   bool Weighted = false;
   av::EmbeddingElementMetric ElementMetric = av::EmbeddingOptions{}.ElementMetric;
   bool TrackError = true;
@@ -150,6 +151,9 @@ struct Case
   av::AdaptedMeshResult Background; ///< --adapt: the figures of the adaptation
   av::BackgroundResolution InputResolution; ///< real cases: the given mesh against the metric
   bool Adapted = false; ///< the embedding runs on Background.Mesh
+  bool BoundaryLayer = false;          ///< a bl-linearS / bl-expS case (BoundaryLayerCases.h)
+  av::BoundaryLayerMetricOptions Layer; ///< its metric
+  double EmbeddingScale = 1.0;         ///< factor ScaleMetricForEmbedding applied to Metric
 };
 
 PaperValues PaperFor(av::AnalyticPreset p)
@@ -319,8 +323,49 @@ Case BuildSurface(const Args& a)
   return c;
 }
 
+/// A boundary-layer case (BoundaryLayerCases.h); --resolution N sets the vertices across the
+/// wall (default 21) and the normal grading with them; --adapt L as for the presets.
+Case BuildBoundaryLayer(const Args& a)
+{
+  Case c;
+  const av::Stopwatch watch;
+  avbench::BoundaryLayerCase b = avbench::BuildBoundaryLayerCase(a.CaseName, a.Resolution);
+  c.BoundaryLayer = true;
+  c.Layer = b.Options;
+  c.Mesh = std::move(b.Mesh);
+  c.Metric = std::move(b.Metric);
+  c.MeshDescription = b.Description;
+  c.DefaultSites = b.Sites;
+  c.PaperMesh = avbench::PaperMeshValues{ kNaN, kNaN, kNaN, kNaN, kNaN, kNaN };
+  c.MeshSeconds = watch.Seconds();
+  const std::size_t sites = a.Sites > 0 ? a.Sites : c.DefaultSites;
+  if (a.Adapt > 0.0)
+  {
+    av::AdaptedMeshOptions o;
+    o.NumberOfSites = static_cast<int>(sites);
+    o.TargetLength = a.Adapt;
+    o.FeatureAngle = a.FeatureAngle;
+    c.Background = av::AdaptBackgroundMesh(c.Mesh, c.Metric, o);
+    c.Mesh = c.Background.Mesh;
+    c.Metric = av::EvaluateBoundaryLayerMetric(c.Layer, c.Mesh);
+    c.MeshDescription += " -> adapted " + std::to_string(a.Adapt).substr(0, 4);
+    c.Adapted = true;
+  }
+  c.InputResolution = av::MeasureBackgroundResolution(c.Mesh, c.Metric, static_cast<int>(sites), 1.5);
+  if (a.Prepare)
+    PrepareCaseMetric(a, c, sites);
+  else
+    c.EmbeddingScale = av::ScaleMetricForEmbedding(c.Mesh, c.Metric).Scale; // as the CLI does
+  StretchRange(c, c.StretchMin, c.StretchMax);
+  return c;
+}
+
 Case BuildCase(const Args& a)
 {
+  if (avbench::IsBoundaryLayerCase(a.CaseName))
+  {
+    return BuildBoundaryLayer(a);
+  }
   if (avbench::IsRealCaseName(a.CaseName))
   {
     return BuildRealCase(a);
@@ -403,7 +448,9 @@ double PeakRssMb()
 void EmbedReference(const Case& c, int dim, JsonLine& out, av::Embedding* keep)
 {
   const av::Stopwatch watch;
-  av::Embedding ref = av::ComputeReferenceEmbedding(c.Preset, c.Mesh, dim);
+  av::Embedding ref = c.BoundaryLayer
+    ? av::BoundaryLayerIsometricEmbedding(c.Layer, c.Mesh, dim, c.EmbeddingScale)
+    : av::ComputeReferenceEmbedding(c.Preset, c.Mesh, dim);
   const double seconds = watch.Seconds();
   const av::EdgeLengthErrorResult e = av::ComputeEdgeLengthError(c.Mesh, c.Metric, ref);
   out.Set("embedding", "reference");
@@ -439,7 +486,9 @@ av::EmbeddingOptions EmbeddingOptionsFor(const Args& a, const Case& c, int dim)
   o.TargetAverageErrorPercent = a.ErrorTarget;
   o.ElementMeasureWeighting = a.Weighted;
   o.ElementMetric = a.ElementMetric;
-  o.Initialization = a.Init == "random" ? av::EmbeddingInitialization::Random : av::EmbeddingInitialization::Smooth;
+  o.Initialization = a.Init == "random" ? av::EmbeddingInitialization::Random
+    : a.Init == "smooth"                 ? av::EmbeddingInitialization::Smooth
+                                         : av::EmbeddingInitialization::MetricAligned;
   return o;
 }
 
@@ -501,6 +550,7 @@ void ReportEmbedding(const Args& a, const Case& c, const av::EmbeddingOptions& o
   out.Set("convergence_tolerance", o.ConvergenceTolerance);
   out.Set("final_relative_decrease", r.FinalRelativeDecrease);
   out.Set("converged", r.Converged);
+  out.Set("stalled", r.Stalled);
   out.Set("error_target", o.TargetAverageErrorPercent);
   out.Set("reached_error_target", r.ReachedErrorTarget);
   if (std::isfinite(errorAtIterations))
@@ -518,6 +568,8 @@ void ReportEmbedding(const Args& a, const Case& c, const av::EmbeddingOptions& o
   out.Set("scale_free_regularizer", o.ScaleFreeRegularizer);
   out.Set("anderson", o.AndersonWindow);
   out.Set("init", a.Init);
+  out.Set("aligned_start", r.AlignedStart);
+  out.Set("aligned_start_residual", r.AlignedStartResidual);
   out.Set("weighted", a.Weighted);
   out.Set("seed", static_cast<long long>(a.Seed));
 }
@@ -813,6 +865,9 @@ void Usage(std::ostream& os)
        "        compressor rotor segmenttet cubef2f1 hueeber1 squarebend mixer (tensor\n"
        "        fields, default 3000 sites) turbine knot1 mushroom fandisk (curvature,\n"
        "        default 2000 sites); Documentation/real-data.md)\n"
+       "        | bl-linearS | bl-expS | boundary-layers  (analytic boundary layer with wall\n"
+       "        stretch S on a background graded along the normal; boundary-layers = bl-linear100\n"
+       "        bl-linear1000 bl-exp100 bl-exp1000; sites from the metric's complexity)\n"
        "  --data-dir D      real-data directory (default $AV_REAL_DATA_DIR, else\n"
        "                    real-data next to the bin/ folder of this program)\n"
        "  --min-eigenvalue F, --max-anisotropy A, --smooth N  real tensor cases: the tensor ->\n"
@@ -853,7 +908,8 @@ void Usage(std::ostream& os)
        "  --convergence-tolerance T  stop past --iterations when the energy drops by less than T\n"
        "                    per iteration (mean of the last 10; default 1e-4)\n"
        "  --error-target P  past --iterations, stop once L_avg <= P % (default 2; 0 = none)\n"
-       "  --init smooth|random  initial free coordinates (default smooth)\n"
+       "  --init aligned|smooth|random  initial free coordinates (default aligned: fitted to\n"
+       "                    (M - I)^{1/2}, smooth where that fit is poor; EmbeddingSolver.h)\n"
        "  --weighted        element-measure weighted energy (default: paper's unweighted)\n"
        "  --element-metric mean|edges  each element's metric: its vertex mean (default), or the one\n"
        "                    of its edges' 5.1 lengths (consistent between neighbours)\n"
@@ -937,9 +993,9 @@ void Usage(std::ostream& os)
 /// Throws std::runtime_error for option values out of range.
 void CheckArgs(const Args& a)
 {
-  if (a.Init != "smooth" && a.Init != "random")
+  if (a.Init != "aligned" && a.Init != "smooth" && a.Init != "random")
   {
-    throw std::runtime_error("--init must be smooth or random");
+    throw std::runtime_error("--init must be aligned, smooth or random");
   }
   if (a.Solver != "auto" && a.Solver != "direct" && a.Solver != "iterative")
   {
@@ -1188,7 +1244,12 @@ bool RunCase(const Args& args, const std::string& name, const StageFn& stage, in
     out.Set("stretch_min", c.StretchMin);
     out.Set("stretch_max", c.StretchMax);
     out.Set("input_mesh_seconds", c.MeshSeconds);
-    if (c.Real)
+    if (c.BoundaryLayer)
+    {
+      out.Set("layer_profile", av::BoundaryLayerProfileName(c.Layer.Profile));
+      out.Set("layer_stretch", c.Layer.Stretch);
+    }
+    if (c.Real || c.BoundaryLayer)
     {
       out.Set("input_mean_edge", c.InputResolution.MeanEdgeLength);
       out.Set("input_long_edges", c.InputResolution.LongEdgeFraction);
@@ -1260,6 +1321,10 @@ int main(int argc, char** argv)
   else if (args.CaseName == "surfaces")
   {
     cases = avbench::SurfaceCaseNames();
+  }
+  else if (args.CaseName == "boundary-layers")
+  {
+    cases = avbench::BoundaryLayerCaseNames();
   }
   else
   {

@@ -38,7 +38,7 @@ using vtkAnisoFilterUtilities::AddFieldValue;
 
 /// Output point data: the sites' arrays, recomputed for moved sites and extended to the
 /// inserted ones ("CellId" / "Barycentric" are theirs, arrays the mesh also has are
-/// interpolated, others 0).
+/// interpolated, others 0; a moved site keeps its "FeatureKind", an inserted one is free).
 void ExtendPointData(vtkDataSet* sitesInput,
   vtkDataSet* meshInput,
   const av::SimplexMesh& mesh,
@@ -80,7 +80,8 @@ void ExtendPointData(vtkDataSet* sitesInput,
     const int nc = src->GetNumberOfComponents();
     for (vtkIdType i = 0; i < n; ++i)
     {
-      if (!changed(i))
+      // A moved site keeps its kind: only a line site slides, and along its line.
+      if (!changed(i) || (name == "FeatureKind" && i < n0))
       {
         continue;
       }

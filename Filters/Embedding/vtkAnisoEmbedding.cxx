@@ -53,9 +53,17 @@ av::EmbeddingOptions MakeOptions(vtkAnisoEmbedding* self)
   options.ElementMetric = self->GetElementMetric() == vtkAnisoEmbedding::EDGE_LENGTHS
     ? av::EmbeddingElementMetric::EdgeLengths
     : av::EmbeddingElementMetric::VertexMean;
-  options.Initialization = self->GetInitialization() == vtkAnisoEmbedding::RANDOM
-    ? av::EmbeddingInitialization::Random
-    : av::EmbeddingInitialization::Smooth;
+  switch (self->GetInitialization())
+  {
+    case vtkAnisoEmbedding::RANDOM:
+      options.Initialization = av::EmbeddingInitialization::Random;
+      break;
+    case vtkAnisoEmbedding::SMOOTH:
+      options.Initialization = av::EmbeddingInitialization::Smooth;
+      break;
+    default:
+      options.Initialization = av::EmbeddingInitialization::MetricAligned;
+  }
   options.AndersonWindow = self->GetAndersonWindow();
   options.SinglePrecisionSolve = self->GetSinglePrecisionSolve();
   options.SeparateBodies = self->GetSeparateBodies();
@@ -123,6 +131,8 @@ void AddFigures(vtkFieldData* fd, const av::EdgeLengthErrorResult& errors, doubl
   AddFieldValue(fd, "EmbeddingConverged", result.Converged ? 1 : 0);
   AddFieldValue(fd, "IterativeSolve", result.IterativeSolve ? 1 : 0);
   AddFieldValue(fd, "SwitchedToDirect", result.SwitchedToDirect ? 1 : 0);
+  AddFieldValue(fd, "AlignedStart", result.AlignedStart ? 1 : 0);
+  AddFieldValue(fd, "AlignedStartResidual", result.AlignedStartResidual);
   AddFieldValue(fd, "FactorSeconds", result.FactorSeconds);
   AddFieldValue(fd, "SolveSeconds", result.SolveSeconds);
   AddFieldValue(fd, "DoublePrecisionRetries", result.DoublePrecisionRetries);
@@ -316,7 +326,9 @@ void vtkAnisoEmbedding::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ElementMeasureWeighting: " << this->ElementMeasureWeighting << "\n";
   os << indent << "ElementMetric: "
      << (this->ElementMetric == VERTEX_MEAN ? "VertexMean" : "EdgeLengths") << "\n";
-  os << indent << "Initialization: " << (this->Initialization == RANDOM ? "Random" : "Smooth")
+  os << indent << "Initialization: "
+     << (this->Initialization == RANDOM ? "Random"
+                                        : (this->Initialization == SMOOTH ? "Smooth" : "MetricAligned"))
      << "\n";
   os << indent << "AndersonWindow: " << this->AndersonWindow << "\n";
   os << indent << "SinglePrecisionSolve: " << this->SinglePrecisionSolve << "\n";

@@ -52,7 +52,8 @@ public:
   enum Initializations
   {
     SMOOTH = 0,
-    RANDOM = 1
+    RANDOM = 1,
+    METRIC_ALIGNED = 2
   };
 
   enum ElementMetrics
@@ -165,9 +166,11 @@ public:
   ///@}
 
   ///@{
-  /// Initial extra coordinates: SMOOTH low-frequency random field (default) or the paper's
-  /// i.i.d. small RANDOM perturbation.
-  vtkSetClampMacro(Initialization, int, SMOOTH, RANDOM);
+  /// Initial extra coordinates: METRIC_ALIGNED (default: the first extra coordinates fitted to
+  /// (M - I)^{1/2}, almost isometric at once where the stretch directions do not turn, e.g.
+  /// boundary layers; SMOOTH where that fit is poor; av::EmbeddingInitialization), a SMOOTH
+  /// low-frequency random field, or the paper's i.i.d. small RANDOM perturbation.
+  vtkSetClampMacro(Initialization, int, SMOOTH, METRIC_ALIGNED);
   vtkGetMacro(Initialization, int);
   ///@}
 
@@ -239,7 +242,7 @@ protected:
   double RelativeEnergyTolerance = 0.0;
   bool ElementMeasureWeighting = false;
   int ElementMetric = VERTEX_MEAN;
-  int Initialization = SMOOTH;
+  int Initialization = METRIC_ALIGNED;
   int AndersonWindow = 5;
   bool SinglePrecisionSolve = true;
   bool SeparateBodies = true;

@@ -179,15 +179,24 @@ assert cube_rdt.GetImprovementRounds() == 1 and cube_rdt.GetOdtIterations() == 3
 assert field(tets, "NumOdtMovedSites") > 0
 assert field(tets, "NumMovedSites") > 0 and field(tets, "NumInverted") == 0
 assert worst < 1e-9
-# Sharp features: 8 corner sites and sites on the cube's edges; the improvement round (ODT
-# steps, sliver pushes) must leave every one of them where the sampler put it.
+# Sharp features: 8 corner sites and sites on the cube's edges. The improvement round (ODT
+# steps, sliver pushes) leaves them where the sampler put them; the final mesh improvement may
+# slide a line site along its straight crease, never off it: corners stay exactly, and a line
+# site keeps the coordinates that put it on its cube edge (those at 0 or 1).
 sampled = cube_sites.GetOutput()
 kind = sampled.GetPointData().GetArray("FeatureKind")
 assert kind is not None and field(sampled, "NumCornerSites") == 8
 assert field(sampled, "NumFeatureLineSites") > 0
 feature_ids = [i for i in range(sampled.GetNumberOfPoints()) if kind.GetValue(i) != 0]
 assert len(feature_ids) == 8 + field(sampled, "NumFeatureLineSites")
-moved_feature = [i for i in feature_ids if tets.GetPoint(i) != sampled.GetPoint(i)]
+def off_feature(i):
+    before, after = sampled.GetPoint(i), tets.GetPoint(i)
+    if kind.GetValue(i) == 2:  # corner
+        return before != after
+    on_edge = [d for d in range(3) if before[d] in (0.0, 1.0)]
+    return len(on_edge) < 2 or any(after[d] != before[d] for d in on_edge)
+assert sorted(set(kind.GetValue(i) for i in feature_ids)) == [1, 2]
+moved_feature = [i for i in feature_ids if off_feature(i)]
 assert not moved_feature, moved_feature
 out_kind = tets.GetPointData().GetArray("FeatureKind")
 assert out_kind is not None and all(out_kind.GetValue(i) == kind.GetValue(i) for i in feature_ids)

@@ -22,6 +22,25 @@ void CheckBox(int n, double lo, double hi, const char* axis)
     throw InputError(std::string("structured grid: empty or invalid extent along ") + axis);
   }
 }
+
+/// n evenly spaced values from lo to hi, hi exact.
+std::vector<double> EvenlySpaced(int n, double lo, double hi)
+{
+  std::vector<double> v(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i)
+    v[i] = i == n - 1 ? hi : lo + (hi - lo) * i / (n - 1);
+  return v;
+}
+
+void CheckLevels(const std::vector<double>& v, const char* axis)
+{
+  if (v.size() < 2)
+    throw InputError(std::string("structured grid: need at least 2 vertices along ") + axis);
+  for (std::size_t i = 0; i < v.size(); ++i)
+    if (!std::isfinite(v[i]) || (i > 0 && !(v[i] > v[i - 1])))
+      throw InputError(std::string("structured grid: coordinates along ") + axis +
+        " must be finite and strictly increasing");
+}
 } // namespace
 
 SimplexMesh MakeKuhnTetGrid(int nx, int ny, int nz, const double lo[3], const double hi[3])
@@ -29,6 +48,18 @@ SimplexMesh MakeKuhnTetGrid(int nx, int ny, int nz, const double lo[3], const do
   CheckBox(nx, lo[0], hi[0], "x");
   CheckBox(ny, lo[1], hi[1], "y");
   CheckBox(nz, lo[2], hi[2], "z");
+  return MakeKuhnTetGrid(
+    EvenlySpaced(nx, lo[0], hi[0]), EvenlySpaced(ny, lo[1], hi[1]), EvenlySpaced(nz, lo[2], hi[2]));
+}
+
+SimplexMesh MakeKuhnTetGrid(
+  const std::vector<double>& xs, const std::vector<double>& ys, const std::vector<double>& zs)
+{
+  CheckLevels(xs, "x");
+  CheckLevels(ys, "y");
+  CheckLevels(zs, "z");
+  const int nx = static_cast<int>(xs.size()), ny = static_cast<int>(ys.size()),
+            nz = static_cast<int>(zs.size());
   SimplexMesh mesh;
   mesh.AmbientDim = 3;
   mesh.SimplexDim = 3;
@@ -41,10 +72,9 @@ SimplexMesh MakeKuhnTetGrid(int nx, int ny, int nz, const double lo[3], const do
       for (int i = 0; i < nx; ++i)
       {
         double* p = mesh.Points.data() + 3 * (i + static_cast<std::size_t>(nx) * (j + static_cast<std::size_t>(ny) * k));
-        // Exact end points: no round-off at hi.
-        p[0] = i == nx - 1 ? hi[0] : lo[0] + (hi[0] - lo[0]) * i / (nx - 1);
-        p[1] = j == ny - 1 ? hi[1] : lo[1] + (hi[1] - lo[1]) * j / (ny - 1);
-        p[2] = k == nz - 1 ? hi[2] : lo[2] + (hi[2] - lo[2]) * k / (nz - 1);
+        p[0] = xs[i];
+        p[1] = ys[j];
+        p[2] = zs[k];
       }
     }
   }

@@ -20,6 +20,13 @@ namespace av
 SimplexMesh MakeKuhnTetGrid(int nx, int ny, int nz, const double lo[3], const double hi[3]);
 
 /**
+ * The same Kuhn grid on a rectilinear lattice: vertex (i, j, k) at (xs[i], ys[j], zs[k]), each list
+ * strictly increasing with at least 2 values (graded backgrounds, e.g. BoundaryLayerLevels).
+ */
+SimplexMesh MakeKuhnTetGrid(
+  const std::vector<double>& xs, const std::vector<double>& ys, const std::vector<double>& zs);
+
+/**
  * Triangle grid of the rectangle [lo, hi]: nx x ny vertices (each >= 2), point id i + nx * j,
  * 2 counter-clockwise triangles per square (AmbientDim 2, SimplexDim 2).
  */

@@ -28,7 +28,7 @@ void EmbeddingSolver::Internals::RequireSolved()
   }
 }
 
-Eigen::MatrixXd EmbeddingSolver::Internals::GlobalStep(const Eigen::MatrixXd& current)
+Eigen::MatrixXd EmbeddingSolver::Internals::GlobalStep(const Eigen::MatrixXd& current, bool probe)
 {
   this->GatherRightHandSides();
   const Eigen::MatrixXd& rhs = this->LastRhs;
@@ -38,7 +38,7 @@ Eigen::MatrixXd EmbeddingSolver::Internals::GlobalStep(const Eigen::MatrixXd& cu
   {
     sol = current; // warm start: CG from here cannot raise the energy
     // An Automatic choice probes CG's convergence on the first step with a short cap.
-    const bool probe = this->SwitchK.rows() > 0;
+    probe = probe && this->SwitchK.rows() > 0;
     const int cap = this->Iterative->GetMaxIterations();
     if (probe)
       this->Iterative->SetMaxIterations(
@@ -187,11 +187,14 @@ void EmbeddingSolver::Internals::PlainStep(
     this->SetFree(g);
     eg = this->LocalStep();
     ++res.DoublePrecisionRetries;
-    if (this->Iterative && eg.Total > cur.Total)
+    if (eg.Total > cur.Total)
     {
-      // Round-off level: no step at all (the energy stays, and the run counts as converged).
+      // Round-off level (CG's, or the double factor's on an ill-conditioned K such as a
+      // boundary layer's): no step at all. The iterate is then a fixed point of every later
+      // iteration too (same local step, same solve), so the run stops here as converged.
       this->SetFree(x);
       cur = this->LocalStep();
+      this->Stalled = true;
       return;
     }
   }
@@ -229,6 +232,11 @@ bool EmbeddingSolver::Internals::ShouldStop(
   const double now = history.back().Total;
   const double before = history[history.size() - 1 - static_cast<std::size_t>(window)].Total;
   res.FinalRelativeDecrease = (before > 0.0 && window > 0) ? (before - now) / (window * before) : 0.0;
+  if (this->Stalled)
+  {
+    res.Stalled = res.Converged = true;
+    return true;
+  }
   if (this->Converged(history))
   {
     return true;
@@ -257,6 +265,29 @@ bool EmbeddingSolver::Internals::ShouldStop(
   return converged || it >= std::max(o.Iterations, o.MaxIterations);
 }
 
+void EmbeddingSolver::Internals::TryMetricAlignedStart(EmbeddingResult& res)
+{
+  if (this->Options.Initialization != EmbeddingInitialization::MetricAligned || this->K != this->M ||
+    this->F < this->M)
+  {
+    return;
+  }
+  const Eigen::MatrixXd smooth = this->GetFree();
+  this->SeedMetricAlignedRightHandSides();
+  // Not the solver probe: this solve starts far from its solution (the smooth field), so its CG
+  // count says little about the iterations' warm-started solves.
+  Eigen::MatrixXd aligned = this->GlobalStep(smooth, false);
+  // The free dimensions past the first m keep their smooth field: room to bend.
+  aligned.rightCols(this->F - this->M) = smooth.rightCols(this->F - this->M);
+  this->SetFree(aligned);
+  res.AlignedStartResidual = this->MetricAlignedResidual();
+  res.AlignedStart = res.AlignedStartResidual <= this->Options.AlignedStartMaxResidual;
+  if (!res.AlignedStart)
+  {
+    this->SetFree(smooth);
+  }
+}
+
 EmbeddingResult EmbeddingSolver::Run()
 {
   Internals& p = *this->P;
@@ -271,6 +302,7 @@ EmbeddingResult EmbeddingSolver::Run()
   res.FactorNonZeros = p.FactorNonZeros;
   const Stopwatch clock;
 
+  p.TryMetricAlignedStart(res);
   EmbeddingEnergy cur = p.LocalStep();
   res.EnergyHistory.push_back(cur);
   Eigen::MatrixXd x = p.GetFree();

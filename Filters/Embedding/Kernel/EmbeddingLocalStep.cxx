@@ -7,10 +7,14 @@
 #include "Stopwatch.h"
 #include "TetLocalStepKernel.h"
 
+#include <Eigen/Eigenvalues>
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 #include <vector>
 
 namespace av
@@ -331,6 +335,73 @@ double EmbeddingSolver::Internals::RegularizerEnergy() const
     sum += p;
   }
   return sum * this->RegularizerScale;
+}
+
+namespace
+{
+/// S = (M - I)^{1/2} of an element whose metric root is A (m x m, row-major): the free Jacobian
+/// that completes the fixed input rows to T^T T = M. Eigenvalues of M below 1 give 0 there.
+Eigen::Matrix3d ExcessRoot(const double* aj, int m)
+{
+  Eigen::Matrix3d a = Eigen::Matrix3d::Zero();
+  for (int r = 0; r < m; ++r)
+    for (int c = 0; c < m; ++c)
+      a(r, c) = aj[r * m + c];
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es;
+  es.computeDirect(a * a);
+  Eigen::Vector3d l = es.eigenvalues();
+  for (int k = 0; k < 3; ++k)
+    l(k) = std::sqrt(std::max(0.0, l(k) - 1.0));
+  return es.eigenvectors() * l.asDiagonal() * es.eigenvectors().transpose();
+}
+} // namespace
+
+void EmbeddingSolver::Internals::SeedMetricAlignedRightHandSides()
+{
+  const int m = this->M, nf = this->F, nv = this->K + 1;
+  tbb::parallel_for(std::size_t(0), this->NE, [&](std::size_t j) {
+    const Eigen::Matrix3d sq = ExcessRoot(this->A.data() + j * m * m, m);
+    const double w = this->W[j];
+    const double* g = this->Gt.data() + j * nv * m;
+    double* c = this->C.data() + j * nv * nf;
+    // c(v, d) = w (G S^T)(v, d) for the first m free axes, 0 for the others.
+    for (int v = 0; v < nv; ++v)
+      for (int d = 0; d < nf; ++d)
+      {
+        double s = 0.0;
+        for (int k = 0; d < m && k < m; ++k)
+          s += g[v * m + k] * sq(d, k);
+        c[v * nf + d] = w * s;
+      }
+  });
+}
+
+double EmbeddingSolver::Internals::MetricAlignedResidual() const
+{
+  const int m = this->M, nv = this->K + 1, mb = this->MB;
+  using Sums = std::pair<double, double>; // residual, target
+  const Sums total = tbb::parallel_reduce(
+    tbb::blocked_range<std::size_t>(0, this->NE, 1024), Sums(0.0, 0.0),
+    [&](const tbb::blocked_range<std::size_t>& range, Sums acc) {
+      for (std::size_t j = range.begin(); j != range.end(); ++j)
+      {
+        const Eigen::Matrix3d sq = ExcessRoot(this->A.data() + j * m * m, m);
+        const double* g = this->Gt.data() + j * nv * m;
+        const std::int32_t* cell = this->Cells.data() + j * nv;
+        for (int d = 0; d < m; ++d)
+          for (int k = 0; k < m; ++k)
+          {
+            double t = 0.0; // free Jacobian entry (d, k)
+            for (int v = 0; v < nv; ++v)
+              t += this->X[static_cast<std::size_t>(cell[v]) * mb + m + d] * g[v * m + k];
+            acc.first += this->W[j] * (t - sq(d, k)) * (t - sq(d, k));
+            acc.second += this->W[j] * sq(d, k) * sq(d, k);
+          }
+      }
+      return acc;
+    },
+    [](const Sums& x, const Sums& y) { return Sums(x.first + y.first, x.second + y.second); });
+  return total.second > 0.0 ? total.first / total.second : 0.0;
 }
 
 EmbeddingEnergy EmbeddingSolver::Internals::LocalStep()

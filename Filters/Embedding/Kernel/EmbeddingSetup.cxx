@@ -523,7 +523,7 @@ void EmbeddingSolver::Internals::InitializeState(const SimplexMesh& mesh)
   {
     ext = std::max(ext, hi[d] - lo[d]);
   }
-  const bool smooth = this->Options.Initialization == EmbeddingInitialization::Smooth;
+  const bool smooth = this->Options.Initialization != EmbeddingInitialization::Random;
   const double amp = ext *
     (this->Options.InitialAmplitude > 0.0 ? this->Options.InitialAmplitude : (smooth ? 0.2 : 1e-3));
   std::mt19937_64 rng(this->Options.Seed);

@@ -21,7 +21,16 @@ enum class EmbeddingInitialization
   /// order of the domain size) per free dimension: leaves the flat saddle in a coherent direction.
   Smooth,
   /// The paper's i.i.d. small random perturbation of every vertex.
-  Random
+  Random,
+  /// The default. The first m free dimensions start as the least-squares fit (one global solve
+  /// with the same matrix) of the targets Q (M_j - I)^{1/2}, Q the first m free axes: with the
+  /// fixed input rows, T^T T = I + (M_j - I) = M_j wherever the fit is exact, so a metric whose
+  /// stretch directions do not turn (boundary layers, Cube1/2) starts almost isometric. The
+  /// other free dimensions keep the Smooth field. When the fit leaves more than
+  /// AlignedStartMaxResidual of the targets' norm (directions that turn: stress fields, the
+  /// spheres), or there are fewer free dimensions than m, or on surfaces, the Smooth start is
+  /// kept, so those inputs embed exactly as with Smooth.
+  MetricAligned
 };
 
 /// The constant metric M_j each element is fitted to (the paper: "constant per element").
@@ -142,7 +151,14 @@ struct EmbeddingOptions
   /// measure relative to the mean element measure (better posed on graded meshes).
   bool ElementMeasureWeighting = false;
   EmbeddingElementMetric ElementMetric = EmbeddingElementMetric::VertexMean;
-  EmbeddingInitialization Initialization = EmbeddingInitialization::Smooth;
+  EmbeddingInitialization Initialization = EmbeddingInitialization::MetricAligned;
+  /// MetricAligned: the largest relative residual sum_j w_j |F_j - Q S_j|² / sum_j w_j |S_j|²
+  /// (F_j the fitted free Jacobian, S_j = (M_j - I)^{1/2}) at which the aligned start is kept.
+  /// Measured (Filters/Embedding/README.md, "Metric-aligned start"): boundary layers and
+  /// Cube1/2 0.0001-0.0035, where it is much better; the real volumes 0.008-0.04, Cube3 0.07,
+  /// the spheres 0.13-0.17, where it is level or worse (segmenttet L_avg 2.5 -> 5.1 %, more
+  /// inverted dual tets on four of the seven real volumes; SphereCylindrical 0.46 -> 2.0 %).
+  double AlignedStartMaxResidual = 0.005;
   /// Amplitude of the initial field relative to the largest bounding-box extent (<= 0: default,
   /// 0.2 for Smooth and 1e-3 for Random).
   double InitialAmplitude = 0.0;
@@ -197,6 +213,14 @@ struct EmbeddingResult
   bool ReachedErrorTarget = false; ///< L_avg <= TargetAverageErrorPercent at exit
   /// L_avg (%) at exit when the error target was evaluated (past Iterations), else -1.
   double FinalAverageErrorPercent = -1.0;
+  /// A global step could not lower the energy even solved accurately (the double factor, or a
+  /// 1000x tighter CG tolerance): the iterate is a fixed point at the solver's precision, so the
+  /// run stopped there (Converged).
+  bool Stalled = false;
+  bool AlignedStart = false; ///< MetricAligned: the aligned start was kept
+  /// MetricAligned: the relative residual of its fit (-1 when not tried: surfaces, too few free
+  /// dimensions, another Initialization).
+  double AlignedStartResidual = -1.0;
 };
 
 /// Iterations over which the convergence test averages the relative energy decrease (Anderson's

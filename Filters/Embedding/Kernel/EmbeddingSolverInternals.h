@@ -78,6 +78,7 @@ struct EmbeddingSolver::Internals
   mutable double LocalSeconds = 0.0, SolveSeconds = 0.0;
   std::size_t FactorNonZeros = 0;
   bool Ran = false;
+  bool Stalled = false; // a plain step could not lower the energy even solved accurately
 
   // Setup (EmbeddingSetup.cxx).
   void Validate(const SimplexMesh& mesh, const MetricField& metric);
@@ -120,6 +121,10 @@ struct EmbeddingSolver::Internals
 
   // Local step and energies (EmbeddingLocalStep.cxx).
   EmbeddingEnergy LocalStep();
+  /// C from the targets Q (M_j - I)^{1/2}, Q = the first M free axes (MetricAligned start).
+  void SeedMetricAlignedRightHandSides();
+  /// sum_j w_j |F_j - Q S_j|² / sum_j w_j |S_j|² of the current iterate (0 for S = 0).
+  double MetricAlignedResidual() const;
   template <int MBT, int MT, int KT>
   double LocalStepT();
   double RegularizerEnergy() const;
@@ -127,10 +132,13 @@ struct EmbeddingSolver::Internals
   // Global step and iterations (EmbeddingIterations.cxx).
   /// The global step for the current local step; current = the current iterate's free
   /// coordinates (the iterative solver's warm start).
-  Eigen::MatrixXd GlobalStep(const Eigen::MatrixXd& current);
+  /// probe = false: never the Automatic solver's probe of CG (a step that is not an iteration).
+  Eigen::MatrixXd GlobalStep(const Eigen::MatrixXd& current, bool probe = true);
   /// The same step solved more accurately (double factor, or a 1000x tighter CG tolerance).
   Eigen::MatrixXd RedoGlobalStepAccurately(const Eigen::MatrixXd& current);
   Eigen::MatrixXd GetFree() const;
+  /// MetricAligned: the aligned start, kept if its fit is close enough (else the Smooth one).
+  void TryMetricAlignedStart(EmbeddingResult& res);
   void SetFree(const Eigen::MatrixXd& xr);
   /// The Anderson candidate from the global step g = G(x), kept (x, cur updated) only when it
   /// lowers the energy; false when there is none or it was rejected.

@@ -2,6 +2,7 @@
 // High-d embedding solver: energy monotonicity, fixed input coordinates, recovery of the exact
 // Gaussian height field, measured error bounds, abort, determinism and input validation.
 #include "AnalyticMetrics.h"
+#include "BoundaryLayerMetric.h"
 #include "EdgeLengthError.h"
 #include "EmbeddingSolver.h"
 #include "StructuredMeshes.h"
@@ -94,6 +95,7 @@ void CheckCube1(const SimplexMesh& cube, const MetricField& cubeMetric,
   const EdgeLengthErrorEvaluator& cubeError)
 {
   EmbeddingOptions o;
+  o.Initialization = EmbeddingInitialization::Smooth; // CheckAlignedStart: the default start
   o.Iterations = 30;
   o.MaxIterations = 0; // a fixed count
   const EmbeddingResult r = ComputeEmbedding(cube, cubeMetric, o);
@@ -226,6 +228,63 @@ void CheckAbort(const SimplexMesh& cube, const MetricField& cubeMetric)
   const EmbeddingResult r = ComputeEmbedding(cube, cubeMetric, o);
   AV_CHECK(r.Aborted && r.IterationsDone == 3 && calls == 3);
   AV_CHECK(Monotone(r));
+}
+
+/// A boundary layer of stretch 1000 on a graded grid (BoundaryLayerLevels): flat metric.
+SimplexMesh LayerGrid(const BoundaryLayerMetricOptions& layer)
+{
+  std::vector<double> across(7);
+  for (int i = 0; i < 7; ++i)
+    across[i] = i / 6.0;
+  return MakeKuhnTetGrid(across, across, BoundaryLayerLevels(layer, 0.5));
+}
+
+/// The metric-aligned start (the default): a boundary layer, whose stretch direction does not
+/// turn, starts almost isometric where the smooth start is far off and stays far off; a metric
+/// whose direction turns falls back to the smooth start exactly; surfaces never try it.
+void CheckAlignedStart()
+{
+  BoundaryLayerMetricOptions layer;
+  layer.Stretch = 1000.0;
+  layer.Profile = BoundaryLayerProfile::Exponential;
+  const SimplexMesh grid = LayerGrid(layer);
+  const MetricField metric = EvaluateBoundaryLayerMetric(layer, grid);
+  const EdgeLengthErrorEvaluator error(grid, metric);
+  EmbeddingOptions o;
+  o.Iterations = 0;
+  o.MaxIterations = 0;
+  const EmbeddingResult start = ComputeEmbedding(grid, metric, o);
+  const double startError = error.Evaluate(start.Embedded).AveragePercent;
+  o.Initialization = EmbeddingInitialization::Smooth;
+  const double smoothStartError = error.Evaluate(ComputeEmbedding(grid, metric, o).Embedded).AveragePercent;
+  o.Iterations = 30;
+  const EmbeddingResult smooth = ComputeEmbedding(grid, metric, o);
+  const double smoothError = error.Evaluate(smooth.Embedded).AveragePercent;
+  o.Initialization = EmbeddingInitialization::MetricAligned;
+  const EmbeddingResult aligned = ComputeEmbedding(grid, metric, o);
+  const double alignedError = error.Evaluate(aligned.Embedded).AveragePercent;
+  std::cout << "boundary layer 1000, " << grid.NumPoints() << " vertices: aligned start residual "
+            << start.AlignedStartResidual << ", L_avg at the start " << startError
+            << " % (smooth start " << smoothStartError << " %), after 30 iterations "
+            << alignedError << " % (smooth " << smoothError << " %)\n";
+  AV_CHECK(start.AlignedStart && start.AlignedStartResidual >= 0.0 &&
+    start.AlignedStartResidual < o.AlignedStartMaxResidual);
+  AV_CHECK(startError < 2.0 && smoothStartError > 20.0);
+  AV_CHECK(Monotone(aligned) && InputKept(grid, aligned));
+  AV_CHECK(alignedError < 2.0 && smoothError > 2.0 * alignedError);
+  AV_CHECK(!smooth.AlignedStart && smooth.AlignedStartResidual == -1.0);
+
+  // SphereCylindrical's radial direction turns: the fit is poor, the start is the smooth one.
+  const SimplexMesh box = MakeKuhnTetGrid(9, 9, 5, kLo, kHi);
+  const MetricField turning = EvaluateAnalyticMetric(AnalyticPreset::SphereCylindrical, box);
+  o.Iterations = 5;
+  const EmbeddingResult fallback = ComputeEmbedding(box, turning, o);
+  o.Initialization = EmbeddingInitialization::Smooth;
+  const EmbeddingResult plain = ComputeEmbedding(box, turning, o);
+  std::cout << "sphere-cyl field on a box: aligned start residual " << fallback.AlignedStartResidual
+            << "\n";
+  AV_CHECK(!fallback.AlignedStart && fallback.AlignedStartResidual > o.AlignedStartMaxResidual);
+  AV_CHECK(fallback.Embedded.Coords == plain.Embedded.Coords);
 }
 
 /// Gaussian2D into 3D: the free coordinate is the height field.
@@ -423,6 +482,7 @@ int TestEmbeddingSolver(int, char*[])
   CheckFloatSolves(cube, cubeMetric);
   CheckAbort(cube, cubeMetric);
   CheckGaussianHeight();
+  CheckAlignedStart();
   CheckSurface();
   CheckBadInputs();
   return AV_TEST_RESULT();
