@@ -79,6 +79,7 @@ struct Args
   double ConvergenceTolerance = 1e-4; // mean relative energy decrease per iteration to stop
   double ErrorTarget = 2.0;        // run past --iterations while L_avg (%) is above this
   std::string Init = "aligned";
+  double AlignedMaxResidual = av::EmbeddingOptions{}.AlignedStartMaxResidual;
   bool Weighted = false;
   av::EmbeddingElementMetric ElementMetric = av::EmbeddingOptions{}.ElementMetric;
   bool TrackError = true;
@@ -489,6 +490,7 @@ av::EmbeddingOptions EmbeddingOptionsFor(const Args& a, const Case& c, int dim)
   o.Initialization = a.Init == "random" ? av::EmbeddingInitialization::Random
     : a.Init == "smooth"                 ? av::EmbeddingInitialization::Smooth
                                          : av::EmbeddingInitialization::MetricAligned;
+  o.AlignedStartMaxResidual = a.AlignedMaxResidual;
   return o;
 }
 
@@ -910,6 +912,7 @@ void Usage(std::ostream& os)
        "  --error-target P  past --iterations, stop once L_avg <= P % (default 2; 0 = none)\n"
        "  --init aligned|smooth|random  initial free coordinates (default aligned: fitted to\n"
        "                    (M - I)^{1/2}, smooth where that fit is poor; EmbeddingSolver.h)\n"
+       "  --aligned-max-residual R  aligned: the fit's largest relative residual kept (0.005)\n"
        "  --weighted        element-measure weighted energy (default: paper's unweighted)\n"
        "  --element-metric mean|edges  each element's metric: its vertex mean (default), or the one\n"
        "                    of its edges' 5.1 lengths (consistent between neighbours)\n"
@@ -1085,6 +1088,8 @@ bool Parse(int argc, char** argv, Args& a)
       a.ErrorTarget = std::stod(next());
     else if (k == "--init")
       a.Init = next();
+    else if (k == "--aligned-max-residual")
+      a.AlignedMaxResidual = std::stod(next());
     else if (k == "--weighted")
       a.Weighted = true;
     else if (k == "--element-metric")

@@ -273,19 +273,33 @@ void EmbeddingSolver::Internals::TryMetricAlignedStart(EmbeddingResult& res)
     return;
   }
   const Eigen::MatrixXd smooth = this->GetFree();
-  this->SeedMetricAlignedRightHandSides();
-  // Not the solver probe: this solve starts far from its solution (the smooth field), so its CG
-  // count says little about the iterations' warm-started solves.
-  Eigen::MatrixXd aligned = this->GlobalStep(smooth, false);
-  // The free dimensions past the first m keep their smooth field: room to bend.
-  aligned.rightCols(this->F - this->M) = smooth.rightCols(this->F - this->M);
-  this->SetFree(aligned);
-  res.AlignedStartResidual = this->MetricAlignedResidual();
-  res.AlignedStart = res.AlignedStartResidual <= this->Options.AlignedStartMaxResidual;
-  if (!res.AlignedStart)
+  // The eigen frame first (exact where the stretch direction is a gradient direction, turning or
+  // not), then the symmetric root (exact where the frame is constant); the better fit is tried.
+  Eigen::MatrixXd best;
+  double bestResidual = -1.0;
+  for (const bool eigenFrame : { true, false })
   {
-    this->SetFree(smooth);
+    this->BuildAlignedTargets(eigenFrame);
+    this->SeedMetricAlignedRightHandSides();
+    // Not the solver probe: this solve starts far from its solution (the smooth field), so its
+    // CG count says little about the iterations' warm-started solves.
+    Eigen::MatrixXd aligned = this->GlobalStep(smooth, false);
+    // The free dimensions past the first m keep their smooth field: room to bend.
+    aligned.rightCols(this->F - this->M) = smooth.rightCols(this->F - this->M);
+    this->SetFree(aligned);
+    const double residual = this->MetricAlignedResidual();
+    if (bestResidual < 0.0 || residual < bestResidual)
+    {
+      bestResidual = residual;
+      best = std::move(aligned);
+    }
+    if (bestResidual <= this->Options.AlignedStartMaxResidual)
+      break;
   }
+  this->AlignedTarget = std::vector<Eigen::Matrix3d>();
+  res.AlignedStartResidual = bestResidual;
+  res.AlignedStart = bestResidual <= this->Options.AlignedStartMaxResidual;
+  this->SetFree(res.AlignedStart ? best : smooth);
 }
 
 EmbeddingResult EmbeddingSolver::Run()

@@ -8,12 +8,12 @@
 #include "TetLocalStepKernel.h"
 
 #include <Eigen/Eigenvalues>
-#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-#include <tbb/parallel_reduce.h>
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
+#include <queue>
 #include <utility>
 #include <vector>
 
@@ -339,9 +339,9 @@ double EmbeddingSolver::Internals::RegularizerEnergy() const
 
 namespace
 {
-/// S = (M - I)^{1/2} of an element whose metric root is A (m x m, row-major): the free Jacobian
-/// that completes the fixed input rows to T^T T = M. Eigenvalues of M below 1 give 0 there.
-Eigen::Matrix3d ExcessRoot(const double* aj, int m)
+/// M_j = A_j² of an element (A row-major m x m), zero-padded to 3 x 3, and its eigenvectors
+/// (columns) with sqrt(max(λ - 1, 0)) in decreasing order of λ.
+void ExcessEigen(const double* aj, int m, Eigen::Matrix3d& vectors, Eigen::Vector3d& roots)
 {
   Eigen::Matrix3d a = Eigen::Matrix3d::Zero();
   for (int r = 0; r < m; ++r)
@@ -349,28 +349,109 @@ Eigen::Matrix3d ExcessRoot(const double* aj, int m)
       a(r, c) = aj[r * m + c];
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es;
   es.computeDirect(a * a);
-  Eigen::Vector3d l = es.eigenvalues();
-  for (int k = 0; k < 3; ++k)
-    l(k) = std::sqrt(std::max(0.0, l(k) - 1.0));
-  return es.eigenvectors() * l.asDiagonal() * es.eigenvectors().transpose();
+  for (int k = 0; k < 3; ++k) // computeDirect sorts increasingly: reverse
+  {
+    vectors.col(k) = es.eigenvectors().col(2 - k);
+    roots(k) = std::sqrt(std::max(0.0, es.eigenvalues()(2 - k) - 1.0));
+  }
 }
 } // namespace
+
+void EmbeddingSolver::Internals::BuildAlignedTargets(bool eigenFrame)
+{
+  const int m = this->M;
+  this->AlignedTarget.resize(this->NE);
+  std::vector<Eigen::Matrix3d> frames(this->NE);
+  std::vector<Eigen::Vector3d> roots(this->NE);
+  tbb::parallel_for(std::size_t(0), this->NE, [&](std::size_t j) {
+    ExcessEigen(this->A.data() + j * m * m, m, frames[j], roots[j]);
+  });
+  if (eigenFrame)
+  {
+    // Orient the eigenvectors so that sqrt(λ_k - 1) v_kᵀ varies smoothly: for a field
+    // M = I + (S² - 1) u uᵀ whose u is a gradient direction (radial, a wall normal) the target
+    // is then the gradient of H with H' = sqrt(S² - 1), an exact embedding (x, H). First the
+    // vertices (the mean of their elements' metrics), each like the edge neighbour it is reached
+    // from, most anisotropic first (Prim's order on the gap λ1 - λ2: the best defined top
+    // eigenvectors lead), then every element like the mean of its vertices.
+    const int nv = this->K + 1;
+    const std::size_t np = this->NP;
+    std::vector<Eigen::Matrix3d> vframe(np);
+    std::vector<double> vgap(np, 0.0);
+    tbb::parallel_for(std::size_t(0), np, [&](std::size_t i) {
+      Eigen::Matrix3d mean = Eigen::Matrix3d::Zero();
+      for (std::int32_t q = this->VOff[i]; q < this->VOff[i + 1]; ++q)
+      {
+        const std::size_t j = static_cast<std::size_t>(this->VInc[q] / nv);
+        mean += frames[j] * (roots[j].array().square() + 1.0).matrix().asDiagonal() * frames[j].transpose();
+      }
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es;
+      es.computeDirect(mean);
+      for (int k = 0; k < 3; ++k)
+        vframe[i].col(k) = es.eigenvectors().col(2 - k);
+      vgap[i] = es.eigenvalues()(2) - es.eigenvalues()(1);
+    });
+    std::vector<std::int32_t> order(np);
+    std::iota(order.begin(), order.end(), 0);
+    std::sort(order.begin(), order.end(), [&](std::int32_t x, std::int32_t y) { return vgap[x] > vgap[y]; });
+    std::vector<char> seen(np, 0);
+    using Entry = std::pair<double, std::pair<std::int32_t, std::int32_t>>; // gap, (vertex, from)
+    std::priority_queue<Entry> heap;
+    for (const std::int32_t seed : order)
+    {
+      if (seen[seed])
+        continue;
+      heap.push({ vgap[seed], { seed, -1 } });
+      while (!heap.empty())
+      {
+        const std::int32_t i = heap.top().second.first, from = heap.top().second.second;
+        heap.pop();
+        if (seen[i])
+          continue;
+        seen[i] = 1;
+        if (from >= 0)
+          for (int k = 0; k < 3; ++k)
+            if (vframe[i].col(k).dot(vframe[from].col(k)) < 0.0)
+              vframe[i].col(k) = -vframe[i].col(k);
+        for (std::int32_t q = this->NOff[i]; q < this->NOff[i + 1]; ++q)
+          if (!seen[this->NIdx[q]])
+            heap.push({ vgap[this->NIdx[q]], { this->NIdx[q], i } });
+      }
+    }
+    tbb::parallel_for(std::size_t(0), this->NE, [&](std::size_t j) {
+      for (int k = 0; k < 3; ++k)
+      {
+        Eigen::Vector3d ref = Eigen::Vector3d::Zero();
+        for (int l = 0; l < nv; ++l)
+          ref += vframe[this->Cells[j * nv + l]].col(k);
+        if (frames[j].col(k).dot(ref) < 0.0)
+          frames[j].col(k) = -frames[j].col(k);
+      }
+    });
+  }
+  tbb::parallel_for(std::size_t(0), this->NE, [&](std::size_t j) {
+    // Rows: the first m free axes. Eigen frame: free axis k carries eigen-direction k;
+    // symmetric: Q (M - I)^{1/2}, the free vector turning with the frame.
+    const Eigen::Matrix3d scaled = roots[j].asDiagonal() * frames[j].transpose();
+    this->AlignedTarget[j] = eigenFrame ? scaled : Eigen::Matrix3d(frames[j] * scaled);
+  });
+}
 
 void EmbeddingSolver::Internals::SeedMetricAlignedRightHandSides()
 {
   const int m = this->M, nf = this->F, nv = this->K + 1;
   tbb::parallel_for(std::size_t(0), this->NE, [&](std::size_t j) {
-    const Eigen::Matrix3d sq = ExcessRoot(this->A.data() + j * m * m, m);
+    const Eigen::Matrix3d& target = this->AlignedTarget[j];
     const double w = this->W[j];
     const double* g = this->Gt.data() + j * nv * m;
     double* c = this->C.data() + j * nv * nf;
-    // c(v, d) = w (G S^T)(v, d) for the first m free axes, 0 for the others.
+    // c(v, d) = w (G targetᵀ)(v, d) for the first m free axes, 0 for the others.
     for (int v = 0; v < nv; ++v)
       for (int d = 0; d < nf; ++d)
       {
         double s = 0.0;
         for (int k = 0; d < m && k < m; ++k)
-          s += g[v * m + k] * sq(d, k);
+          s += g[v * m + k] * target(d, k);
         c[v * nf + d] = w * s;
       }
   });
@@ -379,29 +460,30 @@ void EmbeddingSolver::Internals::SeedMetricAlignedRightHandSides()
 double EmbeddingSolver::Internals::MetricAlignedResidual() const
 {
   const int m = this->M, nv = this->K + 1, mb = this->MB;
-  using Sums = std::pair<double, double>; // residual, target
-  const Sums total = tbb::parallel_reduce(
-    tbb::blocked_range<std::size_t>(0, this->NE, 1024), Sums(0.0, 0.0),
-    [&](const tbb::blocked_range<std::size_t>& range, Sums acc) {
-      for (std::size_t j = range.begin(); j != range.end(); ++j)
-      {
-        const Eigen::Matrix3d sq = ExcessRoot(this->A.data() + j * m * m, m);
-        const double* g = this->Gt.data() + j * nv * m;
-        const std::int32_t* cell = this->Cells.data() + j * nv;
-        for (int d = 0; d < m; ++d)
-          for (int k = 0; k < m; ++k)
-          {
-            double t = 0.0; // free Jacobian entry (d, k)
-            for (int v = 0; v < nv; ++v)
-              t += this->X[static_cast<std::size_t>(cell[v]) * mb + m + d] * g[v * m + k];
-            acc.first += this->W[j] * (t - sq(d, k)) * (t - sq(d, k));
-            acc.second += this->W[j] * sq(d, k) * sq(d, k);
-          }
-      }
-      return acc;
-    },
-    [](const Sums& x, const Sums& y) { return Sums(x.first + y.first, x.second + y.second); });
-  return total.second > 0.0 ? total.first / total.second : 0.0;
+  // Fixed chunks summed in order: the same value whatever the thread count (it decides).
+  const std::size_t nchunks = (this->NE + kEmbeddingChunk - 1) / kEmbeddingChunk;
+  std::vector<double> residual(nchunks, 0.0), norm(nchunks, 0.0);
+  tbb::parallel_for(std::size_t(0), nchunks, [&](std::size_t ch) {
+    const std::size_t j1 = std::min(this->NE, (ch + 1) * kEmbeddingChunk);
+    for (std::size_t j = ch * kEmbeddingChunk; j < j1; ++j)
+    {
+      const Eigen::Matrix3d& target = this->AlignedTarget[j];
+      const double* g = this->Gt.data() + j * nv * m;
+      const std::int32_t* cell = this->Cells.data() + j * nv;
+      for (int d = 0; d < m; ++d)
+        for (int k = 0; k < m; ++k)
+        {
+          double t = 0.0; // free Jacobian entry (d, k)
+          for (int v = 0; v < nv; ++v)
+            t += this->X[static_cast<std::size_t>(cell[v]) * mb + m + d] * g[v * m + k];
+          residual[ch] += this->W[j] * (t - target(d, k)) * (t - target(d, k));
+          norm[ch] += this->W[j] * target(d, k) * target(d, k);
+        }
+    }
+  });
+  const double r = std::accumulate(residual.begin(), residual.end(), 0.0);
+  const double n = std::accumulate(norm.begin(), norm.end(), 0.0);
+  return n > 0.0 ? r / n : 0.0;
 }
 
 EmbeddingEnergy EmbeddingSolver::Internals::LocalStep()

@@ -79,6 +79,7 @@ struct EmbeddingSolver::Internals
   std::size_t FactorNonZeros = 0;
   bool Ran = false;
   bool Stalled = false; // a plain step could not lower the energy even solved accurately
+  std::vector<Eigen::Matrix3d> AlignedTarget; // MetricAligned start only (freed after it)
 
   // Setup (EmbeddingSetup.cxx).
   void Validate(const SimplexMesh& mesh, const MetricField& metric);
@@ -121,9 +122,13 @@ struct EmbeddingSolver::Internals
 
   // Local step and energies (EmbeddingLocalStep.cxx).
   EmbeddingEnergy LocalStep();
-  /// C from the targets Q (M_j - I)^{1/2}, Q = the first M free axes (MetricAligned start).
+  /// MetricAligned start: per element the free Jacobian target (first M free axes x input
+  /// axes) with F^T F = M_j - I: the eigen frame sqrt(λ_k - 1) v_kᵀ per free axis, eigenvectors
+  /// oriented breadth first, or the symmetric Q (M_j - I)^{1/2}.
+  void BuildAlignedTargets(bool eigenFrame);
+  /// C from AlignedTarget (a global step then fits the start).
   void SeedMetricAlignedRightHandSides();
-  /// sum_j w_j |F_j - Q S_j|² / sum_j w_j |S_j|² of the current iterate (0 for S = 0).
+  /// sum_j w_j |F_j - target_j|² / sum_j w_j |target_j|² of the current iterate (0 for none).
   double MetricAlignedResidual() const;
   template <int MBT, int MT, int KT>
   double LocalStepT();

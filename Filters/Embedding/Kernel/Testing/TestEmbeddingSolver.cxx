@@ -274,14 +274,30 @@ void CheckAlignedStart()
   AV_CHECK(alignedError < 2.0 && smoothError > 2.0 * alignedError);
   AV_CHECK(!smooth.AlignedStart && smooth.AlignedStartResidual == -1.0);
 
-  // SphereCylindrical's radial direction turns: the fit is poor, the start is the smooth one.
+  // SphereCylindrical's radial direction turns but is a gradient direction (of r): the eigen
+  // frame, oriented, fits it, where the symmetric root (the free vector turning with u) cannot.
   const SimplexMesh box = MakeKuhnTetGrid(9, 9, 5, kLo, kHi);
-  const MetricField turning = EvaluateAnalyticMetric(AnalyticPreset::SphereCylindrical, box);
+  const MetricField radial = EvaluateAnalyticMetric(AnalyticPreset::SphereCylindrical, box);
+  o.Iterations = 0;
+  const EmbeddingResult radialStart = ComputeEmbedding(box, radial, o);
+  const EdgeLengthErrorEvaluator radialError(box, radial);
+  const double radialStartError = radialError.Evaluate(radialStart.Embedded).AveragePercent;
+  o.Initialization = EmbeddingInitialization::Smooth;
+  const double radialSmoothError =
+    radialError.Evaluate(ComputeEmbedding(box, radial, o).Embedded).AveragePercent;
+  o.Initialization = EmbeddingInitialization::MetricAligned;
+  std::cout << "sphere-cyl field on a box: aligned start residual "
+            << radialStart.AlignedStartResidual << ", L_avg at the start " << radialStartError
+            << " % (smooth start " << radialSmoothError << " %)\n";
+  AV_CHECK(radialStart.AlignedStart && radialStartError < 0.25 * radialSmoothError);
+  // SphereCosine's direction u = normalize(2 cos 4x, 1, 0) is no gradient direction and
+  // sqrt(S² - 1) u no gradient: the fit is poor, the start is the smooth one.
+  const MetricField turning = EvaluateAnalyticMetric(AnalyticPreset::SphereCosine, box);
   o.Iterations = 5;
   const EmbeddingResult fallback = ComputeEmbedding(box, turning, o);
   o.Initialization = EmbeddingInitialization::Smooth;
   const EmbeddingResult plain = ComputeEmbedding(box, turning, o);
-  std::cout << "sphere-cyl field on a box: aligned start residual " << fallback.AlignedStartResidual
+  std::cout << "sphere-cos field on a box: aligned start residual " << fallback.AlignedStartResidual
             << "\n";
   AV_CHECK(!fallback.AlignedStart && fallback.AlignedStartResidual > o.AlignedStartMaxResidual);
   AV_CHECK(fallback.Embedded.Coords == plain.Embedded.Coords);
