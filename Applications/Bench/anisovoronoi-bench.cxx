@@ -324,6 +324,22 @@ Case BuildSurface(const Args& a)
   return c;
 }
 
+/// --adapt L on an analytic case: the background adapted to the metric and the sites, with the
+/// closed-form metric evaluated exactly at its points (`exact`).
+void AdaptAnalyticCase(const Args& a, Case& c, std::size_t sites,
+  const std::function<av::MetricField(const av::SimplexMesh&)>& exact)
+{
+  av::AdaptedMeshOptions o;
+  o.NumberOfSites = static_cast<int>(sites);
+  o.TargetLength = a.Adapt;
+  o.FeatureAngle = a.FeatureAngle;
+  c.Background = av::AdaptBackgroundMesh(c.Mesh, c.Metric, o);
+  c.Mesh = c.Background.Mesh;
+  c.Metric = exact(c.Mesh);
+  c.MeshDescription += " -> adapted " + std::to_string(a.Adapt).substr(0, 4);
+  c.Adapted = true;
+}
+
 /// A boundary-layer case (BoundaryLayerCases.h); --resolution N sets the vertices across the
 /// wall (default 21) and the normal grading with them; --adapt L as for the presets.
 Case BuildBoundaryLayer(const Args& a)
@@ -341,17 +357,8 @@ Case BuildBoundaryLayer(const Args& a)
   c.MeshSeconds = watch.Seconds();
   const std::size_t sites = a.Sites > 0 ? a.Sites : c.DefaultSites;
   if (a.Adapt > 0.0)
-  {
-    av::AdaptedMeshOptions o;
-    o.NumberOfSites = static_cast<int>(sites);
-    o.TargetLength = a.Adapt;
-    o.FeatureAngle = a.FeatureAngle;
-    c.Background = av::AdaptBackgroundMesh(c.Mesh, c.Metric, o);
-    c.Mesh = c.Background.Mesh;
-    c.Metric = av::EvaluateBoundaryLayerMetric(c.Layer, c.Mesh);
-    c.MeshDescription += " -> adapted " + std::to_string(a.Adapt).substr(0, 4);
-    c.Adapted = true;
-  }
+    AdaptAnalyticCase(a, c, sites,
+      [&](const av::SimplexMesh& m) { return av::EvaluateBoundaryLayerMetric(c.Layer, m); });
   c.InputResolution = av::MeasureBackgroundResolution(c.Mesh, c.Metric, static_cast<int>(sites), 1.5);
   if (a.Prepare)
     PrepareCaseMetric(a, c, sites);
@@ -419,18 +426,8 @@ Case BuildCase(const Args& a)
   c.Metric = av::EvaluateAnalyticMetric(c.Preset, c.Mesh);
   c.MeshSeconds = watch.Seconds();
   if (a.Adapt > 0.0)
-  {
-    // The adapted background; the analytic metric is evaluated exactly at its points.
-    av::AdaptedMeshOptions o;
-    o.NumberOfSites = static_cast<int>(a.Sites > 0 ? a.Sites : c.DefaultSites);
-    o.TargetLength = a.Adapt;
-    o.FeatureAngle = a.FeatureAngle;
-    c.Background = av::AdaptBackgroundMesh(c.Mesh, c.Metric, o);
-    c.Mesh = c.Background.Mesh;
-    c.Metric = av::EvaluateAnalyticMetric(c.Preset, c.Mesh);
-    c.MeshDescription += "-adapted-" + std::to_string(a.Adapt).substr(0, 4);
-    c.Adapted = true;
-  }
+    AdaptAnalyticCase(a, c, a.Sites > 0 ? a.Sites : c.DefaultSites,
+      [&](const av::SimplexMesh& m) { return av::EvaluateAnalyticMetric(c.Preset, m); });
   if (a.Prepare)
     PrepareCaseMetric(a, c, a.Sites > 0 ? a.Sites : c.DefaultSites);
   StretchRange(c, c.StretchMin, c.StretchMax);
