@@ -274,7 +274,7 @@ void EmbeddingSolver::Internals::TryMetricAlignedStart(EmbeddingResult& res)
   }
   const Eigen::MatrixXd smooth = this->GetFree();
   // The eigen frame first (exact where the stretch direction is a gradient direction, turning or
-  // not), then the symmetric root (exact where the frame is constant); the better fit is tried.
+  // not), then the symmetric root (exact where the frame is constant); the better fit is kept.
   Eigen::MatrixXd best;
   double bestResidual = -1.0;
   for (const bool eigenFrame : { true, false })

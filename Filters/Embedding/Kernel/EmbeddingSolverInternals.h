@@ -124,7 +124,7 @@ struct EmbeddingSolver::Internals
   EmbeddingEnergy LocalStep();
   /// MetricAligned start: per element the free Jacobian target (first M free axes x input
   /// axes) with F^T F = M_j - I: the eigen frame sqrt(λ_k - 1) v_kᵀ per free axis, eigenvectors
-  /// oriented breadth first, or the symmetric Q (M_j - I)^{1/2}.
+  /// oriented over the vertices in Prim's order of anisotropy, or the symmetric Q (M_j - I)^{1/2}.
   void BuildAlignedTargets(bool eigenFrame);
   /// C from AlignedTarget (a global step then fits the start).
   void SeedMetricAlignedRightHandSides();
