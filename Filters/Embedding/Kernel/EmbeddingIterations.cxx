@@ -297,6 +297,8 @@ void EmbeddingSolver::Internals::TryMetricAlignedStart(EmbeddingResult& res)
       break;
   }
   this->AlignedTarget = std::vector<Eigen::Matrix3d>();
+  this->AlignedFrames = std::vector<Eigen::Matrix3d>();
+  this->AlignedRoots = std::vector<Eigen::Vector3d>();
   res.AlignedStartResidual = bestResidual;
   res.AlignedStart = bestResidual <= this->Options.AlignedStartMaxResidual;
   this->SetFree(res.AlignedStart ? best : smooth);

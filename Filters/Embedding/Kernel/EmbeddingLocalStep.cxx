@@ -361,11 +361,18 @@ void EmbeddingSolver::Internals::BuildAlignedTargets(bool eigenFrame)
 {
   const int m = this->M;
   this->AlignedTarget.resize(this->NE);
-  std::vector<Eigen::Matrix3d> frames(this->NE);
-  std::vector<Eigen::Vector3d> roots(this->NE);
-  tbb::parallel_for(std::size_t(0), this->NE, [&](std::size_t j) {
-    ExcessEigen(this->A.data() + j * m * m, m, frames[j], roots[j]);
-  });
+  std::vector<Eigen::Matrix3d>& frames = this->AlignedFrames;
+  std::vector<Eigen::Vector3d>& roots = this->AlignedRoots;
+  if (frames.size() != this->NE)
+  {
+    // Once for both targets: the orientation below flips signs only, which the symmetric
+    // root V diag Vᵀ does not see.
+    frames.resize(this->NE);
+    roots.resize(this->NE);
+    tbb::parallel_for(std::size_t(0), this->NE, [&](std::size_t j) {
+      ExcessEigen(this->A.data() + j * m * m, m, frames[j], roots[j]);
+    });
+  }
   if (eigenFrame)
   {
     // Orient the eigenvectors so that sqrt(λ_k - 1) v_kᵀ varies smoothly: for a field

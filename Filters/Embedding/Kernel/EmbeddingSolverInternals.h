@@ -79,7 +79,9 @@ struct EmbeddingSolver::Internals
   std::size_t FactorNonZeros = 0;
   bool Ran = false;
   bool Stalled = false; // a plain step could not lower the energy even solved accurately
-  std::vector<Eigen::Matrix3d> AlignedTarget; // MetricAligned start only (freed after it)
+  // MetricAligned start only (freed after it): targets, element eigenvectors, sqrt(λ - 1).
+  std::vector<Eigen::Matrix3d> AlignedTarget, AlignedFrames;
+  std::vector<Eigen::Vector3d> AlignedRoots;
 
   // Setup (EmbeddingSetup.cxx).
   void Validate(const SimplexMesh& mesh, const MetricField& metric);
