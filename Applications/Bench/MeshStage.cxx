@@ -97,6 +97,7 @@ av::MeshingPipelineOptions PipelineOptions(const MeshStageOptions& options,
   po.ValidDual = options.ValidDual;
   po.FeatureAngle =
     options.PreserveSharpFeatures && options.RecoverFeatureEdges ? options.FeatureAngle : 180.0;
+  po.CloseBoundaryNotches = options.CloseBoundaryNotches;
   po.ImproveMesh = options.ImproveMesh;
   po.Improvement.PlanarBoundary = options.PlanarBoundary;
   po.Improvement.StraightCreases = options.StraightCreases;
@@ -136,6 +137,9 @@ void CopyMeshingCounts(const av::MeshingPipelineResult& m, MeshStageResult& r)
   r.FeatureEdgesMissingBefore = m.FeatureEdges.Required - m.FeatureEdges.Present;
   r.FeatureEdgesRecovered = m.FeatureEdges.Recovered;
   r.FeatureEdgesMissing = m.FeatureEdges.Missing;
+  r.BoundaryNotches = m.BoundaryNotches.Notches;
+  r.BoundaryNotchesClosed = m.BoundaryNotches.Closed;
+  r.BoundaryNotchesLeft = m.BoundaryNotches.Left;
   r.InvertedBeforeImprovement = m.InvertedBeforeImprovement;
   r.ValidDualReplaced = m.ValidDual.Replaced;
   r.ValidDualSeconds = m.ValidDualSeconds;

@@ -57,6 +57,7 @@ struct MeshStageOptions
   bool OdtKeepsFeatureSites = false; ///< MeshingPipelineOptions::OdtKeepsFixedSites
   bool RecoverFeatureEdges = true;   ///< surfaces: MeshingPipelineOptions::FeatureAngle < 180
   double FeatureAngle = 30.0;        ///< degrees
+  bool CloseBoundaryNotches = true;  ///< surfaces: MeshingPipelineOptions::CloseBoundaryNotches
 };
 
 /// Timings and quality of one meshing run.
@@ -98,6 +99,9 @@ struct MeshStageResult
   /// from the dual, made by flips, and still missing (RecoverFeatureEdges).
   std::size_t FeatureEdgesRequired = 0, FeatureEdgesMissingBefore = 0, FeatureEdgesRecovered = 0,
               FeatureEdgesMissing = 0;
+  /// Surfaces: dual boundary vertices off the input's open boundary, before and after the
+  /// notch closure, and the triangles it added (CloseBoundaryNotches).
+  std::size_t BoundaryNotches = 0, BoundaryNotchesClosed = 0, BoundaryNotchesLeft = 0;
   double ImprovementVolumeChange = 0.0; ///< fraction of the volume moved by curved-boundary flips
   std::size_t InvertedBeforeImprovement = 0; ///< dual's inverted (or flat) cells before it
   bool ValidDualReplaced = false;  ///< the repaired dual was invalid: Delaunay of the sites

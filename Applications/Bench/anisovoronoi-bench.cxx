@@ -108,6 +108,7 @@ struct Args
   bool Features = true;      // corner / feature-line particles
   bool OdtKeepsFeatures = false; // the ODT steps keep the feature sites (surfaces)
   bool FeatureEdges = true;      // surfaces: feature-line edges put back by flips
+  bool BoundaryNotches = true;   // surfaces: the open boundary's notches closed
   bool Reference = false;    // closed-form isometric embedding instead of the solver
   double FeatureAngle = 30.0;
   std::string DataDir;       // real cases: --data-dir, else AV_REAL_DATA_DIR, else build/real-data
@@ -679,6 +680,7 @@ avbench::MeshStageOptions MeshStageOptionsFor(const Args& a, const Case& c)
   o.PreserveSharpFeatures = a.Features;
   o.OdtKeepsFeatureSites = a.OdtKeepsFeatures;
   o.RecoverFeatureEdges = a.FeatureEdges;
+  o.CloseBoundaryNotches = a.BoundaryNotches;
   o.FeatureAngle = a.FeatureAngle;
   return o;
 }
@@ -729,6 +731,10 @@ void ReportMesh(const Case& c, const avbench::MeshStageOptions& o,
   out.Set("feature_edges_missing_before", r.FeatureEdgesMissingBefore);
   out.Set("feature_edges_recovered", r.FeatureEdgesRecovered);
   out.Set("feature_edges_missing", r.FeatureEdgesMissing);
+  out.Set("close_boundary_notches", o.CloseBoundaryNotches);
+  out.Set("boundary_notches", r.BoundaryNotches);
+  out.Set("boundary_notches_closed", r.BoundaryNotchesClosed);
+  out.Set("boundary_notches_left", r.BoundaryNotchesLeft);
   out.Set("mesh_improvement_volume_change", r.ImprovementVolumeChange);
   out.Set("valid_dual_replaced", r.ValidDualReplaced);
   out.Set("valid_dual_seconds", r.ValidDualSeconds);
@@ -962,6 +968,8 @@ void Usage(std::ostream& os)
        "                    surfaces too (default: only the sliver push does)\n"
        "  --no-feature-edges  mesh: surfaces: no flips that put the edges between sites\n"
        "                    consecutive along a feature line into the dual\n"
+       "  --no-boundary-notches  mesh: surfaces: leave the dual's boundary vertices that are\n"
+       "                    off the input's open boundary (default: close those notches)\n"
        "  --feature-angle A mesh: dihedral angle in degrees above which a boundary edge is a\n"
        "                    feature line (default 30)\n"
        "  --adapt L         embed on the adapted background mesh (MetricAdaptedMesh) with edges "
@@ -1159,6 +1167,8 @@ bool Parse(int argc, char** argv, Args& a)
       a.OdtKeepsFeatures = true;
     else if (k == "--no-feature-edges")
       a.FeatureEdges = false;
+    else if (k == "--no-boundary-notches")
+      a.BoundaryNotches = false;
     else if (k == "--reference-embedding")
       a.Reference = true;
     else if (k == "--max-stretch")

@@ -111,6 +111,9 @@ meshing:
   --keep-feature-sites     surfaces: the ODT steps keep the corner and feature-line sites on
                            the creases, and the edges along the creases are flipped into the
                            mesh (default: those sites move like the others)
+  --no-boundary-notches    surfaces with an open boundary: leave the mesh's boundary vertices
+                           that are off the input's boundary (default: the triangles that
+                           close those notches are added)
   --improve-rounds N       site improvement rounds before the repair (default 1; 0 = the
                            paper's pipeline): ODT steps and sliver pushes, diagram redone
   --odt-iterations N       ODT steps per improvement round (default 3; 0 = sliver pushes only)
@@ -360,6 +363,8 @@ Options ParseCommandLine(int argc, char* argv[])
       o.ImproveBoundary = false;
     else if (a == "--keep-feature-sites")
       o.KeepFeatureSites = true;
+    else if (a == "--no-boundary-notches")
+      o.CloseBoundaryNotches = false;
     else if (!a.empty() && a[0] == '-')
       Fail("unknown option " + a + " (see --help)", 2);
     else if (o.Input.empty())

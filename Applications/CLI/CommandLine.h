@@ -36,6 +36,7 @@ struct Options
   bool ImproveBoundary = true; // the mesh improvement also works on the tet boundary
   bool ScaleFreeRegularizer = false; // --scale-free-regularizer: E_reg in units of the extent
   bool KeepFeatureSites = false; // surfaces: the ODT steps keep the crease sites on the creases
+  bool CloseBoundaryNotches = true; // surfaces: close the notches of the open boundary
   /// Metric preparation (on for tensor:ARRAY; metric, preset and .sol inputs only when a
   /// preparation option is given, PrepareAsked). SitesGiven: --sites was on the command line.
   double HMin = 0.0, HMax = 0.0, HGrad = 1.3, SizeBlend = 0.5, MinCellsAcross = 1.25;

@@ -422,6 +422,7 @@ void RunMeshingStages(const Options& o,
   s.Delaunay->SetImproveMesh(o.ImproveMesh);
   s.Delaunay->SetImproveBoundary(o.ImproveBoundary);
   s.Delaunay->SetKeepFeatureSites(o.KeepFeatureSites);
+  s.Delaunay->SetCloseBoundaryNotches(o.CloseBoundaryNotches);
   runner.Run(s.Delaunay, DelaunayStage);
   s.Voronoi->SetInputConnection(0, s.Embedding->GetOutputPort(0));
   s.Voronoi->SetInputConnection(1, s.Delaunay->GetOutputPort(0));
@@ -551,6 +552,9 @@ std::vector<std::pair<std::string, std::string>> ReportEntries(const Options& o,
     { "feature_edges_required", JsonNumber(FieldValue(rdtOut, "NumFeatureEdgesRequired")) },
     { "feature_edges_recovered", JsonNumber(FieldValue(rdtOut, "NumFeatureEdgesRecovered")) },
     { "feature_edges_missing", JsonNumber(FieldValue(rdtOut, "NumFeatureEdgesMissing")) },
+    { "boundary_notches", JsonNumber(FieldValue(rdtOut, "NumBoundaryNotches")) },
+    { "boundary_notches_closed", JsonNumber(FieldValue(rdtOut, "NumBoundaryNotchesClosed")) },
+    { "boundary_notches_left", JsonNumber(FieldValue(rdtOut, "NumBoundaryNotchesLeft")) },
     { "inverted_before_mesh_improvement",
       JsonNumber(FieldValue(rdtOut, "NumInvertedBeforeMeshImprovement")) },
     { "mesh_seconds", JsonNumber(meshSeconds) },

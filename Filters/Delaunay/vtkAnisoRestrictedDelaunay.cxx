@@ -279,6 +279,11 @@ void AddRunFieldData(const av::MeshingPipelineResult& result, double seconds, vt
   AddFieldValue(fd, "NumFeatureEdgesRequired", static_cast<double>(result.FeatureEdges.Required));
   AddFieldValue(fd, "NumFeatureEdgesRecovered", static_cast<double>(result.FeatureEdges.Recovered));
   AddFieldValue(fd, "NumFeatureEdgesMissing", static_cast<double>(result.FeatureEdges.Missing));
+  // Surfaces with an open boundary: boundary vertices off the input's boundary, before and
+  // after, and the triangles that closed those notches.
+  AddFieldValue(fd, "NumBoundaryNotches", static_cast<double>(result.BoundaryNotches.Notches));
+  AddFieldValue(fd, "NumBoundaryNotchesClosed", static_cast<double>(result.BoundaryNotches.Closed));
+  AddFieldValue(fd, "NumBoundaryNotchesLeft", static_cast<double>(result.BoundaryNotches.Left));
 }
 
 /// The pipeline options of the filter's parameters; progress and abort go through `self`.
@@ -296,6 +301,7 @@ av::MeshingPipelineOptions MeshingOptions(vtkAnisoRestrictedDelaunay* self,
   options.ImproveMesh = self->GetImproveMesh();
   options.Improvement.PlanarBoundary = self->GetImproveBoundary();
   options.OdtKeepsFixedSites = self->GetKeepFeatureSites();
+  options.CloseBoundaryNotches = self->GetCloseBoundaryNotches();
   options.Progress = [self](av::MeshingStep step)
   {
     if (self->GetAbortExecute())
@@ -484,6 +490,7 @@ void vtkAnisoRestrictedDelaunay::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ImproveMesh: " << (this->ImproveMesh ? "On" : "Off") << "\n";
   os << indent << "ImproveBoundary: " << (this->ImproveBoundary ? "On" : "Off") << "\n";
   os << indent << "KeepFeatureSites: " << (this->KeepFeatureSites ? "On" : "Off") << "\n";
+  os << indent << "CloseBoundaryNotches: " << (this->CloseBoundaryNotches ? "On" : "Off") << "\n";
   os << indent << "MaxRepairRounds: " << this->MaxRepairRounds << "\n";
   os << indent << "ImprovementRounds: " << this->ImprovementRounds << "\n";
   os << indent << "OdtIterations: " << this->OdtIterations << "\n";

@@ -135,6 +135,17 @@ public:
   ///@}
 
   ///@{
+  /// Surfaces with an open boundary: a boundary vertex of the final mesh that is not on the
+  /// input's boundary (a site just inside it whose cell reaches the boundary between two
+  /// boundary sites, so the mesh's boundary cuts into the surface there) gets the triangle that
+  /// closes that notch (default on; "NumBoundaryNotches", "NumBoundaryNotchesClosed" and
+  /// "NumBoundaryNotchesLeft" in the field data).
+  vtkSetMacro(CloseBoundaryNotches, bool);
+  vtkGetMacro(CloseBoundaryNotches, bool);
+  vtkBooleanMacro(CloseBoundaryNotches, bool);
+  ///@}
+
+  ///@{
   /// Insertion rounds at most (default 10, range 0..1000); each recomputes the diagram.
   vtkSetClampMacro(MaxRepairRounds, int, 0, 1000);
   vtkGetMacro(MaxRepairRounds, int);
@@ -157,6 +168,7 @@ protected:
   bool ImproveMesh = true;
   bool ImproveBoundary = true;
   bool KeepFeatureSites = false;
+  bool CloseBoundaryNotches = true;
   bool RepairNonManifold = true;
   bool ValidDual = true;
   int MaxRepairRounds = 10;

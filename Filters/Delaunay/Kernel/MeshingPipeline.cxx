@@ -191,6 +191,14 @@ MeshingPipelineResult RunMeshingPipeline(const SimplexMesh& mesh,
     if (result.FeatureEdges.Recovered > 0)
       RecountFinalDual(mesh, repaired.Delaunay, repaired.Sites);
   }
+  if (options.CloseBoundaryNotches && mesh.SimplexDim == 2 && mesh.AmbientDim == 3)
+  {
+    DelaunayRepairResult& repaired = result.Repaired;
+    result.BoundaryNotches = CloseBoundaryNotches(mesh, repaired.Sites,
+      SitesOnOpenBoundary(mesh, adjacency, repaired.Sites), repaired.Delaunay);
+    if (result.BoundaryNotches.Closed > 0)
+      RecountFinalDual(mesh, repaired.Delaunay, repaired.Sites);
+  }
   result.InvertedBeforeImprovement = result.Repaired.Delaunay.NumInverted;
   if (options.ImproveMesh && options.Metric)
   {

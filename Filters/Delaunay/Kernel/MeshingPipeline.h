@@ -4,6 +4,7 @@
 #ifndef av_MeshingPipeline_h
 #define av_MeshingPipeline_h
 
+#include "BoundaryNotchClosure.h"
 #include "FeatureEdgeRecovery.h"
 #include "MeshImprovement.h"
 #include "RestrictedDelaunayRefinement.h"
@@ -67,6 +68,11 @@ struct MeshingPipelineOptions
   /// SharpFeaturesFromEdges) for those flips and the crease slide, instead of detecting them at
   /// FeatureAngle. Must outlive the call.
   const SharpFeatures* Features = nullptr;
+  /// Surfaces with an open boundary: a boundary vertex of the final dual that is not on the
+  /// input's boundary (a site just inside it, whose cell reaches the boundary between two
+  /// boundary sites) gets the triangle that closes the notch (CloseBoundaryNotches,
+  /// BoundaryNotchClosure.h), before the mesh improvement. false: the dual's boundary as it is.
+  bool CloseBoundaryNotches = true;
   /// Mesh improvement of the final dual (ImproveFinalMesh: flips and vertex smoothing in the
   /// metric); runs when ImproveMesh is true and Metric is given. false: the paper's dual.
   bool ImproveMesh = true;
@@ -103,6 +109,7 @@ struct MeshingPipelineResult
   ValidDualResult ValidDual;
   double ValidDualSeconds = 0.0;
   FeatureEdgeRecoveryResult FeatureEdges;    ///< surfaces: the feature-edge flips (FeatureAngle)
+  BoundaryNotchResult BoundaryNotches;       ///< surfaces: the open boundary's notches closed
   std::size_t InvertedBeforeImprovement = 0; ///< Repaired.Delaunay.NumInverted before it
   double MeshImprovementSeconds = 0.0;
 };
@@ -112,7 +119,7 @@ struct MeshingPipelineResult
  * DelaunayRepairOptions default) and its dual (ComputeRestrictedDelaunay); then up to
  * ImproveRounds rounds of ImproveSites, each followed by a new RVD + RDT; then
  * RepairRestrictedDelaunay starting from the last RVD + RDT; on surfaces, the feature-line
- * edges by flips (FeatureAngle); then, with ImproveMesh and Metric, ImproveFinalMesh on the
+ * edges by flips (FeatureAngle) and the open boundary's notches closed; then, with ImproveMesh and Metric, ImproveFinalMesh on the
  * repaired dual. The element adjacency is computed once for all of them. Deterministic. Throws
  * InputError on bad input (inconsistent mesh, embedding or sites, FixedSites not one per site,
  * negative counts).
