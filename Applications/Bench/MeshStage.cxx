@@ -98,6 +98,7 @@ av::MeshingPipelineOptions PipelineOptions(const MeshStageOptions& options,
   po.FeatureAngle =
     options.PreserveSharpFeatures && options.RecoverFeatureEdges ? options.FeatureAngle : 180.0;
   po.CloseBoundaryNotches = options.CloseBoundaryNotches;
+  po.Improvement.MeanSmoothingSweeps = options.MeanSmoothingSweeps;
   po.ImproveMesh = options.ImproveMesh;
   po.Improvement.PlanarBoundary = options.PlanarBoundary;
   po.Improvement.StraightCreases = options.StraightCreases;
@@ -138,6 +139,7 @@ void CopyMeshingCounts(const av::MeshingPipelineResult& m, MeshStageResult& r)
   r.FeatureEdgesRecovered = m.FeatureEdges.Recovered;
   r.FeatureEdgesMissing = m.FeatureEdges.Missing;
   r.BoundaryNotches = m.BoundaryNotches.Notches;
+  r.ImprovementMeanSmoothed = m.Improvement.NumMeanSmoothed;
   r.BoundaryNotchesClosed = m.BoundaryNotches.Closed;
   r.BoundaryNotchesLeft = m.BoundaryNotches.Left;
   r.InvertedBeforeImprovement = m.InvertedBeforeImprovement;

@@ -58,6 +58,7 @@ struct MeshStageOptions
   bool RecoverFeatureEdges = true;   ///< surfaces: MeshingPipelineOptions::FeatureAngle < 180
   double FeatureAngle = 30.0;        ///< degrees
   bool CloseBoundaryNotches = true;  ///< surfaces: MeshingPipelineOptions::CloseBoundaryNotches
+  int MeanSmoothingSweeps = 2;       ///< MeshImprovementOptions::MeanSmoothingSweeps
 };
 
 /// Timings and quality of one meshing run.
@@ -102,6 +103,7 @@ struct MeshStageResult
   /// Surfaces: dual boundary vertices off the input's open boundary, before and after the
   /// notch closure, and the triangles it added (CloseBoundaryNotches).
   std::size_t BoundaryNotches = 0, BoundaryNotchesClosed = 0, BoundaryNotchesLeft = 0;
+  std::size_t ImprovementMeanSmoothed = 0; ///< moves of the mean-quality sweeps
   double ImprovementVolumeChange = 0.0; ///< fraction of the volume moved by curved-boundary flips
   std::size_t InvertedBeforeImprovement = 0; ///< dual's inverted (or flat) cells before it
   bool ValidDualReplaced = false;  ///< the repaired dual was invalid: Delaunay of the sites

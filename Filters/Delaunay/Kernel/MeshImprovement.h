@@ -30,6 +30,12 @@ struct MeshImprovementOptions
   double TargetAngle = 35.0;
   bool Flips = true;     ///< tets: 2-3 flips and edge removal (3-2 flips included); triangles: 2-2
   bool Smoothing = true; ///< interior vertex moves that raise the worst incident element
+  /// Sweeps over the vertices after the worst-first passes, each moving every free vertex
+  /// (tets: also those that may move in a boundary plane or along a straight crease; not on
+  /// curved patches) where that raises the mean §5.2 shape measure G of its star without
+  /// lowering its worst element or adding out-of-range edges (VertexStarSmoother::
+  /// TryMeanSmooth). 0: none (the worst-first passes alone, as before 2026-12-07).
+  int MeanSmoothingSweeps = 2;
   /// Tets: also work on planar parts of the boundary, where that keeps the domain exactly: a
   /// boundary vertex whose boundary faces all lie in one plane (and form one disc) moves in that
   /// plane, and a boundary edge whose two boundary faces are coplanar is removed like an
@@ -85,7 +91,8 @@ struct MeshImprovementOptions
   /// bar of a bad tet; the presets' edges in range change by at most 0.03 points). 0: always.
   double EdgeLengthRuleMinAngle = 20.0;
   /// Test hook: accept operations that do not raise the worst quality they touch (only those
-  /// that keep every element positive). Always false in use.
+  /// that keep every element positive; the mean-quality sweeps drop their floor on the worst
+  /// element). Always false in use.
   bool AcceptWorsening = false;
   /// Optional: called before a vertex move is committed with the vertex and its new position
   /// (AmbientDim values); false refuses the move. The meshing pipeline locates the moved site
@@ -159,7 +166,8 @@ struct MeshImprovementResult
   std::size_t NumFlips23 = 0; ///< tets: 2-3 flips
   std::size_t NumEdgeRemovals = 0; ///< tets: edge removals (3-2 flips included)
   std::size_t NumFlips22 = 0;      ///< triangles: edge flips
-  std::size_t NumSmoothed = 0;     ///< accepted vertex moves
+  std::size_t NumSmoothed = 0;     ///< accepted vertex moves (the mean-quality sweeps' included)
+  std::size_t NumMeanSmoothed = 0; ///< of those, moves of the mean-quality sweeps
   std::size_t NumBoundaryEdgeRemovals = 0; ///< tets: of those, on planar boundary patches
   std::size_t NumBoundarySmoothed = 0; ///< tets: moves of boundary vertices (planar or curved)
   std::size_t NumCreaseSmoothed = 0;   ///< tets: of those, moves along straight creases

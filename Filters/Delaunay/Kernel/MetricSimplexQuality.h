@@ -7,6 +7,7 @@
 #include <Eigen/Dense>
 
 #include <algorithm>
+#include <cmath>
 
 namespace av
 {
@@ -81,6 +82,51 @@ inline double OrientedTriangleMetricQuality(const Eigen::Vector3d& a,
     return positive ? 0.0 : -1.0;
   const double q = a2 * std::min(std::min(lab, lac), lbc) / p;
   return positive ? q : -q;
+}
+
+/// Tet (a, b, c, d) mapped as in TetMetricQuality: the §5.2 shape measure G = 12 (9 V^2)^(1/3)
+/// / sum l^2 (1 when regular), with the sign of V (the mean-quality smoothing's objective).
+inline double TetMetricMeanRatio(const Eigen::Vector3d& a,
+  const Eigen::Vector3d& b,
+  const Eigen::Vector3d& c,
+  const Eigen::Vector3d& d,
+  const Eigen::Matrix3d& sa,
+  const Eigen::Matrix3d& sb,
+  const Eigen::Matrix3d& sc,
+  const Eigen::Matrix3d& sd)
+{
+  const Eigen::Matrix3d m = 0.25 * (sa + sb + sc + sd);
+  const Eigen::Vector3d ab = m * (b - a), ac = m * (c - a), ad = m * (d - a);
+  const double v = ab.dot(ac.cross(ad)) / 6.0;
+  const double l2 = ab.squaredNorm() + ac.squaredNorm() + ad.squaredNorm() +
+    (ac - ab).squaredNorm() + (ad - ab).squaredNorm() + (ad - ac).squaredNorm();
+  if (!(l2 > 1e-300))
+    return v > 0.0 ? 0.0 : -1.0;
+  const double g = 12.0 * std::cbrt(9.0 * v * v) / l2;
+  return v > 0.0 ? g : -g;
+}
+
+/// Triangle (a, b, c) in 3D mapped as in OrientedTriangleMetricQuality: the §5.2 shape measure
+/// G = 2 sqrt3 S / (s h) (s the half perimeter, h the longest edge; 1 when equilateral), negative
+/// when its normal opposes `up`.
+inline double OrientedTriangleMetricMeanRatio(const Eigen::Vector3d& a,
+  const Eigen::Vector3d& b,
+  const Eigen::Vector3d& c,
+  const Eigen::Matrix3d& sa,
+  const Eigen::Matrix3d& sb,
+  const Eigen::Matrix3d& sc,
+  const Eigen::Vector3d& up)
+{
+  const Eigen::Matrix3d m = (sa + sb + sc) / 3.0;
+  const Eigen::Vector3d ab = m * (b - a), ac = m * (c - a), bc = ac - ab;
+  const double a2 = ab.cross(ac).norm(); // doubled mapped area
+  const bool positive = (b - a).cross(c - a).dot(up) > 0.0;
+  const double lab = ab.norm(), lac = ac.norm(), lbc = bc.norm();
+  const double sh = (lab + lac + lbc) * std::max(std::max(lab, lac), lbc); // 2 s h
+  if (!(sh > 1e-300))
+    return positive ? 0.0 : -1.0;
+  const double g = 2.0 * std::sqrt(3.0) * a2 / sh;
+  return positive ? g : -g;
 }
 
 /// Elements at or below this quality count as inverted or degenerate: no operation may make one.

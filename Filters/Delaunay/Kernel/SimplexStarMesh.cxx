@@ -57,6 +57,15 @@ double SimplexStarMesh<K>::StarWorst(std::int32_t v) const
   return worst;
 }
 
+template <int K>
+double SimplexStarMesh<K>::StarMeanRatio(std::int32_t v) const
+{
+  double sum = 0.0;
+  for (std::int32_t t : Stars[v])
+    sum += MeanRatio(Simplices[t]);
+  return Stars[v].empty() ? 0.0 : sum / static_cast<double>(Stars[v].size());
+}
+
 // Seeded with the first simplex, as the triangle copy was; the tet copy started from +inf,
 // which differs only when the first quality is NaN (and found none when all were).
 template <int K>

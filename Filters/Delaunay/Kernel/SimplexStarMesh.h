@@ -60,10 +60,35 @@ public:
         Normals[t[0]] + Normals[t[1]] + Normals[t[2]]);
     }
   }
+  /// The §5.2 shape measure G of simplex t in the metric, mapped as Quality maps it
+  /// (MetricSimplexQuality.h: TetMetricMeanRatio, OrientedTriangleMetricMeanRatio).
+  double MeanRatio(const Simplex& t) const
+  {
+    const auto& p = Points;
+    const auto& s = SqrtMetrics;
+    if constexpr (K == 3)
+      return TetMetricMeanRatio(
+        p[t[0]], p[t[1]], p[t[2]], p[t[3]], s[t[0]], s[t[1]], s[t[2]], s[t[3]]);
+    else
+    {
+      const Eigen::Vector3d n = (p[t[1]] - p[t[0]]).cross(p[t[2]] - p[t[0]]);
+      const double len = n.norm();
+      auto moved = [&](int i) -> Eigen::Matrix3d
+      { return len > 0.0 ? MoveSurfaceMetric(s[t[i]], Normals[t[i]], n / len) : s[t[i]]; };
+      return OrientedTriangleMetricMeanRatio(p[t[0]],
+        p[t[1]],
+        p[t[2]],
+        moved(0),
+        moved(1),
+        moved(2),
+        Normals[t[0]] + Normals[t[1]] + Normals[t[2]]);
+    }
+  }
   bool IsAlive(std::int32_t t) const { return Simplices[t][0] != kDead; }
   bool CanMove(std::int32_t v) const { return !Fixed[v] && !Stars[v].empty(); }
   double WorstQuality() const;            ///< over the alive simplices; +inf if none
   double StarWorst(std::int32_t v) const; ///< over v's star; +inf if empty
+  double StarMeanRatio(std::int32_t v) const; ///< mean MeanRatio over v's star; 0 if empty
   /// The first simplex of v's non-empty star with its worst quality.
   std::int32_t WorstInStar(std::int32_t v) const;
   /// §5.1 edge length: Q_ab = (S_a + S_b) / 2; triangles: each S moved so that the edge lies in

@@ -57,6 +57,8 @@ private:
     const std::vector<std::pair<std::int32_t, std::int32_t>>& link,
     const std::vector<std::size_t>& order) const;
   bool Improve(std::int32_t tet); // best operation on one bad tet, true if applied
+  /// MeshImprovementOptions::MeanSmoothingSweeps after the worst-first passes.
+  void MeanSmoothingSweeps();
   bool TryEdgeRemoval(std::int32_t a, std::int32_t b);
   /// The tets on edge (a, b) into EdgeTets and, per tet, its other two vertices (c, d) with
   /// (a, b, c, d) even into Next; returns their count.
@@ -143,7 +145,7 @@ private:
   bool EdgeRuleWaived = false; // the tet being improved is below EdgeLengthRuleMinAngle
   std::size_t Flips23 = 0, EdgeRemovals = 0, Smoothed = 0;
   std::size_t BoundaryEdgeRemovals = 0, BoundarySmoothed = 0, CreaseSmoothed = 0;
-  std::size_t Insertions = 0, Peels = 0, Snaps = 0, Contractions = 0;
+  std::size_t Insertions = 0, Peels = 0, Snaps = 0, Contractions = 0, MeanSmoothed = 0;
   double PeeledVolume = 0.0;                           // Euclidean, times 6
   double MeshVolume = 0.0, BoundaryVolumeChange = 0.0; // Euclidean, times 6
   double MedianEdge = 0.0; // median metric edge length of the input mesh

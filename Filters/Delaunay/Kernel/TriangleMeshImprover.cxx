@@ -562,10 +562,25 @@ void TriangleMeshImprover::Run(MeshImprovementResult& result)
   const double target = std::sin(Options.TargetAngle * Pi / 180.0);
   result.Passes += Work.ImproveWorstFirst(
     target, Options.MaxPasses, [&](std::int32_t t) { return Improve(t, target); });
+  // Then the average: free vertices only (boundary and feature-line vertices stay).
+  std::size_t meanSmoothed = 0;
+  for (int sweep = 0; Options.Smoothing && !(Surface && !Options.PlacePoint) &&
+       sweep < Options.MeanSmoothingSweeps;
+       ++sweep)
+  {
+    std::size_t moved = 0;
+    for (std::int32_t v = 0; v < static_cast<std::int32_t>(P.size()); ++v)
+      if (Work.CanMove(v) && Smoother.TryMeanSmooth(v))
+        ++moved;
+    meanSmoothed += moved;
+    if (moved == 0)
+      break;
+  }
   result.WorstAfter = Tris.empty() ? 0.0 : angle(Work.WorstQuality());
   Work.WriteBack(Mesh);
   result.NumFlips22 = Flips;
-  result.NumSmoothed = Smoothed;
+  result.NumSmoothed = Smoothed + meanSmoothed;
+  result.NumMeanSmoothed = meanSmoothed;
   result.NumSplits = Splits;
   result.NumCollapses = Collapses;
   result.Moved = std::move(Moved);

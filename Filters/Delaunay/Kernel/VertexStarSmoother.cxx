@@ -12,6 +12,8 @@ namespace av
 {
 namespace
 {
+constexpr double Pi = 3.14159265358979323846;
+
 /// Two unit vectors orthogonal to n (and to each other): the plane a vertex moves in.
 void TangentBasis(const Eigen::Vector3d& n, Eigen::Vector3d& t1, Eigen::Vector3d& t2)
 {
@@ -152,6 +154,123 @@ bool VertexStarSmoother<K>::TrySmooth(std::int32_t v, bool deferCommit)
   }
   if (!deferCommit)
     Mesh.Moved[v] = 1;
+  return true;
+}
+
+template <int K>
+template <typename F>
+Eigen::Vector3d VertexStarSmoother<K>::Gradient(std::int32_t v, double h, F&& f)
+{
+  Eigen::Vector3d& p = Mesh.Points[v];
+  const Eigen::Vector3d here = p;
+  Eigen::Vector3d g = Eigen::Vector3d::Zero();
+  Eigen::Vector3d t[3] = { Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY(),
+    Eigen::Vector3d::UnitZ() };
+  int dirs = 3;
+  if constexpr (K == 2)
+  {
+    TangentBasis(Mesh.Normals[v], t[0], t[1]);
+    dirs = 2;
+  }
+  for (int k = 0; k < dirs; ++k)
+  {
+    p = here + h * t[k];
+    const double qp = f();
+    p = here - h * t[k];
+    const double qm = f();
+    g += (qp - qm) / (2.0 * h) * t[k];
+  }
+  p = here;
+  return g;
+}
+
+template <int K>
+Eigen::Vector3d VertexStarSmoother<K>::MeanGradient(std::int32_t v, double h)
+{
+  return Gradient(v, h, [&] { return Mesh.StarMeanRatio(v); });
+}
+
+// Steepest ascent of the star's mean G with a halving line search. A step must raise the mean,
+// keep the star's worst quality above its floor and keep the edge rule. Where the floor blocks
+// the ascent, the direction is turned to leave the worst simplex's quality unchanged to first
+// order (plus a tenth of its own ascent), which lets the vertex slide along the constraint.
+template <int K>
+bool VertexStarSmoother<K>::TryMeanSmooth(std::int32_t v)
+{
+  if (!Mesh.CanMove(v))
+    return false;
+  const VertexState start = Save(v);
+  double scale = std::numeric_limits<double>::infinity();
+  for (std::int32_t t : Mesh.Stars[v])
+    for (std::int32_t w : Mesh.Simplices[t])
+      if (w != v)
+        scale = std::min(scale, (Mesh.Points[w] - start.Point).norm());
+  const double worstBefore = Mesh.StarWorst(v);
+  if (!(worstBefore > kMinImprovementQuality))
+    return false; // an inverted or flat star is the worst-first passes' business
+  const double meanBefore = Mesh.StarMeanRatio(v);
+  // The worst simplex may fall, but not below where it was nor below the worst-first passes'
+  // target: those passes' work is kept, and the simplices above the target have room to trade.
+  // (AcceptWorsening, the test hook: no floor, so the tests can show they would see one.)
+  const double floorWorst = Options.AcceptWorsening
+    ? -std::numeric_limits<double>::infinity()
+    : std::min(worstBefore, std::sin(Options.TargetAngle * Pi / 180.0));
+  double current = meanBefore;
+  const int outBefore = OutOfRangeEdges ? OutOfRangeEdges(v) : 0;
+  // One halving line search along g from `here`; true if a step was kept.
+  auto search = [&](const Eigen::Vector3d& g)
+  {
+    const double gn = g.norm();
+    if (!(gn > 0.0) || !std::isfinite(gn))
+      return false;
+    const VertexState here = Save(v);
+    for (double alpha = 0.1 * scale; alpha > 1e-3 * scale; alpha *= 0.5)
+    {
+      const Eigen::Vector3d x = here.Point + (alpha / gn) * g;
+      bool placed = true;
+      if (Place)
+        placed = Place(v, x);
+      else
+        Mesh.Points[v] = x;
+      if (placed)
+      {
+        const double q = Mesh.StarMeanRatio(v);
+        if (q > current + 1e-12 && Mesh.StarWorst(v) >= floorWorst &&
+          (!OutOfRangeEdges || OutOfRangeEdges(v) <= outBefore))
+        {
+          current = q;
+          return true;
+        }
+      }
+      Restore(v, here);
+    }
+    return false;
+  };
+  for (int iter = 0; iter < 4; ++iter)
+  {
+    Eigen::Vector3d g = MeanGradient(v, 1e-6 * scale);
+    if (Filter)
+      Filter(v, g);
+    if (search(g))
+      continue;
+    // Blocked, usually by the worst simplex at the floor: the part of g that leaves the worst
+    // simplex's quality unchanged to first order.
+    Eigen::Vector3d w = WorstGradient(v, 1e-6 * scale);
+    if (Filter)
+      Filter(v, w);
+    const double ww = w.squaredNorm();
+    if (!(ww > 0.0) || g.dot(w) >= 0.0)
+      break;
+    if (!search(g - (g.dot(w) / ww) * w + 0.1 * std::sqrt(g.squaredNorm() / ww) * w))
+      break;
+  }
+  if (!(current > meanBefore + 1e-9) ||
+    (Options.AcceptMove && !Options.AcceptMove(v, Mesh.Points[v].data())))
+  {
+    Restore(v, start);
+    return false;
+  }
+  Mesh.Moved[v] = 1;
   return true;
 }
 

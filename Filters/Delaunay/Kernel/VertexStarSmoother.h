@@ -38,6 +38,12 @@ public:
   /// Options.AcceptMove must agree too and v is marked moved.
   bool TrySmooth(std::int32_t v, bool deferCommit);
 
+  /// Moves free vertex v if that raises the mean §5.2 shape measure G of its star
+  /// (SimplexStarMesh::MeanRatio) while its worst quality (Quality) does not fall and no more
+  /// of its edges leave the range; else leaves it and returns false. Options.AcceptMove must
+  /// agree; v is marked moved. The optional Place and direction filter apply as in TrySmooth.
+  bool TryMeanSmooth(std::int32_t v);
+
   /// Optional: restricts a search direction at v in place (tets on a planar boundary patch:
   /// its projection on the plane), so that the ascent is not spent on the normal component
   /// that Place would undo.
@@ -53,6 +59,10 @@ private:
   VertexState Save(std::int32_t v) const;
   void Restore(std::int32_t v, const VertexState& state);
   Eigen::Vector3d WorstGradient(std::int32_t v, double h); ///< of the star's worst simplex
+  Eigen::Vector3d MeanGradient(std::int32_t v, double h);  ///< of the star's mean G
+  /// Central differences of f at v: along the axes (tets), in v's tangent plane (triangles).
+  template <typename F>
+  Eigen::Vector3d Gradient(std::int32_t v, double h, F&& f);
 
   SimplexStarMesh<K>& Mesh;
   const MeshImprovementOptions& Options;
