@@ -66,6 +66,29 @@ double SimplexStarMesh<K>::StarMeanRatio(std::int32_t v) const
   return Stars[v].empty() ? 0.0 : sum / static_cast<double>(Stars[v].size());
 }
 
+template <int K>
+std::vector<std::vector<std::int32_t>> SimplexStarMesh<K>::IndependentClasses(
+  const std::vector<std::int32_t>& vertices) const
+{
+  std::vector<int> colour(Points.size(), -1);
+  std::vector<std::vector<std::int32_t>> classes;
+  std::vector<char> used;
+  for (std::int32_t v : vertices)
+  {
+    used.assign(classes.size() + 1, 0);
+    for (std::int32_t t : Stars[v])
+      for (std::int32_t w : Simplices[t])
+        if (colour[w] >= 0)
+          used[static_cast<std::size_t>(colour[w])] = 1;
+    const int c = static_cast<int>(std::find(used.begin(), used.end(), 0) - used.begin());
+    if (c == static_cast<int>(classes.size()))
+      classes.emplace_back();
+    classes[static_cast<std::size_t>(c)].push_back(v);
+    colour[v] = c;
+  }
+  return classes;
+}
+
 // Seeded with the first simplex, as the triangle copy was; the tet copy started from +inf,
 // which differs only when the first quality is NaN (and found none when all were).
 template <int K>

@@ -89,6 +89,10 @@ public:
   double WorstQuality() const;            ///< over the alive simplices; +inf if none
   double StarWorst(std::int32_t v) const; ///< over v's star; +inf if empty
   double StarMeanRatio(std::int32_t v) const; ///< mean MeanRatio over v's star; 0 if empty
+  /// Splits `vertices` into classes of which no two members share a simplex (greedy, in the
+  /// given order): the members of one class can move at the same time.
+  std::vector<std::vector<std::int32_t>> IndependentClasses(
+    const std::vector<std::int32_t>& vertices) const;
   /// The first simplex of v's non-empty star with its worst quality.
   std::int32_t WorstInStar(std::int32_t v) const;
   /// §5.1 edge length: Q_ab = (S_a + S_b) / 2; triangles: each S moved so that the edge lies in

@@ -5,8 +5,6 @@
 #include "MetricSimplexQuality.h"
 
 #include <algorithm>
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 #include <cmath>
 #include <limits>
 #include <utility>
@@ -1246,48 +1244,18 @@ bool TetMeshImprover::Improve(std::int32_t tet)
 }
 
 // Then the average: interior vertices, and boundary ones that move in their plane or along
-// their straight crease (curved patches stay: their moves change the volume). The vertices are
-// split into classes of which no two share a tet (greedy, in vertex order), and each class is
-// smoothed in parallel: a move reads and writes only its own vertex and its star, so the result
-// does not depend on the thread count.
+// their straight crease (curved patches stay: their moves change the volume).
 void TetMeshImprover::MeanSmoothingSweeps()
 {
-  std::vector<int> colour(P.size(), -1);
-  std::vector<std::vector<std::int32_t>> classes;
-  std::vector<char> used;
+  std::vector<std::int32_t> vertices;
   for (std::int32_t v = 0; v < static_cast<std::int32_t>(P.size()); ++v)
   {
     const bool planar = PlaneNormal[v].squaredNorm() > 0.0 && !Curved[v];
     const bool line = LineDirection[v].squaredNorm() > 0.0;
-    if (!Work.CanMove(v) || OffBoundary[v] || (OnBoundary(v) && !planar && !line))
-      continue;
-    used.assign(classes.size() + 1, 0);
-    for (std::int32_t t : Star[v])
-      for (std::int32_t w : Tets[t])
-        if (colour[w] >= 0)
-          used[static_cast<std::size_t>(colour[w])] = 1;
-    const int c = static_cast<int>(std::find(used.begin(), used.end(), 0) - used.begin());
-    if (c == static_cast<int>(classes.size()))
-      classes.emplace_back();
-    classes[static_cast<std::size_t>(c)].push_back(v);
-    colour[v] = c;
+    if (Work.CanMove(v) && !OffBoundary[v] && (!OnBoundary(v) || planar || line))
+      vertices.push_back(v);
   }
-  std::vector<char> moved(P.size(), 0);
-  for (int sweep = 0; sweep < Options.MeanSmoothingSweeps; ++sweep)
-  {
-    std::fill(moved.begin(), moved.end(), 0);
-    for (const std::vector<std::int32_t>& members : classes)
-      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, members.size(), 64),
-        [&](const tbb::blocked_range<std::size_t>& r)
-        {
-          for (std::size_t i = r.begin(); i != r.end(); ++i)
-            moved[members[i]] = Smoother.TryMeanSmooth(members[i]) ? 1 : 0;
-        });
-    const std::size_t count = static_cast<std::size_t>(std::count(moved.begin(), moved.end(), 1));
-    MeanSmoothed += count;
-    if (count == 0)
-      break;
-  }
+  MeanSmoothed += Smoother.MeanSmoothingSweeps(vertices);
 }
 
 void TetMeshImprover::Run(MeshImprovementResult& result)

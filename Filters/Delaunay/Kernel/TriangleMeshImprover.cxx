@@ -564,17 +564,13 @@ void TriangleMeshImprover::Run(MeshImprovementResult& result)
     target, Options.MaxPasses, [&](std::int32_t t) { return Improve(t, target); });
   // Then the average: free vertices only (boundary and feature-line vertices stay).
   std::size_t meanSmoothed = 0;
-  for (int sweep = 0; Options.Smoothing && !(Surface && !Options.PlacePoint) &&
-       sweep < Options.MeanSmoothingSweeps;
-       ++sweep)
+  if (Options.Smoothing && !(Surface && !Options.PlacePoint))
   {
-    std::size_t moved = 0;
+    std::vector<std::int32_t> vertices;
     for (std::int32_t v = 0; v < static_cast<std::int32_t>(P.size()); ++v)
-      if (Work.CanMove(v) && Smoother.TryMeanSmooth(v))
-        ++moved;
-    meanSmoothed += moved;
-    if (moved == 0)
-      break;
+      if (Work.CanMove(v))
+        vertices.push_back(v);
+    meanSmoothed = Smoother.MeanSmoothingSweeps(vertices);
   }
   result.WorstAfter = Tris.empty() ? 0.0 : angle(Work.WorstQuality());
   Work.WriteBack(Mesh);

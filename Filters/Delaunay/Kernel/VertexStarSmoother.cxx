@@ -4,6 +4,8 @@
 #include "MetricSimplexQuality.h"
 
 #include <algorithm>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 #include <cmath>
 #include <limits>
 #include <utility>
@@ -195,7 +197,7 @@ Eigen::Vector3d VertexStarSmoother<K>::MeanGradient(std::int32_t v, double h)
 // the ascent, the direction is turned to leave the worst simplex's quality unchanged to first
 // order (plus a tenth of its own ascent), which lets the vertex slide along the constraint.
 template <int K>
-bool VertexStarSmoother<K>::TryMeanSmooth(std::int32_t v)
+bool VertexStarSmoother<K>::TryMeanSmooth(std::int32_t v, double floor)
 {
   if (!Mesh.CanMove(v))
     return false;
@@ -209,12 +211,9 @@ bool VertexStarSmoother<K>::TryMeanSmooth(std::int32_t v)
   if (!(worstBefore > kMinImprovementQuality))
     return false; // an inverted or flat star is the worst-first passes' business
   const double meanBefore = Mesh.StarMeanRatio(v);
-  // The worst simplex may fall, but not below where it was nor below the worst-first passes'
-  // target: those passes' work is kept, and the simplices above the target have room to trade.
   // (AcceptWorsening, the test hook: no floor, so the tests can show they would see one.)
-  const double floorWorst = Options.AcceptWorsening
-    ? -std::numeric_limits<double>::infinity()
-    : std::min(worstBefore, std::sin(Options.TargetAngle * Pi / 180.0));
+  const double floorWorst =
+    Options.AcceptWorsening ? -std::numeric_limits<double>::infinity() : std::min(worstBefore, floor);
   double current = meanBefore;
   const int outBefore = OutOfRangeEdges ? OutOfRangeEdges(v) : 0;
   // One halving line search along g from `here`; true if a step was kept.
@@ -272,6 +271,34 @@ bool VertexStarSmoother<K>::TryMeanSmooth(std::int32_t v)
   }
   Mesh.Moved[v] = 1;
   return true;
+}
+
+template <int K>
+std::size_t VertexStarSmoother<K>::MeanSmoothingSweeps(const std::vector<std::int32_t>& vertices)
+{
+  if (vertices.empty() || Options.MeanSmoothingSweeps <= 0)
+    return 0;
+  const double floor =
+    std::max(Mesh.WorstQuality(), std::sin(Options.TargetAngle * Pi / 180.0));
+  const std::vector<std::vector<std::int32_t>> classes = Mesh.IndependentClasses(vertices);
+  std::vector<char> moved(Mesh.Points.size(), 0);
+  std::size_t total = 0;
+  for (int sweep = 0; sweep < Options.MeanSmoothingSweeps; ++sweep)
+  {
+    std::fill(moved.begin(), moved.end(), 0);
+    for (const std::vector<std::int32_t>& members : classes)
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, members.size(), 16),
+        [&](const tbb::blocked_range<std::size_t>& r)
+        {
+          for (std::size_t i = r.begin(); i != r.end(); ++i)
+            moved[members[i]] = TryMeanSmooth(members[i], floor) ? 1 : 0;
+        });
+    const std::size_t count = static_cast<std::size_t>(std::count(moved.begin(), moved.end(), 1));
+    total += count;
+    if (count == 0)
+      break;
+  }
+  return total;
 }
 
 template class VertexStarSmoother<2>;

@@ -39,10 +39,19 @@ public:
   bool TrySmooth(std::int32_t v, bool deferCommit);
 
   /// Moves free vertex v if that raises the mean §5.2 shape measure G of its star
-  /// (SimplexStarMesh::MeanRatio) while its worst quality (Quality) does not fall and no more
-  /// of its edges leave the range; else leaves it and returns false. Options.AcceptMove must
-  /// agree; v is marked moved. The optional Place and direction filter apply as in TrySmooth.
-  bool TryMeanSmooth(std::int32_t v);
+  /// (SimplexStarMesh::MeanRatio) while its worst quality (Quality) stays at least
+  /// min(where it was, `floor`) and no more of its edges leave the range; else leaves it and
+  /// returns false. Options.AcceptMove must agree; v is marked moved. The optional Place and
+  /// direction filter apply as in TrySmooth. Reads and writes only v and reads its star, so
+  /// vertices that share no simplex may be smoothed at the same time.
+  bool TryMeanSmooth(std::int32_t v, double floor);
+
+  /// MeshImprovementOptions::MeanSmoothingSweeps over `vertices`: the floor is the mesh's worst
+  /// quality, or the sine of TargetAngle if higher (the sweeps never lower the worst element,
+  /// and above the target the elements may trade); each sweep smooths the IndependentClasses
+  /// one after the other, each in parallel (the result does not depend on the thread count).
+  /// Returns the moves.
+  std::size_t MeanSmoothingSweeps(const std::vector<std::int32_t>& vertices);
 
   /// Optional: restricts a search direction at v in place (tets on a planar boundary patch:
   /// its projection on the plane), so that the ascent is not spent on the normal component
