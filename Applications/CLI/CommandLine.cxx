@@ -108,6 +108,9 @@ meshing:
   --no-boundary-improvement  the mesh improvement leaves every boundary vertex and face of a
                            tet mesh as it is (default: planar patches exactly, smooth curved
                            ones within 0.5 % of the volume)
+  --mean-smoothing N       sweeps of the mesh improvement over all movable vertices, each
+                           raising the mean shape G of its elements without lowering the
+                           worst (default 2, 0 = none)
   --keep-feature-sites     surfaces: the ODT steps keep the corner and feature-line sites on
                            the creases, and the edges along the creases are flipped into the
                            mesh (default: those sites move like the others)
@@ -216,6 +219,8 @@ void CheckOptions(const Options& o)
     Fail("--improve-rounds must be in [0, 10]", 2);
   if (!(o.MaxStretch == 0.0 || o.MaxStretch >= 1.0))
     Fail("--max-stretch must be 0 (no cap) or >= 1", 2);
+  if (o.MeanSmoothingSweeps < 0 || o.MeanSmoothingSweeps > 10)
+    Fail("--mean-smoothing must be in [0, 10]", 2);
   if (o.OdtIterations < 0 || o.OdtIterations > 20)
     Fail("--odt-iterations must be in [0, 20]", 2);
 }
@@ -361,6 +366,8 @@ Options ParseCommandLine(int argc, char* argv[])
       o.ImproveMesh = false;
     else if (a == "--no-boundary-improvement")
       o.ImproveBoundary = false;
+    else if (a == "--mean-smoothing")
+      o.MeanSmoothingSweeps = ParseInt(a, next());
     else if (a == "--keep-feature-sites")
       o.KeepFeatureSites = true;
     else if (a == "--no-boundary-notches")

@@ -34,6 +34,7 @@ struct Options
   bool ValidDual = true;
   bool RepairNonManifold = true, DoubleSolve = false, ImproveMesh = true, SeparateBodies = true;
   bool ImproveBoundary = true; // the mesh improvement also works on the tet boundary
+  int MeanSmoothingSweeps = 2; // the mesh improvement's mean-quality sweeps
   bool ScaleFreeRegularizer = false; // --scale-free-regularizer: E_reg in units of the extent
   bool KeepFeatureSites = false; // surfaces: the ODT steps keep the crease sites on the creases
   bool CloseBoundaryNotches = true; // surfaces: close the notches of the open boundary

@@ -421,6 +421,7 @@ void RunMeshingStages(const Options& o,
   s.Delaunay->SetValidDual(o.ValidDual);
   s.Delaunay->SetImproveMesh(o.ImproveMesh);
   s.Delaunay->SetImproveBoundary(o.ImproveBoundary);
+  s.Delaunay->SetMeanSmoothingSweeps(o.MeanSmoothingSweeps);
   s.Delaunay->SetKeepFeatureSites(o.KeepFeatureSites);
   s.Delaunay->SetCloseBoundaryNotches(o.CloseBoundaryNotches);
   runner.Run(s.Delaunay, DelaunayStage);
@@ -546,6 +547,8 @@ std::vector<std::pair<std::string, std::string>> ReportEntries(const Options& o,
     { "mesh_improvement_seconds", JsonNumber(FieldValue(rdtOut, "MeshImprovementSeconds")) },
     { "mesh_improvement_flips", JsonNumber(FieldValue(rdtOut, "NumImprovementFlips")) },
     { "mesh_improvement_moves", JsonNumber(FieldValue(rdtOut, "NumImprovementMoves")) },
+    { "mean_smoothing_sweeps", JsonNumber(o.MeanSmoothingSweeps) },
+    { "mesh_improvement_mean_moves", JsonNumber(FieldValue(rdtOut, "NumImprovementMeanMoves")) },
     { "mesh_improvement_insertions", JsonNumber(FieldValue(rdtOut, "NumImprovementInsertions")) },
     { "mesh_improvement_collapses", JsonNumber(FieldValue(rdtOut, "NumImprovementCollapses")) },
     { "mesh_improvement_boundary_snaps", JsonNumber(FieldValue(rdtOut, "NumImprovementBoundarySnaps")) },

@@ -4,7 +4,9 @@
 #include "vtkAnisoRestrictedDelaunay.h"
 
 #include "InputError.h"
+#include "MeshQuality.h"   // InterpolateMetricInCell
 #include "MeshingPipeline.h"
+#include "MetricAlgebra.h" // SurfaceMetricNormals
 #include "SharpFeatures.h"
 #include "Stopwatch.h"
 #include "vtkAnisoDataConversion.h"
@@ -38,7 +40,12 @@ using vtkAnisoFilterUtilities::AddFieldValue;
 
 /// Output point data: the sites' arrays, recomputed for moved sites and extended to the
 /// inserted ones ("CellId" / "Barycentric" are theirs, arrays the mesh also has are
-/// interpolated, others 0; a moved site keeps its "FeatureKind", an inserted one is free).
+/// interpolated, others 0; a moved site keeps its "FeatureKind", an inserted one is free). On a
+/// surface the 6-component "Metric" is interpolated as the sampler does it
+/// (InterpolateMetricInCell: each vertex's rank-2 metric moved into the cell's plane first);
+/// plain barycentric weights would mix tensors whose null directions differ and give a metric
+/// that is not the surface's (turbine, 4000 sites: G_avg 0.81 and 12.8 % of triangles below
+/// 30 degrees in the CLI's report, against 0.89 and 0.25 % for the same mesh in the bench).
 void ExtendPointData(vtkDataSet* sitesInput,
   vtkDataSet* meshInput,
   const av::SimplexMesh& mesh,
@@ -78,6 +85,14 @@ void ExtendPointData(vtkDataSet* sitesInput,
       meshArray = nullptr;
     }
     const int nc = src->GetNumberOfComponents();
+    av::MetricField surfaceMetric;
+    std::vector<Eigen::Vector3d> surfaceNormals;
+    std::string error;
+    const bool surfaceTensor = meshArray && name == "Metric" && nc == 6 &&
+      mesh.SimplexDim == 2 && mesh.AmbientDim == 3 &&
+      vtkAnisoDataConversion::ToMetricField(meshArray, mesh.NumPoints(), surfaceMetric, error);
+    if (surfaceTensor)
+      surfaceNormals = av::SurfaceMetricNormals(surfaceMetric);
     for (vtkIdType i = 0; i < n; ++i)
     {
       // A moved site keeps its kind: only a line site slides, and along its line.
@@ -94,6 +109,14 @@ void ExtendPointData(vtkDataSet* sitesInput,
       {
         for (int c = 0; c < 4; ++c)
           dst->SetComponent(i, c, sites.Bary[4 * i + c]);
+      }
+      else if (surfaceTensor)
+      {
+        double m[6];
+        av::InterpolateMetricInCell(
+          mesh, surfaceMetric, surfaceNormals, cell, sites.Bary.data() + 4 * i, m);
+        for (int c = 0; c < 6; ++c)
+          dst->SetComponent(i, c, m[c]);
       }
       else if (meshArray)
       {
@@ -267,6 +290,7 @@ void AddRunFieldData(const av::MeshingPipelineResult& result, double seconds, vt
   AddFieldValue(fd, "NumImprovementFlips",
     static_cast<double>(im.NumFlips23 + im.NumEdgeRemovals + im.NumFlips22));
   AddFieldValue(fd, "NumImprovementMoves", static_cast<double>(im.NumSmoothed));
+  AddFieldValue(fd, "NumImprovementMeanMoves", static_cast<double>(im.NumMeanSmoothed));
   // Triangles: a split appends a site, a collapse leaves its vertex as an unused point.
   AddFieldValue(fd, "NumImprovementSplits", static_cast<double>(im.NumSplits));
   AddFieldValue(fd, "NumImprovementCollapses", static_cast<double>(im.NumCollapses));
@@ -300,6 +324,7 @@ av::MeshingPipelineOptions MeshingOptions(vtkAnisoRestrictedDelaunay* self,
   options.ValidDual = self->GetValidDual();
   options.ImproveMesh = self->GetImproveMesh();
   options.Improvement.PlanarBoundary = self->GetImproveBoundary();
+  options.Improvement.MeanSmoothingSweeps = self->GetMeanSmoothingSweeps();
   options.OdtKeepsFixedSites = self->GetKeepFeatureSites();
   options.CloseBoundaryNotches = self->GetCloseBoundaryNotches();
   options.Progress = [self](av::MeshingStep step)
@@ -489,6 +514,7 @@ void vtkAnisoRestrictedDelaunay::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ValidDual: " << (this->ValidDual ? "On" : "Off") << "\n";
   os << indent << "ImproveMesh: " << (this->ImproveMesh ? "On" : "Off") << "\n";
   os << indent << "ImproveBoundary: " << (this->ImproveBoundary ? "On" : "Off") << "\n";
+  os << indent << "MeanSmoothingSweeps: " << this->MeanSmoothingSweeps << "\n";
   os << indent << "KeepFeatureSites: " << (this->KeepFeatureSites ? "On" : "Off") << "\n";
   os << indent << "CloseBoundaryNotches: " << (this->CloseBoundaryNotches ? "On" : "Off") << "\n";
   os << indent << "MaxRepairRounds: " << this->MaxRepairRounds << "\n";

@@ -121,6 +121,14 @@ public:
   ///@}
 
   ///@{
+  /// Sweeps of the mesh improvement over all movable vertices after its worst-first passes
+  /// (default 2, range 0..10; 0: none): each vertex moves where the mean §5.2 shape G of its
+  /// star rises, never lowering the mesh's worst element or adding out-of-range edges.
+  vtkSetClampMacro(MeanSmoothingSweeps, int, 0, 10);
+  vtkGetMacro(MeanSmoothingSweeps, int);
+  ///@}
+
+  ///@{
   /// Surfaces: the ODT steps of the improvement rounds keep the corner and feature-line sites
   /// ("FeatureKind" != 0) where the sampler put them, on the creases (default off: they move
   /// like the others, and leave the creases). On fandisk it halves the distance to the input
@@ -167,6 +175,7 @@ protected:
   bool RepairInverted = true;
   bool ImproveMesh = true;
   bool ImproveBoundary = true;
+  int MeanSmoothingSweeps = 2;
   bool KeepFeatureSites = false;
   bool CloseBoundaryNotches = true;
   bool RepairNonManifold = true;

@@ -364,6 +364,26 @@ print("sphere halves: %d sites on the equator, %d of %d consecutive pairs flippe
     len(equator), field(ball_mesh, "NumFeatureEdgesRecovered"), field(ball_mesh, "NumFeatureEdgesRequired")))
 assert field(ball_mesh, "NumFeatureEdgesRequired") >= len(equator)
 assert field(ball_mesh, "NumInverted") == 0
+# The "Metric" of moved and inserted sites is the surface's, as the sampler's: rank 2, its null
+# direction the normal of the input triangle holding the site (plain barycentric weights of the
+# vertices' metrics, whose null directions are the vertex normals, are not: |M n| ~ 1e-2 |M|).
+surf = ball_embedding.GetOutput()
+ball_metric_out = ball_mesh.GetPointData().GetArray("Metric")
+ball_cell_ids = ball_mesh.GetPointData().GetArray("CellId")
+worst_null = 0.0
+for i in range(ball_mesh.GetNumberOfPoints()):
+    tri = surf.GetCell(int(ball_cell_ids.GetValue(i))).GetPointIds()
+    p0, p1, p2 = (surf.GetPoint(tri.GetId(k)) for k in range(3))
+    u = [p1[d] - p0[d] for d in range(3)]
+    w = [p2[d] - p0[d] for d in range(3)]
+    n = [u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]]
+    ln = sum(x * x for x in n) ** 0.5
+    xx, yy, zz, xy, yz, xz = ball_metric_out.GetTuple6(i)
+    m = [[xx, xy, xz], [xy, yy, yz], [xz, yz, zz]]
+    mn = [sum(m[r][c] * n[c] / ln for c in range(3)) for r in range(3)]
+    worst_null = max(worst_null, sum(x * x for x in mn) ** 0.5 / max(abs(v) for v in (xx, yy, zz)))
+print("sphere halves: largest |M n| / |M| at the mesh's points %.2e" % worst_null)
+assert field(ball_mesh, "NumMovedSites") > 0 and worst_null < 1e-9, worst_null
 errors = []
 missing = vtkAnisoParticleSampler()
 missing.AddObserver(vtkCommand.ErrorEvent, lambda obj, ev: errors.append(ev))
