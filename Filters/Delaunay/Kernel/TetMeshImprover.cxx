@@ -1244,18 +1244,56 @@ bool TetMeshImprover::Improve(std::int32_t tet)
 }
 
 // Then the average: interior vertices, and boundary ones that move in their plane or along
-// their straight crease (curved patches stay: their moves change the volume).
+// their straight crease, in parallel; then, one at a time, those of curved patches, whose moves
+// change the volume and are charged to BoundaryFlipVolumeBudget.
 void TetMeshImprover::MeanSmoothingSweeps()
 {
-  std::vector<std::int32_t> vertices;
+  std::vector<std::int32_t> vertices, curved;
   for (std::int32_t v = 0; v < static_cast<std::int32_t>(P.size()); ++v)
   {
+    if (!Work.CanMove(v) || OffBoundary[v])
+      continue;
     const bool planar = PlaneNormal[v].squaredNorm() > 0.0 && !Curved[v];
     const bool line = LineDirection[v].squaredNorm() > 0.0;
-    if (Work.CanMove(v) && !OffBoundary[v] && (!OnBoundary(v) || planar || line))
+    if (!OnBoundary(v) || planar || line)
       vertices.push_back(v);
+    else if (Curved[v] && PlaneNormal[v].squaredNorm() > 0.0)
+      curved.push_back(v);
   }
+  const double floor = Smoother.MeanSmoothingFloor();
   MeanSmoothed += Smoother.MeanSmoothingSweeps(vertices);
+  auto starVolume = [&](std::int32_t v)
+  {
+    double sum = 0.0;
+    for (std::int32_t t : Star[v])
+      sum += Volume(Tets[t]);
+    return sum;
+  };
+  for (int sweep = 0; sweep < Options.MeanSmoothingSweeps && !curved.empty(); ++sweep)
+  {
+    std::size_t moved = 0;
+    for (std::int32_t v : curved)
+    {
+      const Eigen::Vector3d start = P[v];
+      const double before = starVolume(v);
+      if (!Smoother.TryMeanSmooth(v, floor, true))
+        continue;
+      const double change = std::abs(starVolume(v) - before);
+      if (BoundaryVolumeChange + change > Options.BoundaryFlipVolumeBudget * MeshVolume ||
+        (Options.AcceptMove && !Options.AcceptMove(v, P[v].data())))
+      {
+        Work.Points[v] = start;
+        continue;
+      }
+      Work.Moved[v] = 1;
+      BoundaryVolumeChange += change;
+      ++BoundarySmoothed;
+      ++moved;
+    }
+    MeanSmoothed += moved;
+    if (moved == 0)
+      break;
+  }
 }
 
 void TetMeshImprover::Run(MeshImprovementResult& result)

@@ -197,7 +197,7 @@ Eigen::Vector3d VertexStarSmoother<K>::MeanGradient(std::int32_t v, double h)
 // the ascent, the direction is turned to leave the worst simplex's quality unchanged to first
 // order (plus a tenth of its own ascent), which lets the vertex slide along the constraint.
 template <int K>
-bool VertexStarSmoother<K>::TryMeanSmooth(std::int32_t v, double floor)
+bool VertexStarSmoother<K>::TryMeanSmooth(std::int32_t v, double floor, bool deferCommit)
 {
   if (!Mesh.CanMove(v))
     return false;
@@ -264,13 +264,20 @@ bool VertexStarSmoother<K>::TryMeanSmooth(std::int32_t v, double floor)
       break;
   }
   if (!(current > meanBefore + 1e-9) ||
-    (Options.AcceptMove && !Options.AcceptMove(v, Mesh.Points[v].data())))
+    (!deferCommit && Options.AcceptMove && !Options.AcceptMove(v, Mesh.Points[v].data())))
   {
     Restore(v, start);
     return false;
   }
-  Mesh.Moved[v] = 1;
+  if (!deferCommit)
+    Mesh.Moved[v] = 1;
   return true;
+}
+
+template <int K>
+double VertexStarSmoother<K>::MeanSmoothingFloor() const
+{
+  return std::max(Mesh.WorstQuality(), std::sin(Options.TargetAngle * Pi / 180.0));
 }
 
 template <int K>
@@ -278,8 +285,7 @@ std::size_t VertexStarSmoother<K>::MeanSmoothingSweeps(const std::vector<std::in
 {
   if (vertices.empty() || Options.MeanSmoothingSweeps <= 0)
     return 0;
-  const double floor =
-    std::max(Mesh.WorstQuality(), std::sin(Options.TargetAngle * Pi / 180.0));
+  const double floor = MeanSmoothingFloor();
   const std::vector<std::vector<std::int32_t>> classes = Mesh.IndependentClasses(vertices);
   std::vector<char> moved(Mesh.Points.size(), 0);
   std::size_t total = 0;

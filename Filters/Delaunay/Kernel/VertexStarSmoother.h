@@ -41,10 +41,15 @@ public:
   /// Moves free vertex v if that raises the mean §5.2 shape measure G of its star
   /// (SimplexStarMesh::MeanRatio) while its worst quality (Quality) stays at least
   /// min(where it was, `floor`) and no more of its edges leave the range; else leaves it and
-  /// returns false. Options.AcceptMove must agree; v is marked moved. The optional Place and
-  /// direction filter apply as in TrySmooth. Reads and writes only v and reads its star, so
-  /// vertices that share no simplex may be smoothed at the same time.
-  bool TryMeanSmooth(std::int32_t v, double floor);
+  /// returns false. Unless `deferCommit` (the caller decides), Options.AcceptMove must agree
+  /// and v is marked moved. The optional Place and direction filter apply as in TrySmooth.
+  /// Reads and writes only v and reads its star, so vertices that share no simplex may be
+  /// smoothed at the same time.
+  bool TryMeanSmooth(std::int32_t v, double floor, bool deferCommit = false);
+
+  /// The floor of the mean-quality sweeps: the mesh's worst quality, or the sine of
+  /// TargetAngle if higher.
+  double MeanSmoothingFloor() const;
 
   /// MeshImprovementOptions::MeanSmoothingSweeps over `vertices`: the floor is the mesh's worst
   /// quality, or the sine of TargetAngle if higher (the sweeps never lower the worst element,
