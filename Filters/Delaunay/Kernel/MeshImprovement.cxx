@@ -26,7 +26,7 @@ double MetricSimplexQuality(int simplexDim,
       p[i] = Eigen::Map<const Eigen::Vector3d>(points[i]);
       s[i] = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(sqrtMetrics[i]);
     }
-    return TetMetricQuality(p[0], p[1], p[2], p[3], s[0], s[1], s[2], s[3]);
+    return TetQuality(MappedTet(p[0], p[1], p[2], p[3], s[0], s[1], s[2], s[3]));
   }
   if (simplexDim == 2)
   {

@@ -40,49 +40,13 @@ public:
   /// (MoveSurfaceMetric: a no-op in 2D).
   double Quality(const Simplex& t) const
   {
-    const auto& p = Points;
-    const auto& s = SqrtMetrics;
-    if constexpr (K == 3)
-      return TetMetricQuality(
-        p[t[0]], p[t[1]], p[t[2]], p[t[3]], s[t[0]], s[t[1]], s[t[2]], s[t[3]]);
-    else
-    {
-      const Eigen::Vector3d n = (p[t[1]] - p[t[0]]).cross(p[t[2]] - p[t[0]]);
-      const double len = n.norm();
-      auto moved = [&](int i) -> Eigen::Matrix3d
-      { return len > 0.0 ? MoveSurfaceMetric(s[t[i]], Normals[t[i]], n / len) : s[t[i]]; };
-      return OrientedTriangleMetricQuality(p[t[0]],
-        p[t[1]],
-        p[t[2]],
-        moved(0),
-        moved(1),
-        moved(2),
-        Normals[t[0]] + Normals[t[1]] + Normals[t[2]]);
-    }
+    return Measure(t, TetQuality, TriangleQuality);
   }
   /// The §5.2 shape measure G of simplex t in the metric, mapped as Quality maps it
-  /// (MetricSimplexQuality.h: TetMetricMeanRatio, OrientedTriangleMetricMeanRatio).
+  /// (MetricSimplexQuality.h: TetMeanRatio, TriangleMeanRatio).
   double MeanRatio(const Simplex& t) const
   {
-    const auto& p = Points;
-    const auto& s = SqrtMetrics;
-    if constexpr (K == 3)
-      return TetMetricMeanRatio(
-        p[t[0]], p[t[1]], p[t[2]], p[t[3]], s[t[0]], s[t[1]], s[t[2]], s[t[3]]);
-    else
-    {
-      const Eigen::Vector3d n = (p[t[1]] - p[t[0]]).cross(p[t[2]] - p[t[0]]);
-      const double len = n.norm();
-      auto moved = [&](int i) -> Eigen::Matrix3d
-      { return len > 0.0 ? MoveSurfaceMetric(s[t[i]], Normals[t[i]], n / len) : s[t[i]]; };
-      return OrientedTriangleMetricMeanRatio(p[t[0]],
-        p[t[1]],
-        p[t[2]],
-        moved(0),
-        moved(1),
-        moved(2),
-        Normals[t[0]] + Normals[t[1]] + Normals[t[2]]);
-    }
+    return Measure(t, TetMeanRatio, TriangleMeanRatio);
   }
   bool IsAlive(std::int32_t t) const { return Simplices[t][0] != kDead; }
   bool CanMove(std::int32_t v) const { return !Fixed[v] && !Stars[v].empty(); }
@@ -129,6 +93,30 @@ public:
 
   /// Writes the alive simplices (by id) and the moved points into `mesh`, resized to them.
   void WriteBack(SimplexMesh& mesh) const;
+
+  /// `tet` or `triangle` of simplex t mapped as Quality describes (MappedTet, MappedTriangle).
+  template <typename TetMeasure, typename TriangleMeasure>
+  double Measure(const Simplex& t, TetMeasure tet, TriangleMeasure triangle) const
+  {
+    const auto& p = Points;
+    const auto& s = SqrtMetrics;
+    if constexpr (K == 3)
+      return tet(MappedTet(p[t[0]], p[t[1]], p[t[2]], p[t[3]], s[t[0]], s[t[1]], s[t[2]], s[t[3]]));
+    else
+    {
+      const Eigen::Vector3d n = (p[t[1]] - p[t[0]]).cross(p[t[2]] - p[t[0]]);
+      const double len = n.norm();
+      auto moved = [&](int i) -> Eigen::Matrix3d
+      { return len > 0.0 ? MoveSurfaceMetric(s[t[i]], Normals[t[i]], n / len) : s[t[i]]; };
+      return triangle(MappedTriangle(p[t[0]],
+        p[t[1]],
+        p[t[2]],
+        moved(0),
+        moved(1),
+        moved(2),
+        Normals[t[0]] + Normals[t[1]] + Normals[t[2]]));
+    }
+  }
 
   // The arrays themselves: the improvers' undo journals save and restore them directly.
   std::vector<Eigen::Vector3d> Points;

@@ -95,59 +95,45 @@ Eigen::Vector3d VertexStarSmoother<K>::WorstGradient(std::int32_t v, double h)
   return g;
 }
 
-// Steepest ascent of the worst simplex of v's star, with a halving line search; a step is
-// kept only if the star's worst rises (and the edge rule holds).
 template <int K>
-bool VertexStarSmoother<K>::TrySmooth(std::int32_t v, bool deferCommit)
+double VertexStarSmoother<K>::StarScale(std::int32_t v) const
 {
-  if (!Mesh.CanMove(v))
-    return false;
-  const VertexState start = Save(v);
-  // Steps are scaled by the shortest edge of the star.
   double scale = std::numeric_limits<double>::infinity();
   for (std::int32_t t : Mesh.Stars[v])
     for (std::int32_t w : Mesh.Simplices[t])
       if (w != v)
-        scale = std::min(scale, (Mesh.Points[w] - start.Point).norm());
-  const double before = Mesh.StarWorst(v);
-  double current = before;
-  const int outBefore = OutOfRangeEdges ? OutOfRangeEdges(v) : 0;
-  for (int iter = 0; iter < 8; ++iter)
+        scale = std::min(scale, (Mesh.Points[w] - Mesh.Points[v]).norm());
+  return scale;
+}
+
+template <int K>
+template <typename Accept>
+bool VertexStarSmoother<K>::LineSearch(
+  std::int32_t v, const Eigen::Vector3d& g, double first, double last, Accept&& accept)
+{
+  const double gn = g.norm();
+  if (!(gn > 0.0) || !std::isfinite(gn))
+    return false;
+  const VertexState here = Save(v);
+  for (double alpha = first; alpha > last; alpha *= 0.5)
   {
-    Eigen::Vector3d g = WorstGradient(v, 1e-6 * scale);
-    if (Filter)
-      Filter(v, g);
-    const double gn = g.norm();
-    if (!(gn > 0.0) || !std::isfinite(gn))
-      break;
-    const VertexState here = Save(v);
-    bool stepped = false;
-    for (double alpha = 0.2 * scale; alpha > 1e-4 * scale; alpha *= 0.5)
-    {
-      const Eigen::Vector3d x = here.Point + (alpha / gn) * g;
-      bool placed = true;
-      if (Place)
-        placed = Place(v, x);
-      else
-        Mesh.Points[v] = x;
-      if (placed)
-      {
-        const double q = Mesh.StarWorst(v);
-        if (q > current + 1e-12 && (!OutOfRangeEdges || OutOfRangeEdges(v) <= outBefore))
-        {
-          current = q;
-          stepped = true;
-          break;
-        }
-      }
-      Restore(v, here);
-    }
-    if (!stepped)
-      break;
+    const Eigen::Vector3d x = here.Point + (alpha / gn) * g;
+    bool placed = true;
+    if (Place)
+      placed = Place(v, x);
+    else
+      Mesh.Points[v] = x;
+    if (placed && accept())
+      return true;
+    Restore(v, here);
   }
-  const bool unmoved = Mesh.Points[v] == start.Point;
-  const bool accept = AcceptsImprovement(current, before, Options.AcceptWorsening) &&
-    !(RequireMove && Options.AcceptWorsening && unmoved);
+  return false;
+}
+
+template <int K>
+bool VertexStarSmoother<K>::Commit(
+  std::int32_t v, const VertexState& start, bool accept, bool deferCommit)
+{
   if (!accept ||
     (!deferCommit && Options.AcceptMove && !Options.AcceptMove(v, Mesh.Points[v].data())))
   {
@@ -157,6 +143,41 @@ bool VertexStarSmoother<K>::TrySmooth(std::int32_t v, bool deferCommit)
   if (!deferCommit)
     Mesh.Moved[v] = 1;
   return true;
+}
+
+// Steepest ascent of the worst simplex of v's star, with a halving line search; a step is
+// kept only if the star's worst rises (and the edge rule holds).
+template <int K>
+bool VertexStarSmoother<K>::TrySmooth(std::int32_t v, bool deferCommit)
+{
+  if (!Mesh.CanMove(v))
+    return false;
+  const VertexState start = Save(v);
+  const double scale = StarScale(v); // steps are scaled by the shortest edge of the star
+  const double before = Mesh.StarWorst(v);
+  double current = before;
+  const int outBefore = OutOfRangeEdges ? OutOfRangeEdges(v) : 0;
+  for (int iter = 0; iter < 8; ++iter)
+  {
+    Eigen::Vector3d g = WorstGradient(v, 1e-6 * scale);
+    if (Filter)
+      Filter(v, g);
+    const bool stepped = LineSearch(v, g, 0.2 * scale, 1e-4 * scale,
+      [&]
+      {
+        const double q = Mesh.StarWorst(v);
+        if (!(q > current + 1e-12 && (!OutOfRangeEdges || OutOfRangeEdges(v) <= outBefore)))
+          return false;
+        current = q;
+        return true;
+      });
+    if (!stepped)
+      break;
+  }
+  const bool unmoved = Mesh.Points[v] == start.Point;
+  const bool accept = AcceptsImprovement(current, before, Options.AcceptWorsening) &&
+    !(RequireMove && Options.AcceptWorsening && unmoved);
+  return Commit(v, start, accept, deferCommit);
 }
 
 template <int K>
@@ -202,11 +223,7 @@ bool VertexStarSmoother<K>::TryMeanSmooth(std::int32_t v, double floor, bool def
   if (!Mesh.CanMove(v))
     return false;
   const VertexState start = Save(v);
-  double scale = std::numeric_limits<double>::infinity();
-  for (std::int32_t t : Mesh.Stars[v])
-    for (std::int32_t w : Mesh.Simplices[t])
-      if (w != v)
-        scale = std::min(scale, (Mesh.Points[w] - start.Point).norm());
+  const double scale = StarScale(v);
   const double worstBefore = Mesh.StarWorst(v);
   if (!(worstBefore > kMinImprovementQuality))
     return false; // an inverted or flat star is the worst-first passes' business
@@ -216,41 +233,21 @@ bool VertexStarSmoother<K>::TryMeanSmooth(std::int32_t v, double floor, bool def
     Options.AcceptWorsening ? -std::numeric_limits<double>::infinity() : std::min(worstBefore, floor);
   double current = meanBefore;
   const int outBefore = OutOfRangeEdges ? OutOfRangeEdges(v) : 0;
-  // One halving line search along g from `here`; true if a step was kept.
-  auto search = [&](const Eigen::Vector3d& g)
+  auto accept = [&]
   {
-    const double gn = g.norm();
-    if (!(gn > 0.0) || !std::isfinite(gn))
+    const double q = Mesh.StarMeanRatio(v);
+    if (!(q > current + 1e-12 && Mesh.StarWorst(v) >= floorWorst &&
+          (!OutOfRangeEdges || OutOfRangeEdges(v) <= outBefore)))
       return false;
-    const VertexState here = Save(v);
-    for (double alpha = 0.1 * scale; alpha > 1e-3 * scale; alpha *= 0.5)
-    {
-      const Eigen::Vector3d x = here.Point + (alpha / gn) * g;
-      bool placed = true;
-      if (Place)
-        placed = Place(v, x);
-      else
-        Mesh.Points[v] = x;
-      if (placed)
-      {
-        const double q = Mesh.StarMeanRatio(v);
-        if (q > current + 1e-12 && Mesh.StarWorst(v) >= floorWorst &&
-          (!OutOfRangeEdges || OutOfRangeEdges(v) <= outBefore))
-        {
-          current = q;
-          return true;
-        }
-      }
-      Restore(v, here);
-    }
-    return false;
+    current = q;
+    return true;
   };
   for (int iter = 0; iter < 4; ++iter)
   {
     Eigen::Vector3d g = MeanGradient(v, 1e-6 * scale);
     if (Filter)
       Filter(v, g);
-    if (search(g))
+    if (LineSearch(v, g, 0.1 * scale, 1e-3 * scale, accept))
       continue;
     // Blocked, usually by the worst simplex at the floor: the part of g that leaves the worst
     // simplex's quality unchanged to first order.
@@ -260,18 +257,12 @@ bool VertexStarSmoother<K>::TryMeanSmooth(std::int32_t v, double floor, bool def
     const double ww = w.squaredNorm();
     if (!(ww > 0.0) || g.dot(w) >= 0.0)
       break;
-    if (!search(g - (g.dot(w) / ww) * w + 0.1 * std::sqrt(g.squaredNorm() / ww) * w))
+    const Eigen::Vector3d slide =
+      g - (g.dot(w) / ww) * w + 0.1 * std::sqrt(g.squaredNorm() / ww) * w;
+    if (!LineSearch(v, slide, 0.1 * scale, 1e-3 * scale, accept))
       break;
   }
-  if (!(current > meanBefore + 1e-9) ||
-    (!deferCommit && Options.AcceptMove && !Options.AcceptMove(v, Mesh.Points[v].data())))
-  {
-    Restore(v, start);
-    return false;
-  }
-  if (!deferCommit)
-    Mesh.Moved[v] = 1;
-  return true;
+  return Commit(v, start, current > meanBefore + 1e-9, deferCommit);
 }
 
 template <int K>

@@ -74,6 +74,15 @@ private:
   void Restore(std::int32_t v, const VertexState& state);
   Eigen::Vector3d WorstGradient(std::int32_t v, double h); ///< of the star's worst simplex
   Eigen::Vector3d MeanGradient(std::int32_t v, double h);  ///< of the star's mean G
+  double StarScale(std::int32_t v) const; ///< shortest edge from v in its star: the step unit
+  /// Halving line search along g from v's position, steps from `first` down to `last`: the
+  /// first placed point that `accept` takes is kept (true), else v is restored (false).
+  template <typename Accept>
+  bool LineSearch(
+    std::int32_t v, const Eigen::Vector3d& g, double first, double last, Accept&& accept);
+  /// Keeps v's move if `accept` and (unless deferCommit) Options.AcceptMove agree, marking it
+  /// moved; else restores `start`.
+  bool Commit(std::int32_t v, const VertexState& start, bool accept, bool deferCommit);
   /// Central differences of f at v: along the axes (tets), in v's tangent plane (triangles).
   template <typename F>
   Eigen::Vector3d Gradient(std::int32_t v, double h, F&& f);

@@ -7,6 +7,7 @@
 #include "BoundaryNotchClosure.h"
 #include "MeshTopology.h"
 #include "AnisoTestChecks.h"
+#include "HeightFieldSites.h"
 
 #include <Eigen/Dense>
 
@@ -32,42 +33,22 @@ av::SimplexMesh MakeStrip(double h)
   return m;
 }
 
-/// Appends a site at (x, y) of the strip: the triangle holding it and its barycentric
-/// coordinates, exact zeros on the triangle's edges.
+/// Appends a site at (x, y) of the strip.
 void AddSite(const av::SimplexMesh& m, double x, double y, av::SiteSet& sites)
 {
-  for (std::size_t c = 0; c < m.NumCells(); ++c)
-  {
-    const std::int32_t* v = m.Cell(c);
-    const double* p0 = m.Point(v[0]);
-    Eigen::Matrix2d e;
-    for (int k = 0; k < 2; ++k)
-      for (int d = 0; d < 2; ++d)
-        e(d, k) = m.Point(v[k + 1])[d] - p0[d];
-    const Eigen::Vector2d l = e.inverse() * Eigen::Vector2d(x - p0[0], y - p0[1]);
-    const double b[3] = { 1.0 - l[0] - l[1], l[0], l[1] };
-    if (b[0] < -1e-12 || b[1] < -1e-12 || b[2] < -1e-12)
-      continue;
-    sites.CellIds.push_back(static_cast<std::int32_t>(c));
-    for (double bi : b)
-      sites.Bary.push_back(std::abs(bi) < 1e-12 ? 0.0 : bi);
-    sites.Bary.push_back(0.0);
-    sites.Coords.insert(sites.Coords.end(), { x, y, 0.0 });
-    return;
-  }
+  av_test::AddSiteOverXY(m, x, y, 0.0, sites);
 }
 
 /// Total area of the dual (signed by +z), and whether every triangle faces +z.
 double Area(const av::RestrictedDelaunayMesh& rdt, bool& upwards)
 {
+  auto at = [&](std::size_t t, int i)
+  { return Eigen::Map<const Eigen::Vector3d>(rdt.Points.data() + 3 * rdt.Cells[3 * t + i]); };
   double area = 0.0;
   upwards = true;
   for (std::size_t t = 0; t < rdt.NumCells(); ++t)
   {
-    Eigen::Vector3d p[3];
-    for (int i = 0; i < 3; ++i)
-      p[i] = Eigen::Map<const Eigen::Vector3d>(rdt.Points.data() + 3 * rdt.Cells[3 * t + i]);
-    const double z = (p[1] - p[0]).cross(p[2] - p[0]).z() / 2.0;
+    const double z = (at(t, 1) - at(t, 0)).cross(at(t, 2) - at(t, 0)).z() / 2.0;
     area += z;
     upwards = upwards && z > 0.0;
   }

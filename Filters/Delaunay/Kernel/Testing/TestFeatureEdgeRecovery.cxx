@@ -6,6 +6,7 @@
 #include "FeatureEdgeRecovery.h"
 #include "SharpFeatures.h"
 #include "AnisoTestChecks.h"
+#include "HeightFieldSites.h"
 
 #include <Eigen/Dense>
 
@@ -40,31 +41,10 @@ av::SimplexMesh MakeRoof()
   return m;
 }
 
-/// Appends a site at (x, y) on the roof: the triangle holding it (projected to the xy plane)
-/// and its barycentric coordinates, exact zeros on the triangle's edges.
+/// Appends a site at (x, y) on the roof.
 void AddSite(const av::SimplexMesh& m, double x, double y, av::SiteSet& sites)
 {
-  for (std::size_t c = 0; c < m.NumCells(); ++c)
-  {
-    const std::int32_t* v = m.Cell(c);
-    Eigen::Matrix2d e;
-    const double* p0 = m.Point(v[0]);
-    for (int k = 0; k < 2; ++k)
-    {
-      e(0, k) = m.Point(v[k + 1])[0] - p0[0];
-      e(1, k) = m.Point(v[k + 1])[1] - p0[1];
-    }
-    const Eigen::Vector2d l = e.inverse() * Eigen::Vector2d(x - p0[0], y - p0[1]);
-    const double b[3] = { 1.0 - l[0] - l[1], l[0], l[1] };
-    if (b[0] < -1e-12 || b[1] < -1e-12 || b[2] < -1e-12)
-      continue;
-    sites.CellIds.push_back(static_cast<std::int32_t>(c));
-    for (double bi : b)
-      sites.Bary.push_back(std::abs(bi) < 1e-12 ? 0.0 : bi);
-    sites.Bary.push_back(0.0);
-    sites.Coords.insert(sites.Coords.end(), { x, y, Roof(y) });
-    return;
-  }
+  av_test::AddSiteOverXY(m, x, y, Roof(y), sites);
 }
 
 bool HasEdge(const av::RestrictedDelaunayMesh& rdt, std::int32_t a, std::int32_t b)
