@@ -67,6 +67,28 @@ double SimplexStarMesh<K>::StarMeanRatio(std::int32_t v) const
 }
 
 template <int K>
+void SimplexStarMesh<K>::StarMeanAndWorst(std::int32_t v, double& mean, double& worst) const
+{
+  double sum = 0.0;
+  worst = std::numeric_limits<double>::infinity();
+  for (std::int32_t t : Stars[v])
+  {
+    const auto m = Mapped(Simplices[t]);
+    if constexpr (K == 3)
+    {
+      sum += TetMeanRatio(m);
+      worst = std::min(worst, TetQuality(m));
+    }
+    else
+    {
+      sum += TriangleMeanRatio(m);
+      worst = std::min(worst, TriangleQuality(m));
+    }
+  }
+  mean = Stars[v].empty() ? 0.0 : sum / static_cast<double>(Stars[v].size());
+}
+
+template <int K>
 std::vector<std::vector<std::int32_t>> SimplexStarMesh<K>::IndependentClasses(
   const std::vector<std::int32_t>& vertices) const
 {

@@ -40,19 +40,27 @@ public:
   /// (MoveSurfaceMetric: a no-op in 2D).
   double Quality(const Simplex& t) const
   {
-    return Measure(t, TetQuality, TriangleQuality);
+    if constexpr (K == 3)
+      return TetQuality(Mapped(t));
+    else
+      return TriangleQuality(Mapped(t));
   }
   /// The §5.2 shape measure G of simplex t in the metric, mapped as Quality maps it
   /// (MetricSimplexQuality.h: TetMeanRatio, TriangleMeanRatio).
   double MeanRatio(const Simplex& t) const
   {
-    return Measure(t, TetMeanRatio, TriangleMeanRatio);
+    if constexpr (K == 3)
+      return TetMeanRatio(Mapped(t));
+    else
+      return TriangleMeanRatio(Mapped(t));
   }
   bool IsAlive(std::int32_t t) const { return Simplices[t][0] != kDead; }
   bool CanMove(std::int32_t v) const { return !Fixed[v] && !Stars[v].empty(); }
   double WorstQuality() const;            ///< over the alive simplices; +inf if none
   double StarWorst(std::int32_t v) const; ///< over v's star; +inf if empty
   double StarMeanRatio(std::int32_t v) const; ///< mean MeanRatio over v's star; 0 if empty
+  /// StarMeanRatio and StarWorst in one pass (each simplex mapped once).
+  void StarMeanAndWorst(std::int32_t v, double& mean, double& worst) const;
   /// Splits `vertices` into classes of which no two members share a simplex (greedy, in the
   /// given order): the members of one class can move at the same time.
   std::vector<std::vector<std::int32_t>> IndependentClasses(
@@ -94,27 +102,26 @@ public:
   /// Writes the alive simplices (by id) and the moved points into `mesh`, resized to them.
   void WriteBack(SimplexMesh& mesh) const;
 
-  /// `tet` or `triangle` of simplex t mapped as Quality describes (MappedTet, MappedTriangle).
-  template <typename TetMeasure, typename TriangleMeasure>
-  double Measure(const Simplex& t, TetMeasure tet, TriangleMeasure triangle) const
+  /// Simplex t mapped as Quality describes: a MappedTet, or a MappedTriangle.
+  auto Mapped(const Simplex& t) const
   {
     const auto& p = Points;
     const auto& s = SqrtMetrics;
     if constexpr (K == 3)
-      return tet(MappedTet(p[t[0]], p[t[1]], p[t[2]], p[t[3]], s[t[0]], s[t[1]], s[t[2]], s[t[3]]));
+      return MappedTet(p[t[0]], p[t[1]], p[t[2]], p[t[3]], s[t[0]], s[t[1]], s[t[2]], s[t[3]]);
     else
     {
       const Eigen::Vector3d n = (p[t[1]] - p[t[0]]).cross(p[t[2]] - p[t[0]]);
       const double len = n.norm();
       auto moved = [&](int i) -> Eigen::Matrix3d
       { return len > 0.0 ? MoveSurfaceMetric(s[t[i]], Normals[t[i]], n / len) : s[t[i]]; };
-      return triangle(MappedTriangle(p[t[0]],
+      return MappedTriangle(p[t[0]],
         p[t[1]],
         p[t[2]],
         moved(0),
         moved(1),
         moved(2),
-        Normals[t[0]] + Normals[t[1]] + Normals[t[2]]));
+        Normals[t[0]] + Normals[t[1]] + Normals[t[2]]);
     }
   }
 

@@ -235,8 +235,9 @@ bool VertexStarSmoother<K>::TryMeanSmooth(std::int32_t v, double floor, bool def
   const int outBefore = OutOfRangeEdges ? OutOfRangeEdges(v) : 0;
   auto accept = [&]
   {
-    const double q = Mesh.StarMeanRatio(v);
-    if (!(q > current + 1e-12 && Mesh.StarWorst(v) >= floorWorst &&
+    double q = 0.0, worst = 0.0;
+    Mesh.StarMeanAndWorst(v, q, worst);
+    if (!(q > current + 1e-12 && worst >= floorWorst &&
           (!OutOfRangeEdges || OutOfRangeEdges(v) <= outBefore)))
       return false;
     current = q;
