@@ -248,7 +248,7 @@ bool VertexStarSmoother<K>::TryMeanSmooth(std::int32_t v, double floor, bool def
     Eigen::Vector3d g = MeanGradient(v, 1e-6 * scale);
     if (Filter)
       Filter(v, g);
-    if (LineSearch(v, g, 0.1 * scale, 1e-3 * scale, accept))
+    if (LineSearch(v, g, 0.1 * scale, 1e-2 * scale, accept))
       continue;
     // Blocked, usually by the worst simplex at the floor: the part of g that leaves the worst
     // simplex's quality unchanged to first order.
@@ -260,7 +260,7 @@ bool VertexStarSmoother<K>::TryMeanSmooth(std::int32_t v, double floor, bool def
       break;
     const Eigen::Vector3d slide =
       g - (g.dot(w) / ww) * w + 0.1 * std::sqrt(g.squaredNorm() / ww) * w;
-    if (!LineSearch(v, slide, 0.1 * scale, 1e-3 * scale, accept))
+    if (!LineSearch(v, slide, 0.1 * scale, 1e-2 * scale, accept))
       break;
   }
   return Commit(v, start, current > meanBefore + 1e-9, deferCommit);
