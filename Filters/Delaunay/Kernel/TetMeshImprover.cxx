@@ -666,17 +666,27 @@ bool TetMeshImprover::TrySmooth(std::int32_t v)
     return TrySnap(v);
   }
   const Eigen::Vector3d start = P[v];
-  auto starVolume = [&]
-  {
-    double sum = 0.0;
-    for (std::int32_t t : Star[v])
-      sum += Volume(Tets[t]);
-    return sum;
-  };
-  const double before = starVolume();
-  if (!Smoother.TrySmooth(v, true))
+  const double before = StarVolume(v);
+  if (!Smoother.TrySmooth(v, true) || !KeepBoundaryMove(v, start, before))
     return false;
-  const double change = Curved[v] ? std::abs(starVolume() - before) : 0.0;
+  ++Smoothed;
+  CreaseSmoothed += crease ? 1 : 0;
+  return true;
+}
+
+double TetMeshImprover::StarVolume(std::int32_t v) const
+{
+  double sum = 0.0;
+  for (std::int32_t t : Star[v])
+    sum += Volume(Tets[t]);
+  return sum;
+}
+
+// A curved-patch move changes the volume by the change of v's star: charged to the budget.
+bool TetMeshImprover::KeepBoundaryMove(
+  std::int32_t v, const Eigen::Vector3d& start, double volumeBefore)
+{
+  const double change = Curved[v] ? std::abs(StarVolume(v) - volumeBefore) : 0.0;
   if (BoundaryVolumeChange + change > Options.BoundaryFlipVolumeBudget * MeshVolume ||
     (Options.AcceptMove && !Options.AcceptMove(v, P[v].data())))
   {
@@ -685,9 +695,7 @@ bool TetMeshImprover::TrySmooth(std::int32_t v)
   }
   Work.Moved[v] = 1;
   BoundaryVolumeChange += change;
-  ++Smoothed;
   ++BoundarySmoothed;
-  CreaseSmoothed += crease ? 1 : 0;
   return true;
 }
 
@@ -1262,33 +1270,15 @@ void TetMeshImprover::MeanSmoothingSweeps()
   }
   const double floor = Smoother.MeanSmoothingFloor();
   MeanSmoothed += Smoother.MeanSmoothingSweeps(vertices);
-  auto starVolume = [&](std::int32_t v)
-  {
-    double sum = 0.0;
-    for (std::int32_t t : Star[v])
-      sum += Volume(Tets[t]);
-    return sum;
-  };
   for (int sweep = 0; sweep < Options.MeanSmoothingSweeps && !curved.empty(); ++sweep)
   {
     std::size_t moved = 0;
     for (std::int32_t v : curved)
     {
       const Eigen::Vector3d start = P[v];
-      const double before = starVolume(v);
-      if (!Smoother.TryMeanSmooth(v, floor, true))
-        continue;
-      const double change = std::abs(starVolume(v) - before);
-      if (BoundaryVolumeChange + change > Options.BoundaryFlipVolumeBudget * MeshVolume ||
-        (Options.AcceptMove && !Options.AcceptMove(v, P[v].data())))
-      {
-        Work.Points[v] = start;
-        continue;
-      }
-      Work.Moved[v] = 1;
-      BoundaryVolumeChange += change;
-      ++BoundarySmoothed;
-      ++moved;
+      const double before = StarVolume(v);
+      if (Smoother.TryMeanSmooth(v, floor, true) && KeepBoundaryMove(v, start, before))
+        ++moved;
     }
     MeanSmoothed += moved;
     if (moved == 0)

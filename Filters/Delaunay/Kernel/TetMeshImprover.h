@@ -71,6 +71,10 @@ private:
   /// of it (then `curved`). False otherwise.
   bool BuildOpenRing(std::int32_t a, std::int32_t b, bool& curved);
   double Volume(const Tet& t) const; // Euclidean, times 6
+  double StarVolume(std::int32_t v) const; // of v's star, Euclidean, times 6
+  /// Keeps a boundary vertex's move from `start` (AcceptMove, the curved-patch volume budget
+  /// with the star's volume `volumeBefore`), or puts v back at `start` and returns false.
+  bool KeepBoundaryMove(std::int32_t v, const Eigen::Vector3d& start, double volumeBefore);
   bool TryFlip23(std::int32_t tet, int apexIndex, double worst);
   bool TrySmooth(std::int32_t v);
   /// Vertex insertion in bad tet `tet` (MeshImprovementOptions::Insertions): the best of a few
